@@ -1,0 +1,110 @@
+//! The arrangement of the cutting planes inside a padded bounding box, and the sections on its faces.
+//!
+//! Contract used by the engines (`bm`, `implicit`):
+//! * `planes[..n_input]` are the input planes in the order of `Sections::sections`
+//!   (`section == Some(i)`); the box walls follow (`section == None`). Every face lies on one plane.
+//! * The global `pool` holds every point the engines use on planes: arrangement vertices (3+ tags),
+//!   contour vertices (1 tag), points where a contour edge crosses another plane (2 tags). A vertex shared
+//!   by several faces or cells is one pool entry. Plane membership is the tag set, never a coordinate test.
+//! * For every tag of a vertex, `pool.uv[v]` holds its (u,v) coordinates in that plane's frame (same order
+//!   as `pool.tags[v]`): the exact input coordinates for an input contour vertex on its own plane.
+//! * A face polygon is convex and counter-clockwise seen from its plane's normal; section pieces are
+//!   counter-clockwise outer loops with clockwise holes, in pool vertex ids, and lie inside their face.
+//! * `Face::positive_cell` is the cell on the side the plane normal points to.
+use crate::error::Result;
+use crate::sections::{Plane, Sections};
+use serde::{Deserialize, Serialize};
+use smallvec::SmallVec;
+
+pub type PlaneId = u32;
+pub type VertexId = u32;
+pub type FaceId = u32;
+pub type CellId = u32;
+pub type PlaneTags = SmallVec<[PlaneId; 3]>;
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ArrPlane {
+    pub plane: Plane,
+    /// Index into `Sections::sections`, `None` for a wall of the box.
+    pub section: Option<usize>,
+}
+
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct VertexPool {
+    pub positions: Vec<[f64; 3]>,
+    /// Sorted plane ids the vertex lies on.
+    pub tags: Vec<PlaneTags>,
+    /// Per tag (same order as `tags[v]`): the vertex in that plane's (u,v) frame.
+    pub uv: Vec<SmallVec<[[f64; 2]; 3]>>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SectionPiece {
+    pub label: i32,
+    pub outer: Vec<VertexId>,
+    pub holes: Vec<Vec<VertexId>>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Face {
+    pub plane: PlaneId,
+    /// Cell on the side the plane normal points to; `None` outside the box.
+    pub positive_cell: Option<CellId>,
+    pub negative_cell: Option<CellId>,
+    /// Convex polygon, counter-clockwise seen from the plane normal, in pool vertex ids.
+    pub polygon: Vec<VertexId>,
+    /// The section of this face: pieces of the plane's regions clipped to the face.
+    pub pieces: Vec<SectionPiece>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CellFace {
+    pub face: FaceId,
+    /// True when the cell's outward normal on this face is the plane normal (the cell is on the negative side).
+    pub outward_is_plane_normal: bool,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Cell {
+    pub faces: Vec<CellFace>,
+    pub volume: f64,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ArrangementOptions {
+    /// Box padding, relative to the sections' bounding-box diagonal.
+    pub margin: f64,
+    /// Where the sections of two planes cross their common line at points closer than this
+    /// (relative to the bounding-box diagonal), the crossings are snapped to one shared vertex.
+    pub snap_tolerance: f64,
+}
+
+impl Default for ArrangementOptions {
+    fn default() -> Self {
+        ArrangementOptions {
+            margin: 0.1,
+            snap_tolerance: 1e-3,
+        }
+    }
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Arrangement {
+    pub planes: Vec<ArrPlane>,
+    pub n_input: usize,
+    pub pool: VertexPool,
+    pub faces: Vec<Face>,
+    pub cells: Vec<Cell>,
+    pub bbox: ([f64; 3], [f64; 3]),
+    /// Largest disagreement found between two sections along their planes' common line.
+    pub max_disagreement: f64,
+    pub warnings: Vec<String>,
+}
+
+impl Arrangement {
+    pub fn build(_sections: &Sections, _options: &ArrangementOptions) -> Result<Arrangement> {
+        Err(crate::error::Error::Unavailable(
+            "the plane arrangement is not implemented yet".into(),
+        ))
+    }
+}

@@ -1,0 +1,2 @@
+//! Geometry: every geometric decision goes through `predicates`.
+pub mod predicates;

@@ -1,0 +1,21 @@
+//! slice2solid: reconstruct a solid from planar cross-sections of arbitrary orientation.
+//!
+//! Pipeline (data flows one way): `io` reads `Sections` → `arrangement` of the cutting planes with
+//! the section pieces on its faces → per cell `bm` (Boissonnat–Memari Delaunay pruning, on our exact
+//! `delaunay` kernel) or `implicit` (Bermano et al. mean-value interpolation) → a solid → `io::mesh`.
+//! `eval` measures any mesh (check, compare); `slice` makes sections from a mesh.
+pub mod arrangement;
+pub mod bm;
+pub mod delaunay;
+pub mod error;
+pub mod eval;
+pub mod geom;
+pub mod implicit;
+pub mod io;
+pub mod mesh;
+pub mod sections;
+pub mod slice;
+
+pub use error::{Error, Result};
+pub use mesh::{TetMesh, TriMesh};
+pub use sections::{Contour, Plane, Region, Section, Sections};

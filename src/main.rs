@@ -1,0 +1,170 @@
+//! The command line: parse arguments, call the library, print. Each subcommand's printing lives in `cli/`.
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+mod cli;
+
+#[derive(Parser)]
+#[command(
+    name = "slice2solid",
+    version,
+    about = "Reconstruct a solid from planar cross-sections of arbitrary orientation"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Method {
+    /// Boissonnat–Memari Delaunay pruning (the default)
+    Delaunay,
+    /// Bermano et al. mean-value implicit interpolation
+    Implicit,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum SliceMode {
+    Random,
+    Parallel,
+    Axes,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Reconstruct a solid from cross-sections (CSL or JSON)
+    Reconstruct(ReconstructArgs),
+    /// Check a triangle mesh: closed, manifold, oriented, self-intersections, genus; optionally its sections
+    Check(CheckArgs),
+    /// Compare a mesh with a reference: IoU, Chamfer, Hausdorff
+    Compare(CompareArgs),
+    /// Run both methods on one input and print a comparison table
+    CompareMethods(CompareMethodsArgs),
+    /// 3D Delaunay triangulation of a point file (our kernel, or TetGen as oracle)
+    Delaunay(DelaunayArgs),
+    /// Cut a closed triangle mesh with planes and write the cross-sections as CSL
+    Slice(SliceArgs),
+    /// Describe a cross-section file
+    Info(InfoArgs),
+}
+
+#[derive(clap::Args)]
+pub struct ReconstructArgs {
+    pub input: PathBuf,
+    /// Output surface (.obj, .ply, .stl, .off)
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Also write the tetrahedral mesh (.vtk or .mesh)
+    #[arg(long)]
+    pub tets: Option<PathBuf>,
+    /// Write a JSON report (timings, counts, topology, warnings)
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Reconstruct only this label (default: every region that is not a hole)
+    #[arg(long)]
+    pub label: Option<i32>,
+    #[arg(long, value_enum, default_value = "delaunay")]
+    pub method: Method,
+    /// Octree depth for the implicit method
+    #[arg(long, default_value_t = 9)]
+    pub depth: u32,
+    /// No progress bar
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+#[derive(clap::Args)]
+pub struct CheckArgs {
+    pub mesh: PathBuf,
+    /// Compare the mesh's sections with these input sections (CSL or JSON)
+    #[arg(long)]
+    pub sections: Option<PathBuf>,
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(clap::Args)]
+pub struct CompareArgs {
+    pub mesh: PathBuf,
+    pub reference: PathBuf,
+    #[arg(long)]
+    pub json: bool,
+    /// Surface samples each way
+    #[arg(long, default_value_t = 25_000)]
+    pub samples: usize,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+}
+
+#[derive(clap::Args)]
+pub struct CompareMethodsArgs {
+    pub input: PathBuf,
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
+    #[arg(long)]
+    pub json: bool,
+    #[arg(long, default_value_t = 9)]
+    pub depth: u32,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Oracle {
+    Tetgen,
+}
+
+#[derive(clap::Args)]
+pub struct DelaunayArgs {
+    /// One `x y z` per line
+    pub points: PathBuf,
+    /// Write one tetrahedron per line as four 0-based point indices
+    #[arg(long)]
+    pub tets: Option<PathBuf>,
+    #[arg(long)]
+    pub json: bool,
+    #[arg(long, value_enum)]
+    pub oracle: Option<Oracle>,
+}
+
+#[derive(clap::Args)]
+pub struct SliceArgs {
+    pub mesh: PathBuf,
+    #[arg(short, long)]
+    pub output: PathBuf,
+    #[arg(long, default_value_t = 10)]
+    pub planes: usize,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    #[arg(long, value_enum, default_value = "random")]
+    pub mode: SliceMode,
+}
+
+#[derive(clap::Args)]
+pub struct InfoArgs {
+    pub input: PathBuf,
+    #[arg(long)]
+    pub json: bool,
+    /// Also build the plane arrangement and print its size
+    #[arg(long)]
+    pub cells: bool,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Reconstruct(a) => cli::reconstruct::run(a),
+        Command::Check(a) => cli::check::run(a),
+        Command::Compare(a) => cli::compare::run(a),
+        Command::CompareMethods(a) => cli::compare_methods::run(a),
+        Command::Delaunay(a) => cli::delaunay::run(a),
+        Command::Slice(a) => cli::slice::run(a),
+        Command::Info(a) => cli::info::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

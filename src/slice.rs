@@ -1,0 +1,1 @@
+//! Cutting a closed triangle mesh by planes into cross-sections (to be written).
