@@ -13,9 +13,11 @@ pub mod geom;
 pub mod implicit;
 pub mod io;
 pub mod mesh;
+pub mod reconstruct;
 pub mod sections;
 pub mod slice;
 
 pub use error::{Error, Result};
 pub use mesh::{TetMesh, TriMesh};
+pub use reconstruct::{reconstruct, Method, Options, Report, Solid};
 pub use sections::{Contour, Plane, Region, Section, Sections};

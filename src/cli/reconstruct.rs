@@ -1,9 +1,46 @@
 use crate::ReconstructArgs;
-use slice2solid::{Error, Result};
+use slice2solid::io::{mesh, read_sections};
+use slice2solid::{Error, Options, Result};
+use std::io::IsTerminal;
 use std::process::ExitCode;
 
-pub fn run(_args: ReconstructArgs) -> Result<ExitCode> {
-    Err(Error::Unavailable(
-        "`reconstruct` is not implemented yet".into(),
-    ))
+pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
+    let sections = read_sections(&args.input)?;
+    let options = Options {
+        method: match args.method {
+            crate::Method::Delaunay => slice2solid::Method::Delaunay,
+            crate::Method::Implicit => slice2solid::Method::Implicit,
+        },
+        label: args.label,
+        depth: args.depth,
+        progress: !args.quiet && std::io::stderr().is_terminal(),
+        ..Default::default()
+    };
+    let solid = slice2solid::reconstruct(&sections, &options)?;
+    mesh::write_trimesh(&args.output, &solid.surface)?;
+    if let Some(path) = &args.tets {
+        match &solid.tets {
+            Some(t) => mesh::write_tetmesh(path, t)?,
+            None => {
+                return Err(Error::Unavailable(format!(
+                    "{}: this method produces no tetrahedra",
+                    path.display()
+                )))
+            }
+        }
+    }
+    for w in &solid.report.warnings {
+        eprintln!("warning: {w}");
+    }
+    if let Some(path) = &args.report {
+        let text = serde_json::to_string_pretty(&solid.report).expect("report serialises");
+        std::fs::write(path, text).map_err(|e| Error::io(path, e))?;
+    }
+    eprintln!(
+        "{}: {} triangles in {:.3} s",
+        args.output.display(),
+        solid.surface.triangles.len(),
+        solid.report.total_seconds
+    );
+    Ok(ExitCode::SUCCESS)
 }
