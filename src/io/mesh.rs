@@ -39,19 +39,32 @@ pub fn read_trimesh(path: &Path) -> Result<TriMesh> {
 pub fn write_trimesh(path: &Path, mesh: &TriMesh) -> Result<()> {
     let name = path.display().to_string();
     check_trimesh(mesh, &name)?;
-    let bytes =
-        match extension(path).as_str() {
-            "obj" => to_obj_string(mesh).into_bytes(),
-            "off" => to_off_string(mesh).into_bytes(),
-            "ply" => to_ply_bytes(mesh),
-            "stl" => to_stl_bytes(mesh),
-            other => return Err(Error::input(
+    if extension(path) == "stl" {
+        if let Some(i) = mesh
+            .vertices
+            .iter()
+            .position(|p| p.iter().any(|c| !(*c as f32).is_finite()))
+        {
+            return Err(Error::input(
+                name,
+                format!("vertex {i} is outside the f32 range binary STL can store"),
+            ));
+        }
+    }
+    let bytes = match extension(path).as_str() {
+        "obj" => to_obj_string(mesh).into_bytes(),
+        "off" => to_off_string(mesh).into_bytes(),
+        "ply" => to_ply_bytes(mesh),
+        "stl" => to_stl_bytes(mesh),
+        other => {
+            return Err(Error::input(
                 name,
                 format!(
                     "unknown output mesh extension `{other}` (expected .obj, .ply, .stl or .off)"
                 ),
-            )),
-        };
+            ))
+        }
+    };
     write_file(path, &bytes)
 }
 
