@@ -426,7 +426,7 @@ fn nest(plane: &Plane, loops: Vec<Vec<[f64; 2]>>) -> Vec<Region> {
     let mut region_of: HashMap<usize, usize> = HashMap::new();
     let mut regions: Vec<Region> = Vec::new();
     for i in 0..n {
-        if depth[i] % 2 == 0 {
+        if depth[i].is_multiple_of(2) {
             let mut pts = loops[i].take().expect("each loop used once");
             if !is_ccw(&pts) {
                 pts.reverse();
@@ -576,6 +576,59 @@ mod tests {
         assert!((with_hole.area() - (100.0 - 36.0)).abs() < 1e-12);
         assert!(with_hole.holes[0].signed_area() < 0.0);
         assert!((sec.area() - (100.0 - 36.0 + 4.0)).abs() < 1e-12);
+    }
+
+    /// Polygonal torus around z: `m` segments around the axis, `k` (even) around the tube; the rings at
+    /// tube angles 0 and π lie exactly on z = 0.
+    fn torus(big_r: f64, r: f64, m: usize, k: usize) -> TriMesh {
+        let mut mesh = TriMesh::default();
+        for i in 0..m {
+            let a = std::f64::consts::TAU * i as f64 / m as f64;
+            for j in 0..k {
+                let b = std::f64::consts::TAU * j as f64 / k as f64;
+                let (cb, sb) = match j {
+                    0 => (1.0, 0.0),
+                    j if 2 * j == k => (-1.0, 0.0),
+                    _ => (b.cos(), b.sin()),
+                };
+                let rho = big_r + r * cb;
+                mesh.vertices.push([rho * a.cos(), rho * a.sin(), r * sb]);
+            }
+        }
+        let id = |i: usize, j: usize| ((i % m) * k + j % k) as u32;
+        for i in 0..m {
+            for j in 0..k {
+                let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+                mesh.triangles.push([q[0], q[1], q[2]]);
+                mesh.triangles.push([q[0], q[2], q[3]]);
+            }
+        }
+        mesh
+    }
+
+    #[test]
+    fn torus_cut_through_its_vertex_rings_is_an_annulus() {
+        let (big_r, r, m) = (3.0, 1.0, 24);
+        let t = torus(big_r, r, m, 8);
+        check_closed_manifold(&t).unwrap();
+        let p = Plane::from_point_normal([0.0; 3], [0.0, 0.0, 1.0]).unwrap();
+        let s = slice_mesh(&t, &[p]).unwrap();
+        let sec = &s.sections[0];
+        assert_eq!(sec.regions.len(), 1);
+        assert_eq!(sec.regions[0].holes.len(), 1);
+        assert_eq!(sec.regions[0].outer.points2.len(), m);
+        let ngon = |rad: f64| 0.5 * m as f64 * (std::f64::consts::TAU / m as f64).sin() * rad * rad;
+        let expect = ngon(big_r + r) - ngon(big_r - r);
+        assert!(
+            (sec.area() - expect).abs() < 1e-12 * expect,
+            "{} vs {expect}",
+            sec.area()
+        );
+        // Cut along the axis: two discs, no hole.
+        let p = Plane::from_point_normal([0.0; 3], [1.0, 0.0, 0.0]).unwrap();
+        let s = slice_mesh(&t, &[p]).unwrap();
+        assert_eq!(s.sections[0].regions.len(), 2);
+        assert!(s.sections[0].regions.iter().all(|r| r.holes.is_empty()));
     }
 
     #[test]

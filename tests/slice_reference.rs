@@ -86,7 +86,9 @@ fn inside(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
     let mut c = false;
     for i in 0..poly.len() {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]) {
+        if (a[1] > p[1]) != (b[1] > p[1])
+            && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+        {
             c = !c;
         }
     }
@@ -98,18 +100,32 @@ fn check_conventions(name: &str, s: &Sections) {
         assert!(!sec.regions.is_empty());
         for r in &sec.regions {
             assert_eq!(r.label, 1);
-            assert!(r.outer.signed_area() > 0.0, "{name} section {i}: outer contour not CCW");
+            assert!(
+                r.outer.signed_area() > 0.0,
+                "{name} section {i}: outer contour not CCW"
+            );
             assert!(r.outer.points2.len() >= 3);
             for h in &r.holes {
                 assert!(h.signed_area() < 0.0, "{name} section {i}: hole not CW");
                 // Most hole vertices lie strictly inside the outer contour (all of them, unless touching).
-                let inn = h.points2.iter().filter(|&&p| inside(p, &r.outer.points2)).count();
-                assert!(2 * inn > h.points2.len(), "{name} section {i}: hole outside its parent");
+                let inn = h
+                    .points2
+                    .iter()
+                    .filter(|&&p| inside(p, &r.outer.points2))
+                    .count();
+                assert!(
+                    2 * inn > h.points2.len(),
+                    "{name} section {i}: hole outside its parent"
+                );
             }
             for c in std::iter::once(&r.outer).chain(&r.holes) {
                 let n = c.points2.len();
                 for k in 0..n {
-                    assert_ne!(c.points2[k], c.points2[(k + 1) % n], "{name}: repeated vertex");
+                    assert_ne!(
+                        c.points2[k],
+                        c.points2[(k + 1) % n],
+                        "{name}: repeated vertex"
+                    );
                 }
                 for (q2, q3) in c.points2.iter().zip(&c.points3) {
                     assert_eq!(sec.plane.to_3d(*q2), *q3);
@@ -151,11 +167,17 @@ fn section_areas_match_the_independent_computation() {
                         kept.next();
                     }
                     // A skipped plane has an empty section.
-                    _ => assert!(expect.abs() <= 1e-9 * scale, "{name}: skipped a section of area {expect}"),
+                    _ => assert!(
+                        expect.abs() <= 1e-9 * scale,
+                        "{name}: skipped a section of area {expect}"
+                    ),
                 }
             }
             assert!(kept.next().is_none());
-            assert!(!s.sections.is_empty(), "{name} {mode:?}: every plane missed");
+            assert!(
+                !s.sections.is_empty(),
+                "{name} {mode:?}: every plane missed"
+            );
             println!(
                 "{name:>15} {mode:?}/{seed}: {} of {} planes, {regions} regions, {holes} holes, {} vertices",
                 s.sections.len(),
@@ -180,4 +202,48 @@ fn eight_has_sections_with_holes() {
         .max()
         .unwrap();
     assert_eq!(max_holes, 2);
+}
+
+/// Axis planes exactly through mesh vertices (those vertices are on the plane: the symbolic
+/// perturbation decides), and oblique planes through vertices: still closed loops, same areas.
+#[test]
+fn planes_through_mesh_vertices() {
+    for (name, mesh) in reference_meshes() {
+        let scale = diag2(&mesh);
+        let step = mesh.vertices.len() / 7;
+        let mut planes = Vec::new();
+        for i in 1..7 {
+            let v = mesh.vertices[i * step];
+            let mut n = [0.0; 3];
+            n[i % 3] = 1.0;
+            planes.push(Plane::from_point_normal(v, n).unwrap());
+            planes.push(Plane::from_point_normal(v, [0.3, -0.5, 0.8]).unwrap());
+        }
+        let on_plane = planes
+            .iter()
+            .map(|p| {
+                mesh.vertices
+                    .iter()
+                    .filter(|&&v| p.signed_distance(v) == 0.0)
+                    .count()
+            })
+            .sum::<usize>();
+        assert!(
+            on_plane >= 6,
+            "{name}: expected vertices exactly on the axis planes"
+        );
+        let s = slice_mesh(&mesh, &planes).unwrap();
+        check_conventions(&name, &s);
+        assert_eq!(
+            s.sections.len(),
+            planes.len(),
+            "{name}: a plane through a vertex of the mesh missed it"
+        );
+        for (sec, plane) in s.sections.iter().zip(&planes) {
+            let expect = independent_area(&mesh, plane);
+            let rel = (sec.area() - expect).abs() / expect.abs().max(1e-6 * scale);
+            assert!(rel < 1e-9, "{name}: area {} vs {expect}", sec.area());
+        }
+        println!("{name}: {on_plane} vertices exactly on the cutting planes");
+    }
 }
