@@ -24,7 +24,7 @@ use crate::sections::{Contour, Plane, Region, Section, Sections};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 /// How [`make_planes`] places the cutting planes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -228,15 +228,15 @@ fn section_regions(mesh: &TriMesh, plane: &Plane) -> Result<Option<Vec<Region>>>
     let mut loops: Vec<Vec<[f64; 2]>> = Vec::new();
     let mut starts: Vec<(u32, u32)> = next.keys().copied().collect();
     starts.sort_unstable(); // deterministic loop order
-    let mut visited: HashMap<(u32, u32), ()> = HashMap::with_capacity(next.len());
+    let mut visited: HashSet<(u32, u32)> = HashSet::with_capacity(next.len());
     for s in starts {
-        if visited.contains_key(&s) {
+        if visited.contains(&s) {
             continue;
         }
         let mut pts = Vec::new();
         let mut e = s;
         loop {
-            visited.insert(e, ());
+            visited.insert(e);
             pts.push(point_of_edge[&e]);
             e = *next.get(&e).ok_or_else(|| {
                 Error::input(
@@ -247,7 +247,7 @@ fn section_regions(mesh: &TriMesh, plane: &Plane) -> Result<Option<Vec<Region>>>
             if e == s {
                 break;
             }
-            if visited.contains_key(&e) {
+            if visited.contains(&e) {
                 return Err(Error::input(
                     "mesh",
                     "non-manifold mesh: section contours branch",
