@@ -289,3 +289,61 @@ fn reference_stls_weld_into_closed_meshes() {
         assert_eq!(weld_exact(&m), m);
     }
 }
+
+mod fuzz {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn valid_files() -> Vec<(&'static str, Vec<u8>)> {
+        let m = TriMesh {
+            vertices: vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+            ],
+            triangles: vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]],
+        };
+        let ascii_ply =
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+                         property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+                         end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        vec![
+            ("stl", to_stl_bytes(&m)),
+            ("ply", to_ply_bytes(&m)),
+            ("ply", ascii_ply.as_bytes().to_vec()),
+            ("obj", slice2solid::io::mesh::to_obj_string(&m).into_bytes()),
+            ("off", slice2solid::io::mesh::to_off_string(&m).into_bytes()),
+        ]
+    }
+
+    fn parse(ext: &str, b: &[u8]) {
+        let _ = match ext {
+            "stl" => parse_stl(b, "f.stl"),
+            "ply" => parse_ply(b, "f.ply"),
+            "obj" => parse_obj(&String::from_utf8_lossy(b), "f.obj"),
+            _ => parse_off(&String::from_utf8_lossy(b), "f.off"),
+        };
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+        /// Corrupting bytes of valid files never panics (errors are fine).
+        #[test]
+        fn corrupted_files_never_panic(which in 0usize..5, edits in proptest::collection::vec((any::<usize>(), any::<u8>()), 1..6), cut in any::<usize>()) {
+            let files = valid_files();
+            let (ext, mut b) = files[which].clone();
+            for (pos, byte) in edits {
+                let n = b.len();
+                b[pos % n] = byte;
+            }
+            let keep = if cut % 3 == 0 { cut % (b.len() + 1) } else { b.len() };
+            parse(ext, &b[..keep]);
+        }
+
+        #[test]
+        fn random_bytes_never_panic(which in 0usize..5, b in proptest::collection::vec(any::<u8>(), 0..400)) {
+            parse(valid_files()[which].0, &b);
+        }
+    }
+}

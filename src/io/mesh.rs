@@ -272,19 +272,24 @@ pub fn to_medit_string(mesh: &TetMesh) -> String {
 pub fn parse_stl(bytes: &[u8], name: &str) -> Result<TriMesh> {
     let binary_count = (bytes.len() >= 84)
         .then(|| u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64);
-    if let Some(n) = binary_count {
-        if 84 + 50 * n == bytes.len() as u64 {
-            return parse_stl_binary(bytes, n as usize, name);
-        }
-    }
+    let size_matches = binary_count.is_some_and(|n| 84 + 50 * n == bytes.len() as u64);
     let trimmed = bytes
         .iter()
         .position(|b| !b.is_ascii_whitespace())
         .map_or(&bytes[..0], |i| &bytes[i..]);
+    // Many binary exporters start the header with `solid` too: text that parses as ASCII STL wins,
+    // otherwise a size that matches the triangle count means binary.
     if trimmed.starts_with(b"solid") {
         if let Ok(s) = std::str::from_utf8(bytes) {
-            return parse_stl_ascii(s, name);
+            match parse_stl_ascii(s, name) {
+                Ok(m) => return Ok(m),
+                Err(e) if !size_matches => return Err(e),
+                Err(_) => {}
+            }
         }
+    }
+    if size_matches {
+        return parse_stl_binary(bytes, binary_count.unwrap_or(0) as usize, name);
     }
     match binary_count {
         Some(n) if 84 + 50 * n > bytes.len() as u64 => Err(Error::input(
@@ -831,6 +836,15 @@ mod tests {
         let back = parse_stl(&to_stl_bytes(&m), "t.stl").unwrap();
         assert_eq!(back.vertices.len(), 4);
         assert_eq!(back.triangles.len(), 4);
+    }
+
+    #[test]
+    fn binary_stl_whose_header_says_solid_is_binary() {
+        let mut b = to_stl_bytes(&tetra());
+        b[..12].copy_from_slice(b"solid tetra ");
+        let m = parse_stl(&b, "s.stl").unwrap();
+        assert_eq!(m.triangles.len(), 4);
+        assert_eq!(m.vertices.len(), 4);
     }
 
     #[test]
