@@ -37,25 +37,46 @@ pub enum SliceMode {
     Axes,
 }
 
+/// Generated planes keep at least this distance (relative to the bounding-box diagonal) from every
+/// mesh vertex, so the sections they make are generic: no contour touches another or itself at a
+/// vertex lying on the plane (which `slice_mesh` handles, but which makes touching contours).
+pub const PLANE_CLEARANCE: f64 = 1e-7;
+
 /// `n` cutting planes for `mesh` (deterministic for a given `seed`; only `Random` uses it).
-/// Empty when the mesh has no vertices.
+/// Empty when the mesh has no vertices. Axis-aligned planes closer than [`PLANE_CLEARANCE`] to a
+/// vertex are shifted by a few millionths of the extent; such random planes are drawn again.
 pub fn make_planes(mesh: &TriMesh, n: usize, seed: u64, mode: SliceMode) -> Vec<Plane> {
     let Some((lo, hi)) = bounding_box(&mesh.vertices) else {
         return Vec::new();
     };
     let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let eps = PLANE_CLEARANCE * (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt();
+    let clear = |p: &Plane| {
+        mesh.vertices
+            .iter()
+            .all(|&v| p.signed_distance(v).abs() > eps)
+    };
     let at = |k: usize, f: f64| -> Plane {
-        let mut normal = [0.0; 3];
-        normal[k] = 1.0;
-        let mut p = lo;
-        p[k] = lo[k] + ext[k] * f;
-        Plane::from_point_normal(p, normal).expect("unit axis normal")
+        let plane_at = |f: f64| {
+            let mut normal = [0.0; 3];
+            normal[k] = 1.0;
+            let mut p = lo;
+            p[k] = lo[k] + ext[k] * f;
+            Plane::from_point_normal(p, normal).expect("unit axis normal")
+        };
+        // f, f+δ, f−δ, f+2δ, ...: the nearest clear position.
+        (0..41i32)
+            .map(|j| plane_at(f + 1e-6 * f64::from(if j % 2 == 1 { (j + 1) / 2 } else { -j / 2 })))
+            .find(|p| clear(p))
+            .unwrap_or_else(|| plane_at(f))
     };
     match mode {
         SliceMode::Random => {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             let mut planes = Vec::with_capacity(n);
+            let mut attempts = 0usize;
             while planes.len() < n {
+                attempts += 1;
                 let d: [f64; 3] = [
                     rng.gen_range(-1.0..1.0),
                     rng.gen_range(-1.0..1.0),
@@ -67,7 +88,9 @@ pub fn make_planes(mesh: &TriMesh, n: usize, seed: u64, mode: SliceMode) -> Vec<
                 }
                 let p: [f64; 3] = std::array::from_fn(|k| lo[k] + ext[k] * rng.gen_range(0.1..0.9));
                 if let Some(pl) = Plane::from_point_normal(p, d) {
-                    planes.push(pl);
+                    if clear(&pl) || attempts > 100 * (n + 10) {
+                        planes.push(pl);
+                    }
                 }
             }
             planes
@@ -629,6 +652,23 @@ mod tests {
         let s = slice_mesh(&t, &[p]).unwrap();
         assert_eq!(s.sections[0].regions.len(), 2);
         assert!(s.sections[0].regions.iter().all(|r| r.holes.is_empty()));
+    }
+
+    #[test]
+    fn generated_planes_keep_clear_of_vertices() {
+        // The cube's vertex layer at ½ is hit by parallel planes 1/2 and axis planes 1/2: moved off it.
+        let m = cube();
+        for mode in [SliceMode::Random, SliceMode::Parallel, SliceMode::Axes] {
+            for p in make_planes(&m, 3, 5, mode) {
+                let near = m
+                    .vertices
+                    .iter()
+                    .map(|&v| p.signed_distance(v).abs())
+                    .fold(f64::INFINITY, f64::min);
+                assert!(near > PLANE_CLEARANCE * 3f64.sqrt(), "{mode:?}: {near}");
+                assert!(near < 0.5);
+            }
+        }
     }
 
     #[test]
