@@ -839,6 +839,30 @@ mod tests {
     }
 
     #[test]
+    fn big_endian_ply_with_float_coordinates() {
+        let m = tetra();
+        let mut b = format!(
+            "ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+             property float z\nelement face 4\nproperty list uchar uint vertex_index\nend_header\n"
+        )
+        .into_bytes();
+        for p in &m.vertices {
+            for c in p {
+                b.extend_from_slice(&(*c as f32).to_be_bytes());
+            }
+        }
+        for t in &m.triangles {
+            b.push(3);
+            for i in t {
+                b.extend_from_slice(&i.to_be_bytes());
+            }
+        }
+        let back = parse_ply(&b, "be.ply").unwrap();
+        assert_eq!(back.triangles, m.triangles);
+        assert_eq!(back.vertices[3][2], (1.0f64 / 3.0) as f32 as f64);
+    }
+
+    #[test]
     fn binary_stl_whose_header_says_solid_is_binary() {
         let mut b = to_stl_bytes(&tetra());
         b[..12].copy_from_slice(b"solid tetra ");
