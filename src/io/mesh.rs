@@ -841,7 +841,7 @@ mod tests {
     #[test]
     fn big_endian_ply_with_float_coordinates() {
         let m = tetra();
-        let mut b = format!(
+        let mut b = String::from(
             "ply\nformat binary_big_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
              property float z\nelement face 4\nproperty list uchar uint vertex_index\nend_header\n"
         )
