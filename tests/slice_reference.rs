@@ -1,5 +1,6 @@
 //! Slicing the reference meshes: every section's area against an independent computation that builds no
 //! contours, plus the section conventions (outer CCW, holes CW and inside their outer contour).
+use slice2solid::geom::predicates::orient2d;
 use slice2solid::io::mesh::read_trimesh;
 use slice2solid::sections::{cross, dot, sub};
 use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
@@ -95,9 +96,64 @@ fn inside(p: [f64; 2], poly: &[[f64; 2]]) -> bool {
     c
 }
 
+/// Do closed segments ab and cd share a point? Exact.
+fn segments_meet(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let (o1, o2) = (orient2d(a, b, c), orient2d(a, b, d));
+    let (o3, o4) = (orient2d(c, d, a), orient2d(c, d, b));
+    let within = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
+        r[0] >= p[0].min(q[0])
+            && r[0] <= p[0].max(q[0])
+            && r[1] >= p[1].min(q[1])
+            && r[1] <= p[1].max(q[1])
+    };
+    if o1 * o2 < 0.0 && o3 * o4 < 0.0 {
+        return true;
+    }
+    (o1 == 0.0 && within(a, b, c))
+        || (o2 == 0.0 && within(a, b, d))
+        || (o3 == 0.0 && within(c, d, a))
+        || (o4 == 0.0 && within(c, d, b))
+}
+
+/// No two contour edges of a section meet, except consecutive edges of one contour at their vertex.
+fn check_simple(name: &str, i: usize, sec: &slice2solid::Section) {
+    let mut segs: Vec<([f64; 2], [f64; 2], usize, usize, usize)> = Vec::new(); // a, b, contour, index, len
+    let contours = sec
+        .regions
+        .iter()
+        .flat_map(|r| std::iter::once(&r.outer).chain(&r.holes));
+    for (ci, c) in contours.enumerate() {
+        let n = c.points2.len();
+        for k in 0..n {
+            segs.push((c.points2[k], c.points2[(k + 1) % n], ci, k, n));
+        }
+    }
+    segs.sort_by(|x, y| x.0[0].min(x.1[0]).total_cmp(&y.0[0].min(y.1[0])));
+    for (si, s) in segs.iter().enumerate() {
+        let xmax = s.0[0].max(s.1[0]);
+        for t in &segs[si + 1..] {
+            if t.0[0].min(t.1[0]) > xmax {
+                break;
+            }
+            if s.2 == t.2 && ((s.3 + 1) % s.4 == t.3 || (t.3 + 1) % t.4 == s.3) {
+                continue; // consecutive edges share their vertex
+            }
+            assert!(
+                !segments_meet(s.0, s.1, t.0, t.1),
+                "{name} section {i}: contour edges meet at {:?}-{:?} / {:?}-{:?}",
+                s.0,
+                s.1,
+                t.0,
+                t.1
+            );
+        }
+    }
+}
+
 fn check_conventions(name: &str, s: &Sections) {
     for (i, sec) in s.sections.iter().enumerate() {
         assert!(!sec.regions.is_empty());
+        check_simple(name, i, sec);
         for r in &sec.regions {
             assert_eq!(r.label, 1);
             assert!(
