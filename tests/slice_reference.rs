@@ -117,7 +117,9 @@ fn segments_meet(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
 
 /// No two contour edges of a section meet, except consecutive edges of one contour at their vertex.
 fn check_simple(name: &str, i: usize, sec: &slice2solid::Section) {
-    let mut segs: Vec<([f64; 2], [f64; 2], usize, usize, usize)> = Vec::new(); // a, b, contour, index, len
+    // (a, b, contour, edge index, contour length)
+    type Seg = ([f64; 2], [f64; 2], usize, usize, usize);
+    let mut segs: Vec<Seg> = Vec::new();
     let contours = sec
         .regions
         .iter()
