@@ -5,7 +5,11 @@
 //! Boxes are built from the exact input coordinates with `min`/`max` (no rounding), so closed box
 //! overlap is a conservative filter for exact predicates.
 
+use smallvec::SmallVec;
+
 const LEAF: usize = 4;
+/// Subtrees larger than this are built in parallel (rayon::join) and spliced.
+const PAR_BUILD: usize = 1 << 15;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
@@ -98,10 +102,11 @@ impl Bvh {
     pub fn build(boxes: Vec<Aabb>) -> Bvh {
         let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
         let centroids: Vec<[f64; 3]> = boxes.iter().map(Aabb::centroid).collect();
-        let mut nodes = Vec::with_capacity(2 * boxes.len() / LEAF + 1);
-        if !boxes.is_empty() {
-            build_rec(&boxes, &centroids, &mut items, 0, &mut nodes);
-        }
+        let nodes = if boxes.is_empty() {
+            Vec::new()
+        } else {
+            build_par(&boxes, &centroids, &mut items, 0)
+        };
         Bvh {
             nodes,
             items,
@@ -127,7 +132,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        let mut stack: SmallVec<[u32; 64]> = SmallVec::new();
         stack.push(0);
         while let Some(n) = stack.pop() {
             let node = &self.nodes[n as usize];
@@ -160,7 +165,7 @@ impl Bvh {
             return None;
         }
         let mut best = (u32::MAX, f64::INFINITY);
-        let mut stack: Vec<(u32, f64)> = Vec::with_capacity(64);
+        let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
         stack.push((0, self.nodes[0].bb.dist2(p)));
         while let Some((n, d)) = stack.pop() {
             if d >= best.1 {
@@ -195,6 +200,58 @@ impl Bvh {
     }
 }
 
+/// Split `items` at the median centroid along the longest axis of the centroids' box.
+fn split(bb_items: &[u32], centroids: &[[f64; 3]]) -> usize {
+    let mut cb = Aabb::EMPTY;
+    for &i in bb_items {
+        cb.add_point(centroids[i as usize]);
+    }
+    (0..3)
+        .max_by(|&a, &b| (cb.hi[a] - cb.lo[a]).total_cmp(&(cb.hi[b] - cb.lo[b])))
+        .unwrap_or(0)
+}
+
+/// Build a subtree as its own node array (root first, child links relative to it); large subtrees
+/// build their two halves in parallel and splice them.
+fn build_par(
+    boxes: &[Aabb],
+    centroids: &[[f64; 3]],
+    items: &mut [u32],
+    offset: usize,
+) -> Vec<Node> {
+    if items.len() < PAR_BUILD {
+        let mut nodes = Vec::with_capacity(2 * items.len() / LEAF + 1);
+        build_rec(boxes, centroids, items, offset, &mut nodes);
+        return nodes;
+    }
+    let axis = split(items, centroids);
+    let mid = items.len() / 2;
+    items.select_nth_unstable_by(mid, |&a, &b| {
+        centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis])
+    });
+    let (left, right) = items.split_at_mut(mid);
+    let (ln, rn) = rayon::join(
+        || build_par(boxes, centroids, left, offset),
+        || build_par(boxes, centroids, right, offset + mid),
+    );
+    let mut nodes = Vec::with_capacity(1 + ln.len() + rn.len());
+    nodes.push(Node {
+        bb: ln[0].bb.union(&rn[0].bb),
+        first_or_right: (1 + ln.len()) as u32,
+        count: 0,
+    });
+    let shift = |mut n: Node, by: usize| {
+        if n.count == 0 {
+            n.first_or_right += by as u32;
+        }
+        n
+    };
+    nodes.extend(ln.iter().cloned().map(|n| shift(n, 1)));
+    let by = 1 + ln.len();
+    nodes.extend(rn.into_iter().map(|n| shift(n, by)));
+    nodes
+}
+
 fn build_rec(
     boxes: &[Aabb],
     centroids: &[[f64; 3]],
@@ -204,10 +261,8 @@ fn build_rec(
 ) -> u32 {
     let me = nodes.len() as u32;
     let mut bb = Aabb::EMPTY;
-    let mut cb = Aabb::EMPTY;
     for &i in items.iter() {
         bb = bb.union(&boxes[i as usize]);
-        cb.add_point(centroids[i as usize]);
     }
     if items.len() <= LEAF {
         nodes.push(Node {
@@ -222,9 +277,7 @@ fn build_rec(
         first_or_right: 0,
         count: 0,
     });
-    let axis = (0..3)
-        .max_by(|&a, &b| (cb.hi[a] - cb.lo[a]).total_cmp(&(cb.hi[b] - cb.lo[b])))
-        .unwrap_or(0);
+    let axis = split(items, centroids);
     let mid = items.len() / 2;
     items.select_nth_unstable_by(mid, |&a, &b| {
         centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis])

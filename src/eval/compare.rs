@@ -22,7 +22,7 @@
 //! closed, consistently oriented meshes the winding is the inside indicator; otherwise it is a
 //! best effort (`mesh_closed`/`reference_closed` say which).
 use super::bvh::{triangle_boxes, Aabb, Bvh};
-use super::topology::{analyze, cross, dot, norm, sub};
+use super::topology::{cross, dot, is_closed, norm, sub};
 use crate::geom::predicates::orient3d;
 use crate::mesh::TriMesh;
 use rand::{Rng, SeedableRng};
@@ -138,8 +138,8 @@ pub fn compare_meshes_with_lines(
         volume_intersection: vol.inter,
         volume_union: vol.union,
         reference_diagonal: diag,
-        mesh_closed: analyze(mesh).closed,
-        reference_closed: analyze(reference).closed,
+        mesh_closed: is_closed(mesh),
+        reference_closed: is_closed(reference),
     }
 }
 

@@ -228,7 +228,7 @@ pub fn symmetric_difference(a: &[Segment], b: &[Segment]) -> AreaComparison {
                 for &j in &active[ii + 1..] {
                     let dl = y_at(&segs[i], xl) - y_at(&segs[j], xl);
                     let dr = y_at(&segs[i], xr) - y_at(&segs[j], xr);
-                    if dl * dr < 0.0 {
+                    if (dl < 0.0 && dr > 0.0) || (dl > 0.0 && dr < 0.0) {
                         let x = xl + (xr - xl) * (dl / (dl - dr));
                         if x > xl && x < xr {
                             cuts.push(x);

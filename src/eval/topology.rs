@@ -206,6 +206,32 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
     }
 }
 
+/// Every undirected edge in exactly two triangles, no triangle repeating an index (cheaper than
+/// [`analyze`]).
+pub fn is_closed(mesh: &TriMesh) -> bool {
+    if mesh.triangles.is_empty()
+        || mesh
+            .triangles
+            .iter()
+            .any(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+    {
+        return false;
+    }
+    let mut keys: Vec<u64> = mesh
+        .triangles
+        .iter()
+        .flat_map(|t| {
+            (0..3).map(move |k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                (a.min(b) as u64) << 32 | a.max(b) as u64
+            })
+        })
+        .collect();
+    keys.par_sort_unstable();
+    keys.chunks(2).all(|c| c.len() == 2 && c[0] == c[1])
+        && keys.windows(3).all(|w| !(w[0] == w[1] && w[1] == w[2]))
+}
+
 /// For each vertex, true when its triangle fan is not one cycle (interior) or one path (boundary).
 /// The link of v has a node per neighbour and an edge a–b per triangle (v,a,b); with every link
 /// node of degree ≤ 2 it is a disjoint union of cycles and paths, and must have exactly one piece.

@@ -24,11 +24,17 @@ pub fn is_degenerate(a: P3, b: P3, c: P3) -> bool {
 /// Do triangles `ta` and `tb` (indices into `v`) intersect beyond their shared vertices/edge?
 pub fn mesh_triangles_intersect(ta: [u32; 3], tb: [u32; 3], v: &[P3]) -> bool {
     let p = |i: u32| v[i as usize];
-    let shared: Vec<(usize, usize)> = (0..3)
-        .flat_map(|i| (0..3).map(move |j| (i, j)))
-        .filter(|&(i, j)| ta[i] == tb[j])
-        .collect();
-    match shared.len() {
+    let mut shared = [(0usize, 0usize); 3];
+    let mut n_shared = 0;
+    for i in 0..3 {
+        for j in 0..3 {
+            if ta[i] == tb[j] {
+                shared[n_shared.min(2)] = (i, j);
+                n_shared += 1;
+            }
+        }
+    }
+    match n_shared {
         0 => triangles_intersect(
             [p(ta[0]), p(ta[1]), p(ta[2])],
             [p(tb[0]), p(tb[1]), p(tb[2])],
@@ -38,6 +44,15 @@ pub fn mesh_triangles_intersect(ta: [u32; 3], tb: [u32; 3], v: &[P3]) -> bool {
             let (a1, a2) = (p(ta[(i + 1) % 3]), p(ta[(i + 2) % 3]));
             let (b1, b2) = (p(tb[(j + 1) % 3]), p(tb[(j + 2) % 3]));
             let va = p(ta[i]);
+            // A touches B's plane only at v when a1, a2 are strictly on one side (and vice versa).
+            let (s1, s2) = (orient3d(va, b1, b2, a1), orient3d(va, b1, b2, a2));
+            if same_strict_sign(s1, s2) {
+                return false;
+            }
+            let (s1, s2) = (orient3d(va, a1, a2, b1), orient3d(va, a1, a2, b2));
+            if same_strict_sign(s1, s2) {
+                return false;
+            }
             segment_meets_triangle(a1, a2, [va, b1, b2])
                 || segment_meets_triangle(b1, b2, [va, a1, a2])
         }
@@ -63,7 +78,7 @@ pub fn folded_over_shared_edge(u: P3, w: P3, a: P3, b: P3) -> bool {
         let sa = orient2d(drop(u, k), drop(w, k), drop(a, k));
         if sa != 0.0 {
             let sb = orient2d(drop(u, k), drop(w, k), drop(b, k));
-            return sa * sb > 0.0;
+            return same_strict_sign(sa, sb);
         }
     }
     false
@@ -80,8 +95,15 @@ pub fn triangles_intersect(a: [P3; 3], b: [P3; 3]) -> bool {
 }
 
 fn strictly_one_side(t: [P3; 3], q: [P3; 3]) -> bool {
-    let s: Vec<f64> = q.iter().map(|&x| orient3d(t[0], t[1], t[2], x)).collect();
-    s.iter().all(|&x| x > 0.0) || s.iter().all(|&x| x < 0.0)
+    let s0 = orient3d(t[0], t[1], t[2], q[0]);
+    if s0 == 0.0 {
+        return false;
+    }
+    let s1 = orient3d(t[0], t[1], t[2], q[1]);
+    if !same_strict_sign(s0, s1) {
+        return false;
+    }
+    same_strict_sign(s0, orient3d(t[0], t[1], t[2], q[2]))
 }
 
 /// Closed segment pq against closed triangle t.
@@ -102,6 +124,12 @@ pub fn segment_meets_triangle(p: P3, q: P3, t: [P3; 3]) -> bool {
     let pos = o1 > 0.0 || o2 > 0.0 || o3 > 0.0;
     let neg = o1 < 0.0 || o2 < 0.0 || o3 < 0.0;
     !(pos && neg)
+}
+
+/// Both strictly positive or both strictly negative (no product: it could underflow).
+#[inline]
+fn same_strict_sign(a: f64, b: f64) -> bool {
+    (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0)
 }
 
 #[inline]
@@ -141,7 +169,7 @@ pub fn segments_meet_2d(p: [f64; 2], q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> b
     let o2 = orient2d(p, q, b);
     let o3 = orient2d(a, b, p);
     let o4 = orient2d(a, b, q);
-    if o1 * o2 > 0.0 || o3 * o4 > 0.0 {
+    if same_strict_sign(o1, o2) || same_strict_sign(o3, o4) {
         return false;
     }
     if o1 == 0.0 && o2 == 0.0 {
