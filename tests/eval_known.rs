@@ -82,6 +82,8 @@ fn a_hole_is_not_closed() {
     assert!(!r.closed && !r.is_closed_manifold());
     assert!(r.manifold);
     assert_eq!(r.boundary_edges, 3);
+    assert!(!slice2solid::eval::topology::is_closed(&m));
+    assert!(slice2solid::eval::topology::is_closed(&icosphere([0.0; 3], 1.0, 2)));
     assert_eq!(r.euler, 1); // a disk
 }
 
@@ -114,6 +116,7 @@ fn interpenetrating_cubes_self_intersect() {
     let r = check_mesh(&m, None);
     assert!(r.is_closed_manifold());
     assert!(r.self_intersections > 0);
+    assert_eq!(r.self_intersections, r.self_intersections_vertex_disjoint);
     let [i, j] = r.self_intersection_example.unwrap();
     assert!(i < 12 && j >= 12);
     // touching cubes (face to face, unwelded) touch: counted, exact
@@ -142,6 +145,7 @@ fn folded_neighbour_is_a_self_intersection() {
     };
     let r = check_mesh(&m, None);
     assert_eq!(r.self_intersections, 1);
+    assert_eq!(r.self_intersections_vertex_disjoint, 0);
     assert_eq!(r.self_intersection_example, Some([0, 2]));
 }
 

@@ -64,6 +64,12 @@ fn print_table(name: &str, r: &CheckReport) {
     if r.degenerate_triangles > 0 {
         println!("  degenerate tris     {}", r.degenerate_triangles);
     }
+    if r.self_intersections > 0 {
+        println!(
+            "    of which sharing no vertex: {}",
+            r.self_intersections_vertex_disjoint
+        );
+    }
     println!("  components          {}", r.components);
     println!("  euler               {}", r.euler);
     println!("  genus (total)       {}", r.genus);

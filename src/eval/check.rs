@@ -25,6 +25,9 @@ pub struct CheckReport {
     /// Number of intersecting triangle pairs (exact; triangles sharing vertices count only when they
     /// overlap beyond what they share; degenerate triangles are not tested).
     pub self_intersections: usize,
+    /// The intersecting pairs whose triangles share no vertex (what `shared/eval/evaluate.py` counts,
+    /// except that it ignores contacts within rounding: it tests strict crossings with a 1e-12 margin).
+    pub self_intersections_vertex_disjoint: usize,
     /// One intersecting pair (triangle indices), the smallest in lexicographic order.
     pub self_intersection_example: Option<[usize; 2]>,
     pub components: usize,
@@ -69,7 +72,7 @@ impl CheckReport {
 /// Check `mesh`; with `sections`, also compare its section by every input plane with the input.
 pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
     let topo = analyze(mesh);
-    let (count, example, degenerate) = self_intersections(mesh);
+    let si = self_intersections(mesh);
     let genus = topo.components.iter().filter_map(|c| c.genus).sum();
     let agreements = sections.map(|s| section_agreement(mesh, s));
     let worst_section = agreements.as_ref().and_then(|a| {
@@ -88,8 +91,9 @@ pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
         closed: topo.closed,
         manifold: topo.manifold,
         oriented: topo.oriented,
-        self_intersections: count,
-        self_intersection_example: example,
+        self_intersections: si.count,
+        self_intersections_vertex_disjoint: si.vertex_disjoint,
+        self_intersection_example: si.example,
         components: topo.components.len(),
         euler: topo.euler,
         genus,
@@ -99,16 +103,28 @@ pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
         nonmanifold_edges: topo.nonmanifold_edges,
         nonmanifold_vertices: topo.nonmanifold_vertices,
         inconsistent_edges: topo.inconsistent_edges,
-        degenerate_triangles: degenerate + topo.repeated_index_triangles,
+        degenerate_triangles: si.collinear + topo.repeated_index_triangles,
         component_details: topo.components,
         sections: agreements,
         worst_section,
     }
 }
 
+/// Intersecting triangle pairs of one mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SelfIntersections {
+    pub count: usize,
+    /// Pairs sharing no vertex index.
+    pub vertex_disjoint: usize,
+    /// The smallest intersecting pair (i < j).
+    pub example: Option<[usize; 2]>,
+    /// Triangles with three collinear (distinct-index) points, skipped.
+    pub collinear: usize,
+}
+
 /// Count intersecting triangle pairs: BVH of triangle boxes, candidate pairs (i < j) with overlapping
-/// boxes, exact test. Returns (count, smallest pair, number of collinear triangles skipped).
-pub fn self_intersections(mesh: &TriMesh) -> (usize, Option<[usize; 2]>, usize) {
+/// boxes, exact test (rayon over i).
+pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
     let v = &mesh.vertices;
     let t = &mesh.triangles;
     let skip: Vec<bool> = t
@@ -125,34 +141,36 @@ pub fn self_intersections(mesh: &TriMesh) -> (usize, Option<[usize; 2]>, usize) 
         .zip(t)
         .filter(|(&s, tr)| s && tr[0] != tr[1] && tr[1] != tr[2] && tr[0] != tr[2])
         .count();
-    let boxes = triangle_boxes(v, t);
-    let bvh = Bvh::build(boxes);
-    let (count, example) = (0..t.len())
+    let bvh = Bvh::build(triangle_boxes(v, t));
+    let merge = |a: SelfIntersections, b: SelfIntersections| SelfIntersections {
+        count: a.count + b.count,
+        vertex_disjoint: a.vertex_disjoint + b.vertex_disjoint,
+        example: match (a.example, b.example) {
+            (Some(x), Some(y)) => Some(x.min(y)),
+            (x, y) => x.or(y),
+        },
+        collinear: 0,
+    };
+    let mut out = (0..t.len())
         .into_par_iter()
         .filter(|&i| !skip[i])
         .map(|i| {
-            let mut count = 0usize;
-            let mut first: Option<[usize; 2]> = None;
+            let mut r = SelfIntersections::default();
             bvh.for_each_overlap(bvh.item_box(i as u32), |j| {
                 let j = j as usize;
                 if j > i && !skip[j] && mesh_triangles_intersect(t[i], t[j], v) {
-                    count += 1;
-                    if first.map_or(true, |f| j < f[1]) {
-                        first = Some([i, j]);
+                    r.count += 1;
+                    if !t[i].iter().any(|x| t[j].contains(x)) {
+                        r.vertex_disjoint += 1;
+                    }
+                    if r.example.map_or(true, |f| j < f[1]) {
+                        r.example = Some([i, j]);
                     }
                 }
             });
-            (count, first)
+            r
         })
-        .reduce(
-            || (0, None),
-            |a, b| {
-                let ex = match (a.1, b.1) {
-                    (Some(x), Some(y)) => Some(x.min(y)),
-                    (x, y) => x.or(y),
-                };
-                (a.0 + b.0, ex)
-            },
-        );
-    (count, example, collinear)
+        .reduce(SelfIntersections::default, merge);
+    out.collinear = collinear;
+    out
 }
