@@ -18,9 +18,13 @@
 //! stochastic visibility walk, points inserted in BRIO + Hilbert order. Every decision is exact and
 //! ties are broken by symbolic perturbation (see [`pred`]), so the result is a triangulation of the
 //! Delaunay subdivision for any input, with no flat tetrahedron even for coplanar hull points.
+pub mod gen;
 pub mod pred;
 pub mod sort;
+#[cfg(feature = "tetgen")]
+pub mod tetgen;
 mod validate;
+pub mod xyz;
 
 use pred::P;
 use std::collections::HashMap;
@@ -859,5 +863,30 @@ mod degenerate_tests {
         }
         let dt = Delaunay::new(&pts);
         dt.is_valid().unwrap();
+    }
+}
+
+#[cfg(test)]
+mod timing {
+    /// `cargo test --lib delaunay::timing -- --ignored --nocapture` (profile test, opt-level 2).
+    #[test]
+    #[ignore]
+    fn timing() {
+        let n: usize = std::env::var("S2S_N")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(100_000);
+        for (name, pts) in [
+            ("uniform", super::gen::uniform(n, 1)),
+            ("planes40", super::gen::on_planes(n, 40, 1)),
+        ] {
+            let t = std::time::Instant::now();
+            let dt = super::Delaunay::new(&pts);
+            eprintln!(
+                "{name} {n}: {:.3} s, {} tets",
+                t.elapsed().as_secs_f64(),
+                dt.num_finite_tets()
+            );
+        }
     }
 }
