@@ -9,12 +9,16 @@
 extern "C" {
 
 // Tetrahedralizes `n` points (xyz interleaved). On success returns 0 and sets `*tets` to a malloc'ed
-// array of 4 * `*ntets` point indices (0-based, into the input), to be released with
-// `s2s_tetgen_free`. Points TetGen finds duplicated are simply not used by any tetrahedron.
+// array of 4 * `*ntets` indices into TetGen's output points, and `*opts` to a malloc'ed array of the
+// `*nout` output points (xyz), both released with `s2s_tetgen_free`. TetGen may drop duplicated points
+// and renumber the rest, so the caller maps output points back to input points by coordinates.
 // Returns TetGen's error code (> 0) or -1 on an unexpected exception.
-int s2s_tetgen_delaunay(const double *xyz, int n, int **tets, int *ntets, int quiet) {
+int s2s_tetgen_delaunay(const double *xyz, int n, int **tets, int *ntets, double **opts, int *nout,
+                        int quiet) {
   *tets = nullptr;
   *ntets = 0;
+  *opts = nullptr;
+  *nout = 0;
   try {
     tetgenio in, out;
     in.firstnumber = 0;
@@ -27,14 +31,22 @@ int s2s_tetgen_delaunay(const double *xyz, int n, int **tets, int *ntets, int qu
     std::strcpy(sw, quiet ? "Q" : "V");
     if (!b.parse_commandline(sw)) return 10;
     tetrahedralize(&b, &in, &out);
-    if (out.numberofpoints != n) return 11;  // TetGen renumbered points: our mapping would be wrong
     int m = out.numberoftetrahedra;
+    int np = out.numberofpoints;
+    double *q = (double *)std::malloc(sizeof(double) * 3 * (size_t)(np > 0 ? np : 1));
+    if (!q) return 1;
+    if (np > 0) std::memcpy(q, out.pointlist, sizeof(double) * 3 * (size_t)np);
     int *r = (int *)std::malloc(sizeof(int) * 4 * (size_t)(m > 0 ? m : 1));
-    if (!r) return 1;
+    if (!r) {
+      std::free(q);
+      return 1;
+    }
     for (int i = 0; i < m; i++)
       for (int k = 0; k < 4; k++) r[4 * i + k] = out.tetrahedronlist[out.numberofcorners * i + k] - out.firstnumber;
     *tets = r;
     *ntets = m;
+    *opts = q;
+    *nout = np;
     return 0;
   } catch (int code) {
     return code > 0 ? code : -1;
@@ -43,5 +55,5 @@ int s2s_tetgen_delaunay(const double *xyz, int n, int **tets, int *ntets, int qu
   }
 }
 
-void s2s_tetgen_free(int *p) { std::free(p); }
+void s2s_tetgen_free(void *p) { std::free(p); }
 }

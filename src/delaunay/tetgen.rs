@@ -10,9 +10,11 @@ extern "C" {
         n: c_int,
         tets: *mut *mut c_int,
         ntets: *mut c_int,
+        opts: *mut *mut f64,
+        nout: *mut c_int,
         quiet: c_int,
     ) -> c_int;
-    fn s2s_tetgen_free(p: *mut c_int);
+    fn s2s_tetgen_free(p: *mut std::ffi::c_void);
 }
 
 /// Delaunay tetrahedra of `points` computed by TetGen (`tetrahedralize("Q")`, no Steiner points).
@@ -29,27 +31,70 @@ pub fn tetgen_delaunay(points: &[[f64; 3]]) -> crate::Result<Vec<[u32; 4]>> {
         .map_err(|_| crate::Error::input("points", "too many points for TetGen"))?;
     let mut ptr: *mut c_int = std::ptr::null_mut();
     let mut m: c_int = 0;
-    // SAFETY: the shim reads 3n doubles from a live slice and writes an owned malloc'ed array.
-    let code =
-        unsafe { s2s_tetgen_delaunay(points.as_ptr() as *const f64, n, &mut ptr, &mut m, 1) };
+    let mut qptr: *mut f64 = std::ptr::null_mut();
+    let mut nq: c_int = 0;
+    // SAFETY: the shim reads 3n doubles from a live slice and writes two owned malloc'ed arrays.
+    let code = unsafe {
+        s2s_tetgen_delaunay(
+            points.as_ptr() as *const f64,
+            n,
+            &mut ptr,
+            &mut m,
+            &mut qptr,
+            &mut nq,
+            1,
+        )
+    };
     if code != 0 {
         return Err(crate::Error::Geometry(format!(
             "TetGen failed with code {code}"
         )));
     }
+    // Map TetGen's output points back to the first input point at the same position.
+    let key = |p: &[f64]| {
+        [
+            (p[0] + 0.0).to_bits(),
+            (p[1] + 0.0).to_bits(),
+            (p[2] + 0.0).to_bits(),
+        ]
+    };
+    let mut first = std::collections::HashMap::with_capacity(points.len());
+    for (i, p) in points.iter().enumerate() {
+        first.entry(key(p)).or_insert(i as u32);
+    }
+    let mut map = Vec::with_capacity(nq as usize);
+    if !qptr.is_null() {
+        // SAFETY: the shim returned 3nq doubles at qptr; copied, then freed once.
+        let raw = unsafe { std::slice::from_raw_parts(qptr, 3 * nq as usize) };
+        for q in raw.chunks_exact(3) {
+            map.push(first.get(&key(q)).copied());
+        }
+        unsafe { s2s_tetgen_free(qptr as *mut _) };
+    }
     let mut out = Vec::with_capacity(m as usize);
+    let mut unmapped = false;
     if !ptr.is_null() {
         // SAFETY: the shim returned 4m ints at ptr; we copy them and free the array once.
         let raw = unsafe { std::slice::from_raw_parts(ptr, 4 * m as usize) };
         for c in raw.chunks_exact(4) {
-            let mut t = [c[0] as u32, c[1] as u32, c[2] as u32, c[3] as u32];
+            let v = |k: usize| map.get(c[k] as usize).copied().flatten();
+            let (Some(a), Some(b), Some(cc), Some(d)) = (v(0), v(1), v(2), v(3)) else {
+                unmapped = true;
+                continue;
+            };
+            let mut t = [a, b, cc, d];
             let p = |i: u32| points[i as usize];
             if pred::orient(p(t[0]), p(t[1]), p(t[2]), p(t[3])) < 0.0 {
                 t.swap(0, 1);
             }
             out.push(t);
         }
-        unsafe { s2s_tetgen_free(ptr) };
+        unsafe { s2s_tetgen_free(ptr as *mut _) };
+    }
+    if unmapped {
+        return Err(crate::Error::Geometry(
+            "TetGen returned a point that is not an input point".into(),
+        ));
     }
     Ok(out)
 }
