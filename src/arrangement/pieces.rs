@@ -83,6 +83,11 @@ impl<'a> Ctx<'a> {
         for a in 0..zeros.len() {
             for b in a + 1..zeros.len() {
                 let mut t = [i, zeros[a], zeros[b]];
+                // Only three planes meeting in a point identify a vertex (not three through a line).
+                let n = |p: u32| self.arr.planes[p as usize].plane.normal;
+                if super::exact::sign_det3(n(t[0]), n(t[1]), n(t[2])) == 0 {
+                    continue;
+                }
                 t.sort_unstable();
                 if let Some(&v) = self.triples.get(&t) {
                     return Some(v);
@@ -134,15 +139,12 @@ pub(super) fn build_pieces(
         }
     }
     for (i, section) in sections.sections.iter().enumerate() {
+        if section.regions.is_empty() {
+            continue;
+        }
+        let eff = plane_effects(&ctx, i as u32, &face_key[i]);
         for region in &section.regions {
-            process_region(
-                &mut ctx,
-                i as u32,
-                region,
-                &faces_of[i],
-                &face_key[i],
-                cell_sign,
-            );
+            process_region(&mut ctx, i as u32, region, &faces_of[i], &face_key[i], &eff);
         }
     }
     let warnings = std::mem::take(&mut ctx.warnings);
@@ -152,20 +154,87 @@ pub(super) fn build_pieces(
     Ok(())
 }
 
+/// How plane j splits plane i: not at all inside the box (constant side), or along a line shared by
+/// a class of planes, decided through one representative (`Rep(r, f)`: side = f · side of r).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Effect {
+    Own,
+    Const(i8),
+    Rep(u32, i8),
+}
+
+fn plane_effects(ctx: &Ctx, i: u32, face_key: &HashMap<Vec<i8>, u32>) -> Vec<Effect> {
+    let np = ctx.arr.planes.len();
+    let keys: Vec<&Vec<i8>> = face_key.keys().collect();
+    let eq: Vec<[f64; 4]> = ctx
+        .arr
+        .planes
+        .iter()
+        .map(|p| {
+            [
+                p.plane.normal[0],
+                p.plane.normal[1],
+                p.plane.normal[2],
+                p.plane.offset,
+            ]
+        })
+        .collect();
+    let mut eff = vec![Effect::Own; np];
+    let mut reps: Vec<u32> = Vec::new();
+    for j in 0..np {
+        if j as u32 == i {
+            continue;
+        }
+        let first = keys.first().map_or(-1, |k| k[j]);
+        if keys.iter().all(|k| k[j] == first) {
+            eff[j] = Effect::Const(first);
+            continue;
+        }
+        // Same line as an earlier representative: rank [P_i; P_r; P_j] = 2.
+        let mut found = None;
+        for &r in &reps {
+            if rank2(eq[i as usize], eq[r as usize], eq[j]) {
+                // The two planes' sides on P_i agree or are opposite on every face.
+                let k = keys.iter().find(|k| k[j] != 0 && k[r as usize] != 0);
+                let f = k.map_or(1, |k| k[j] * k[r as usize]);
+                found = Some(Effect::Rep(r, f));
+                break;
+            }
+        }
+        eff[j] = match found {
+            Some(e) => e,
+            None => {
+                reps.push(j as u32);
+                Effect::Rep(j as u32, 1)
+            }
+        };
+    }
+    eff
+}
+
+/// True when the three plane equations have rank 2 (three distinct planes through one line).
+fn rank2(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> bool {
+    const COLS: [[usize; 3]; 4] = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
+    COLS.iter().all(|cs| {
+        let r = |x: [f64; 4]| [x[cs[0]], x[cs[1]], x[cs[2]]];
+        super::exact::sign_det3(r(a), r(b), r(c)) == 0
+    })
+}
+
 fn process_region(
     ctx: &mut Ctx,
     i: u32,
     region: &Region,
     faces: &[u32],
     face_key: &HashMap<Vec<i8>, u32>,
-    cell_sign: &[Vec<i8>],
+    eff: &[Effect],
 ) {
     let mut work: HashMap<u32, FaceWork> = HashMap::new();
     let contours: Vec<&Contour> = std::iter::once(&region.outer)
         .chain(region.holes.iter())
         .collect();
     for c in &contours {
-        split_contour(ctx, i, c, face_key, cell_sign, &mut work);
+        split_contour(ctx, i, c, face_key, eff, &mut work);
     }
     for &f in faces {
         let w = work.remove(&f).unwrap_or_default();
@@ -225,7 +294,7 @@ fn split_contour(
     i: u32,
     c: &Contour,
     face_key: &HashMap<Vec<i8>, u32>,
-    cell_sign: &[Vec<i8>],
+    eff: &[Effect],
     work: &mut HashMap<u32, FaceWork>,
 ) {
     let n = c.points2.len();
@@ -246,22 +315,34 @@ fn split_contour(
             ]
         })
         .collect();
-    let sv: Vec<Vec<i8>> = c
+    let is_rep = |j: usize| eff[j] == Effect::Rep(j as u32, 1);
+    // Exact sides with respect to the representative planes; the others follow from them.
+    let expand = |r: &[i8]| -> Vec<i8> {
+        (0..np)
+            .map(|j| match eff[j] {
+                Effect::Own => 0,
+                Effect::Const(s) => s,
+                Effect::Rep(rep, f) => f * r[rep as usize],
+            })
+            .collect()
+    };
+    let rsv: Vec<Vec<i8>> = c
         .points3
         .iter()
         .map(|&p| {
             (0..np)
                 .map(|j| {
-                    if j as u32 == i {
-                        0
-                    } else {
+                    if is_rep(j) {
                         let e = eq[j];
                         sign_dot_plus([e[0], e[1], e[2]], p, e[3])
+                    } else {
+                        0
                     }
                 })
                 .collect()
         })
         .collect();
+    let sv: Vec<Vec<i8>> = rsv.iter().map(|r| expand(r)).collect();
     let zeros_of = |s: &[i8]| -> Vec<u32> {
         (0..np as u32)
             .filter(|&j| j != i && s[j as usize] == 0)
@@ -293,7 +374,7 @@ fn split_contour(
         });
         let (p3, q3) = (c.points3[a], c.points3[b]);
         let mut cross: Vec<u32> = (0..np as u32)
-            .filter(|&j| sv[a][j as usize] * sv[b][j as usize] < 0)
+            .filter(|&j| rsv[a][j as usize] * rsv[b][j as usize] < 0)
             .collect();
         if cross.is_empty() {
             continue;
@@ -304,8 +385,8 @@ fn split_contour(
                 eq[y as usize],
                 p3,
                 q3,
-                sv[a][x as usize],
-                sv[a][y as usize],
+                rsv[a][x as usize],
+                rsv[a][y as usize],
             )
         };
         cross.sort_by(|&x, &y| cmp(x, y));
@@ -317,10 +398,10 @@ fn split_contour(
             }
             let group = &cross[g..e];
             let j0 = group[0];
-            let s: Vec<i8> = (0..np as u32)
+            let rs: Vec<i8> = (0..np as u32)
                 .map(|m| {
-                    let (sp, sq) = (sv[a][m as usize], sv[b][m as usize]);
-                    if m == i || group.contains(&m) {
+                    let (sp, sq) = (rsv[a][m as usize], rsv[b][m as usize]);
+                    if !is_rep(m as usize) || group.contains(&m) {
                         0
                     } else if sp * sq < 0 {
                         match cmp(m, j0) {
@@ -335,6 +416,7 @@ fn split_contour(
                     }
                 })
                 .collect();
+            let s = expand(&rs);
             let z = zeros_of(&s);
             let id = if z.len() >= 2 {
                 ctx.arrangement_vertex(i, &z)
@@ -405,7 +487,6 @@ fn split_contour(
                     "plane {i}: a contour stretch has no exact face (rounding at a multiple point); assigned to the nearest face {}",
                     best.1
                 ));
-                let _ = cell_sign;
                 best.1
             }
         };
