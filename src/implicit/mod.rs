@@ -1,5 +1,7 @@
 //! The implicit method of Bermano, Vaxman & Gotsman (2011): mean-value interpolation of the sections
 //! per arrangement cell, zero set extracted on an octree.
+pub mod mvc;
+
 use crate::arrangement::Arrangement;
 use crate::error::{Error, Result};
 use crate::reconstruct::{Options, Report, Solid};
