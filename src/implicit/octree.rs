@@ -1,0 +1,279 @@
+//! Where to evaluate the indicator: an octree over the box, refined coarse-to-fine where the function
+//! changes sign among a cube's corners or the cube holds section contour vertices (paper §4.5), down to
+//! depth D; then, at the finest level, the sign-changing cubes are followed across every face that has
+//! a sign change, so the set of finest cubes handed to the extraction contains the whole zero set it
+//! touches (no holes where the octree stopped early). Only needed grid nodes are evaluated (sparse hash
+//! map keyed by finest-grid node), in parallel with rayon, one level or wave at a time.
+use super::indicator::Indicator;
+use rayon::prelude::*;
+use std::collections::{HashMap, HashSet};
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// A small multiplicative hasher for integer keys (grid nodes and edges).
+#[derive(Default, Clone, Copy)]
+pub struct IntHasher(u64);
+
+impl Hasher for IntHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+pub type IntMap<K, V> = HashMap<K, V, BuildHasherDefault<IntHasher>>;
+pub type IntSet<K> = HashSet<K, BuildHasherDefault<IntHasher>>;
+
+/// The finest grid: cubes of side `h` from `origin`, `cubes[k]` of them along axis k (≤ 2^depth).
+#[derive(Clone, Debug)]
+pub struct Grid {
+    pub origin: [f64; 3],
+    pub h: f64,
+    pub depth: u32,
+    pub cubes: [u32; 3],
+}
+
+const BITS: u32 = 21;
+const MASK: u64 = (1 << BITS) - 1;
+
+impl Grid {
+    /// Cubic cells: the longest box side is divided into 2^depth.
+    pub fn new(lo: [f64; 3], hi: [f64; 3], depth: u32) -> Grid {
+        let depth = depth.clamp(1, 20);
+        let n = 1u32 << depth;
+        let ext = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        let h = if ext > 0.0 { ext / n as f64 } else { 1.0 };
+        let mut cubes = [1u32; 3];
+        for k in 0..3 {
+            cubes[k] = (((hi[k] - lo[k]) / h).ceil() as u32).clamp(1, n);
+        }
+        Grid {
+            origin: lo,
+            h,
+            depth,
+            cubes,
+        }
+    }
+    pub fn key(i: [u32; 3]) -> u64 {
+        i[0] as u64 | (i[1] as u64) << BITS | (i[2] as u64) << (2 * BITS)
+    }
+    pub fn unkey(k: u64) -> [u32; 3] {
+        [
+            (k & MASK) as u32,
+            ((k >> BITS) & MASK) as u32,
+            ((k >> (2 * BITS)) & MASK) as u32,
+        ]
+    }
+    pub fn node_position(&self, i: [u32; 3]) -> [f64; 3] {
+        [
+            self.origin[0] + i[0] as f64 * self.h,
+            self.origin[1] + i[1] as f64 * self.h,
+            self.origin[2] + i[2] as f64 * self.h,
+        ]
+    }
+    /// The finest cube holding `p` (clamped to the grid).
+    pub fn cube_of(&self, p: [f64; 3]) -> [u32; 3] {
+        let mut c = [0u32; 3];
+        for k in 0..3 {
+            let t = ((p[k] - self.origin[k]) / self.h).floor();
+            c[k] = if t.is_finite() && t > 0.0 {
+                (t as u32).min(self.cubes[k] - 1)
+            } else {
+                0
+            };
+        }
+        c
+    }
+}
+
+/// The evaluated nodes and the finest cubes that carry the zero set.
+#[derive(Debug)]
+pub struct Field {
+    pub grid: Grid,
+    pub values: IntMap<u64, f64>,
+    /// Finest cubes (lower corner node) whose corners change sign.
+    pub surface_cubes: Vec<[u32; 3]>,
+    /// Cubes examined per level (coarse to fine), then the finest-level waves.
+    pub cubes_per_level: Vec<u64>,
+    pub flood_waves: u64,
+}
+
+/// Corner `c` (bits x=1, y=2, z=4) of the cube with lower corner `i` and side `s` (finest units).
+pub fn corner(i: [u32; 3], s: u32, c: usize) -> [u32; 3] {
+    [
+        i[0] + s * (c as u32 & 1),
+        i[1] + s * ((c as u32 >> 1) & 1),
+        i[2] + s * ((c as u32 >> 2) & 1),
+    ]
+}
+
+pub fn is_inside(v: f64) -> bool {
+    v > 0.0
+}
+
+impl Field {
+    fn evaluate(&mut self, ind: &Indicator, keys: impl Iterator<Item = u64>) -> u64 {
+        let mut missing: Vec<u64> = Vec::new();
+        let mut seen: IntSet<u64> = IntSet::default();
+        for k in keys {
+            if !self.values.contains_key(&k) && seen.insert(k) {
+                missing.push(k);
+            }
+        }
+        let grid = &self.grid;
+        let vals: Vec<f64> = missing
+            .par_iter()
+            .with_min_len(64)
+            .map(|&k| ind.eval(grid.node_position(Grid::unkey(k))))
+            .collect();
+        let n = missing.len() as u64;
+        self.values.extend(missing.into_iter().zip(vals));
+        n
+    }
+
+    fn corner_values(&self, i: [u32; 3], s: u32) -> [f64; 8] {
+        let mut v = [0.0; 8];
+        for (c, vc) in v.iter_mut().enumerate() {
+            *vc = self.values[&Grid::key(corner(i, s, c))];
+        }
+        v
+    }
+
+    /// Build the field. `contour_points`: section contour vertices (refinement seeds);
+    /// `coarse`: first octree level; `progress`: called with (stage, evaluations so far).
+    pub fn build(
+        ind: &Indicator,
+        grid: Grid,
+        contour_points: &[[f64; 3]],
+        coarse: u32,
+        progress: &dyn Fn(&str, u64),
+    ) -> Field {
+        let depth = grid.depth;
+        let mut field = Field {
+            grid,
+            values: IntMap::default(),
+            surface_cubes: Vec::new(),
+            cubes_per_level: Vec::new(),
+            flood_waves: 0,
+        };
+        let fine_contour: IntSet<u64> = contour_points
+            .iter()
+            .map(|&p| Grid::key(field.grid.cube_of(p)))
+            .collect();
+        let l0 = coarse.min(depth);
+        let cubes = field.grid.cubes;
+        let mut active: Vec<[u32; 3]> = Vec::new();
+        {
+            let s = 1u32 << (depth - l0);
+            let n: Vec<u32> = (0..3).map(|k| cubes[k].div_ceil(s)).collect();
+            for z in 0..n[2] {
+                for y in 0..n[1] {
+                    for x in 0..n[0] {
+                        active.push([x * s, y * s, z * s]);
+                    }
+                }
+            }
+        }
+        let mut evaluations = 0u64;
+        for l in l0..=depth {
+            let s = 1u32 << (depth - l);
+            field.cubes_per_level.push(active.len() as u64);
+            let keys: Vec<u64> = active
+                .iter()
+                .flat_map(|&i| (0..8).map(move |c| Grid::key(corner(i, s, c))))
+                .collect();
+            evaluations += field.evaluate(ind, keys.into_iter());
+            progress(&format!("octree level {l}"), evaluations);
+            if l == depth {
+                break;
+            }
+            let contour_here: IntSet<u64> = fine_contour
+                .iter()
+                .map(|&k| {
+                    let c = Grid::unkey(k);
+                    Grid::key([c[0] / s * s, c[1] / s * s, c[2] / s * s])
+                })
+                .collect();
+            let half = s / 2;
+            let mut next = Vec::new();
+            for &i in &active {
+                let v = field.corner_values(i, s);
+                let n_in = v.iter().filter(|&&x| is_inside(x)).count();
+                let refine = (n_in != 0 && n_in != 8) || contour_here.contains(&Grid::key(i));
+                if refine {
+                    for c in 0..8 {
+                        let ch = corner(i, half, c);
+                        if (0..3).all(|k| ch[k] < cubes[k]) {
+                            next.push(ch);
+                        }
+                    }
+                }
+            }
+            active = next;
+        }
+        // Finest level: follow the zero set across cube faces until it closes.
+        let mut visited: IntSet<u64> = active.iter().map(|&i| Grid::key(i)).collect();
+        let mut frontier = active;
+        // Faces of a cube as (axis, side, corner list).
+        const FACES: [(usize, u32, [usize; 4]); 6] = [
+            (0, 0, [0, 2, 4, 6]),
+            (0, 1, [1, 3, 5, 7]),
+            (1, 0, [0, 1, 4, 5]),
+            (1, 1, [2, 3, 6, 7]),
+            (2, 0, [0, 1, 2, 3]),
+            (2, 1, [4, 5, 6, 7]),
+        ];
+        let mut first = true;
+        while !frontier.is_empty() {
+            if !first {
+                let keys: Vec<u64> = frontier
+                    .iter()
+                    .flat_map(|&i| (0..8).map(move |c| Grid::key(corner(i, 1, c))))
+                    .collect();
+                evaluations += field.evaluate(ind, keys.into_iter());
+                field.flood_waves += 1;
+                progress("zero-set closure", evaluations);
+            }
+            first = false;
+            let mut next = Vec::new();
+            for &i in &frontier {
+                let v = field.corner_values(i, 1);
+                let inside: Vec<bool> = v.iter().map(|&x| is_inside(x)).collect();
+                let n_in = inside.iter().filter(|&&b| b).count();
+                if n_in == 0 || n_in == 8 {
+                    continue;
+                }
+                field.surface_cubes.push(i);
+                for (axis, side, cs) in FACES {
+                    let fi = cs.iter().filter(|&&c| inside[c]).count();
+                    if fi == 0 || fi == 4 {
+                        continue;
+                    }
+                    let mut nb = i;
+                    if side == 0 {
+                        if nb[axis] == 0 {
+                            continue;
+                        }
+                        nb[axis] -= 1;
+                    } else {
+                        nb[axis] += 1;
+                        if nb[axis] >= cubes[axis] {
+                            continue;
+                        }
+                    }
+                    if visited.insert(Grid::key(nb)) {
+                        next.push(nb);
+                    }
+                }
+            }
+            frontier = next;
+        }
+        field
+    }
+}
