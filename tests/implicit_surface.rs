@@ -166,7 +166,7 @@ fn annulus_between_two_empty_planes_gives_a_torus() {
 }
 
 /// Timing on a sliced sphere (12 planes, 200 vertices each): `cargo test --test implicit_surface
-/// -- --ignored --nocapture`. Prints evaluations and phase times per depth.
+/// -- --ignored --nocapture` (depths from IMPLICIT_DEPTHS, default "7,8"). Prints evaluations and phase times per depth.
 #[test]
 #[ignore]
 fn sliced_sphere_timing() {
@@ -180,7 +180,8 @@ fn sliced_sphere_timing() {
         })
         .collect();
     let arr = horizontal_slabs([-1.0; 3], [1.0; 3], &levels);
-    for depth in [7, 8, 9] {
+    let depths = std::env::var("IMPLICIT_DEPTHS").unwrap_or_else(|_| "7,8".into());
+    for depth in depths.split(',').map(|d| d.trim().parse::<u32>().unwrap()) {
         let mut report = Report::default();
         let t = std::time::Instant::now();
         let mesh = surface(&arr, depth, false, &mut report).unwrap();

@@ -13,10 +13,7 @@ use crate::mesh::TriMesh;
 use crate::reconstruct::{Options, Report, Solid};
 use crate::sections::Sections;
 use indicator::{FaceKind, Indicator};
-use octree::{Field, Grid};
-
-/// First octree level examined everywhere (2^5 = 32 cubes along the longest side).
-pub const COARSE_LEVEL: u32 = 5;
+use octree::{Field, Grid, Refinement};
 
 /// Section contour vertices in 3D: the vertices of the section pieces on faces that are partly inside.
 pub fn contour_points(ind: &Indicator) -> Vec<[f64; 3]> {
@@ -39,6 +36,7 @@ pub fn surface(
     progress: bool,
     report: &mut Report,
 ) -> Result<TriMesh> {
+    let refinement = Refinement::default();
     let ind = report.time("indicator", || Indicator::new(arrangement))?;
     let grid = Grid::new(arrangement.bbox.0, arrangement.bbox.1, depth);
     let points = contour_points(&ind);
@@ -55,7 +53,7 @@ pub fn surface(
         }
     };
     let field = report.time("octree", || {
-        Field::build(&ind, grid, &points, COARSE_LEVEL, &on_progress)
+        Field::build(&ind, grid, &points, refinement, &on_progress)
     });
     if let Some(b) = &bar {
         b.set_message("implicit: extracting the zero set");
@@ -65,7 +63,12 @@ pub fn surface(
         b.finish_and_clear();
     }
     report.count("implicit_depth", field.grid.depth as u64);
-    report.count("implicit_evaluations", field.values.len() as u64);
+    report.count("implicit_evaluations", field.evaluations);
+    report.count("implicit_interpolated_nodes", field.interpolated);
+    report.count(
+        "implicit_coarse_surface_leaves",
+        field.coarse_surface_leaves,
+    );
     report.count("implicit_surface_cubes", field.surface_cubes.len() as u64);
     report.count("implicit_closure_waves", field.flood_waves);
     report.count(
@@ -77,7 +80,7 @@ pub fn surface(
         report.count(
             &format!(
                 "implicit_cubes_level_{:02}",
-                COARSE_LEVEL.min(depth) as usize + i
+                refinement.coarse.min(field.grid.depth) as usize + i
             ),
             *n,
         );

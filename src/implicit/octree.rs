@@ -96,12 +96,22 @@ impl Grid {
 #[derive(Debug)]
 pub struct Field {
     pub grid: Grid,
+    /// Node values: evaluated ones, and trilinear interpolations inside coarse octree leaves.
     pub values: IntMap<u64, f64>,
     /// Finest cubes (lower corner node) whose corners change sign.
     pub surface_cubes: Vec<[u32; 3]>,
-    /// Cubes examined per level (coarse to fine), then the finest-level waves.
+    /// Cubes examined per octree level (coarse to fine).
     pub cubes_per_level: Vec<u64>,
+    /// Sign-changing octree leaves coarser than the finest level (their inside is interpolated).
+    pub coarse_surface_leaves: u64,
     pub flood_waves: u64,
+    /// Number of true evaluations of the indicator.
+    pub evaluations: u64,
+    /// Number of node values interpolated inside coarse leaves.
+    pub interpolated: u64,
+    first_level: u32,
+    /// Per level from `first_level`: the refined cubes (keys of their lower corners).
+    refined: Vec<IntSet<u64>>,
 }
 
 /// Corner `c` (bits x=1, y=2, z=4) of the cube with lower corner `i` and side `s` (finest units).
@@ -115,6 +125,28 @@ pub fn corner(i: [u32; 3], s: u32, c: usize) -> [u32; 3] {
 
 pub fn is_inside(v: f64) -> bool {
     v > 0.0
+}
+
+/// Octree refinement parameters.
+#[derive(Clone, Copy, Debug)]
+pub struct Refinement {
+    /// First level examined everywhere.
+    pub coarse: u32,
+    /// Sign-changing cubes are always refined down to `depth − leaf_slack` (so a surface leaf spans at
+    /// most 2^leaf_slack finest steps); below, only where the contour is or where the trilinear
+    /// interpolation of the corners misplaces the zero set by more than `tolerance` finest steps.
+    pub leaf_slack: u32,
+    pub tolerance: f64,
+}
+
+impl Default for Refinement {
+    fn default() -> Self {
+        Refinement {
+            coarse: 5,
+            leaf_slack: 2,
+            tolerance: 0.5,
+        }
+    }
 }
 
 impl Field {
@@ -134,6 +166,7 @@ impl Field {
             .collect();
         let n = missing.len() as u64;
         self.values.extend(missing.into_iter().zip(vals));
+        self.evaluations += n;
         n
     }
 
@@ -145,28 +178,72 @@ impl Field {
         v
     }
 
+    /// The value at a finest node not evaluated: trilinear in the deepest octree leaf holding it.
+    fn leaf_value(&self, n: [u32; 3]) -> f64 {
+        let depth = self.grid.depth;
+        for (li, refined) in self.refined.iter().enumerate() {
+            let l = self.first_level + li as u32;
+            let s = 1u32 << (depth - l);
+            let mut c = [0u32; 3];
+            for k in 0..3 {
+                c[k] = n[k].min(self.grid.cubes[k] - 1) / s * s;
+            }
+            if l < depth && refined.contains(&Grid::key(c)) {
+                continue;
+            }
+            let v = self.corner_values(c, s);
+            let t: Vec<f64> = (0..3)
+                .map(|k| (n[k] as f64 - c[k] as f64) / s as f64)
+                .collect();
+            let lerp = |a: f64, b: f64, t: f64| a + (b - a) * t;
+            let x00 = lerp(v[0], v[1], t[0]);
+            let x10 = lerp(v[2], v[3], t[0]);
+            let x01 = lerp(v[4], v[5], t[0]);
+            let x11 = lerp(v[6], v[7], t[0]);
+            return lerp(lerp(x00, x10, t[1]), lerp(x01, x11, t[1]), t[2]);
+        }
+        -1.0
+    }
+
+    fn fill(&mut self, keys: impl Iterator<Item = u64>) {
+        let mut missing: Vec<u64> = keys.filter(|k| !self.values.contains_key(k)).collect();
+        missing.sort_unstable();
+        missing.dedup();
+        let vals: Vec<f64> = missing
+            .iter()
+            .map(|&k| self.leaf_value(Grid::unkey(k)))
+            .collect();
+        self.interpolated += missing.len() as u64;
+        self.values.extend(missing.into_iter().zip(vals));
+    }
+
     /// Build the field. `contour_points`: section contour vertices (refinement seeds);
-    /// `coarse`: first octree level; `progress`: called with (stage, evaluations so far).
+    /// `progress`: called with (stage, evaluations so far).
     pub fn build(
         ind: &Indicator,
         grid: Grid,
         contour_points: &[[f64; 3]],
-        coarse: u32,
+        refinement: Refinement,
         progress: &dyn Fn(&str, u64),
     ) -> Field {
         let depth = grid.depth;
+        let l0 = refinement.coarse.min(depth);
         let mut field = Field {
             grid,
             values: IntMap::default(),
             surface_cubes: Vec::new(),
             cubes_per_level: Vec::new(),
+            coarse_surface_leaves: 0,
             flood_waves: 0,
+            evaluations: 0,
+            interpolated: 0,
+            first_level: l0,
+            refined: Vec::new(),
         };
         let fine_contour: IntSet<u64> = contour_points
             .iter()
             .map(|&p| Grid::key(field.grid.cube_of(p)))
             .collect();
-        let l0 = coarse.min(depth);
         let cubes = field.grid.cubes;
         let mut active: Vec<[u32; 3]> = Vec::new();
         {
@@ -180,7 +257,8 @@ impl Field {
                 }
             }
         }
-        let mut evaluations = 0u64;
+        // Seeds for the finest-level closure inside coarse surface leaves.
+        let mut seeds: Vec<[u32; 3]> = Vec::new();
         for l in l0..=depth {
             let s = 1u32 << (depth - l);
             field.cubes_per_level.push(active.len() as u64);
@@ -188,9 +266,10 @@ impl Field {
                 .iter()
                 .flat_map(|&i| (0..8).map(move |c| Grid::key(corner(i, s, c))))
                 .collect();
-            evaluations += field.evaluate(ind, keys.into_iter());
-            progress(&format!("octree level {l}"), evaluations);
+            field.evaluate(ind, keys.into_iter());
+            progress(&format!("octree level {l}"), field.evaluations);
             if l == depth {
+                field.refined.push(IntSet::default());
                 break;
             }
             let contour_here: IntSet<u64> = fine_contour
@@ -201,25 +280,88 @@ impl Field {
                 })
                 .collect();
             let half = s / 2;
-            let mut next = Vec::new();
+            // Sign-changing cubes that may stay leaves: check their centre against trilinear.
+            let must = l + refinement.leaf_slack < depth;
+            let mut candidates = Vec::new();
+            let mut refine = Vec::new();
             for &i in &active {
                 let v = field.corner_values(i, s);
                 let n_in = v.iter().filter(|&&x| is_inside(x)).count();
-                let refine = (n_in != 0 && n_in != 8) || contour_here.contains(&Grid::key(i));
-                if refine {
-                    for c in 0..8 {
-                        let ch = corner(i, half, c);
-                        if (0..3).all(|k| ch[k] < cubes[k]) {
-                            next.push(ch);
+                let crossing = n_in != 0 && n_in != 8;
+                if contour_here.contains(&Grid::key(i)) || (crossing && must) {
+                    refine.push(i);
+                } else if crossing {
+                    candidates.push(i);
+                }
+            }
+            let centres: Vec<u64> = candidates
+                .iter()
+                .map(|&i| Grid::key([i[0] + half, i[1] + half, i[2] + half]))
+                .collect();
+            field.evaluate(ind, centres.iter().copied());
+            for (&i, ck) in candidates.iter().zip(&centres) {
+                let v = field.corner_values(i, s);
+                let mean = v.iter().sum::<f64>() / 8.0;
+                let (lo, hi) = v
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                        (a.min(x), b.max(x))
+                    });
+                // Zero misplaced by about |error| / slope, slope ≈ (hi − lo) / s finest steps.
+                let err = (field.values[ck] - mean).abs();
+                if err * s as f64 > refinement.tolerance * (hi - lo) {
+                    refine.push(i);
+                } else {
+                    field.coarse_surface_leaves += 1;
+                    // Seed: the finest cube at the zero crossing of each sign-changing cube edge.
+                    for (a, b) in CUBE_EDGES {
+                        let (fa, fb) = (v[a], v[b]);
+                        if is_inside(fa) == is_inside(fb) {
+                            continue;
                         }
+                        let t = fa / (fa - fb);
+                        let ca = corner(i, s, a);
+                        let cb = corner(i, s, b);
+                        let mut cube = [0u32; 3];
+                        for k in 0..3 {
+                            cube[k] = if ca[k] == cb[k] {
+                                if ca[k] == i[k] {
+                                    i[k]
+                                } else {
+                                    ca[k] - 1
+                                }
+                            } else {
+                                let x = (i[k] as f64 + t * s as f64).floor() as u32;
+                                x.clamp(i[k], i[k] + s - 1)
+                            };
+                            cube[k] = cube[k].min(cubes[k] - 1);
+                        }
+                        seeds.push(cube);
+                    }
+                }
+            }
+            field
+                .refined
+                .push(refine.iter().map(|&i| Grid::key(i)).collect());
+            let mut next = Vec::new();
+            for &i in &refine {
+                for c in 0..8 {
+                    let ch = corner(i, half, c);
+                    if (0..3).all(|k| ch[k] < cubes[k]) {
+                        next.push(ch);
                     }
                 }
             }
             active = next;
         }
         // Finest level: follow the zero set across cube faces until it closes.
-        let mut visited: IntSet<u64> = active.iter().map(|&i| Grid::key(i)).collect();
-        let mut frontier = active;
+        let mut visited: IntSet<u64> = IntSet::default();
+        let mut frontier = Vec::new();
+        for i in active.into_iter().chain(seeds) {
+            if visited.insert(Grid::key(i)) {
+                frontier.push(i);
+            }
+        }
         // Faces of a cube as (axis, side, corner list).
         const FACES: [(usize, u32, [usize; 4]); 6] = [
             (0, 0, [0, 2, 4, 6]),
@@ -229,18 +371,16 @@ impl Field {
             (2, 0, [0, 1, 2, 3]),
             (2, 1, [4, 5, 6, 7]),
         ];
-        let mut first = true;
         while !frontier.is_empty() {
-            if !first {
-                let keys: Vec<u64> = frontier
-                    .iter()
-                    .flat_map(|&i| (0..8).map(move |c| Grid::key(corner(i, 1, c))))
-                    .collect();
-                evaluations += field.evaluate(ind, keys.into_iter());
-                field.flood_waves += 1;
-                progress("zero-set closure", evaluations);
+            let keys: Vec<u64> = frontier
+                .iter()
+                .flat_map(|&i| (0..8).map(move |c| Grid::key(corner(i, 1, c))))
+                .collect();
+            field.fill(keys.into_iter());
+            field.flood_waves += 1;
+            if field.flood_waves % 16 == 0 {
+                progress("zero-set closure", field.evaluations);
             }
-            first = false;
             let mut next = Vec::new();
             for &i in &frontier {
                 let v = field.corner_values(i, 1);
@@ -277,3 +417,19 @@ impl Field {
         field
     }
 }
+
+/// The 12 edges of a cube as corner pairs.
+const CUBE_EDGES: [(usize, usize); 12] = [
+    (0, 1),
+    (2, 3),
+    (4, 5),
+    (6, 7),
+    (0, 2),
+    (1, 3),
+    (4, 6),
+    (5, 7),
+    (0, 4),
+    (1, 5),
+    (2, 6),
+    (3, 7),
+];
