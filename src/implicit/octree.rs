@@ -137,6 +137,8 @@ pub struct Refinement {
     /// interpolation of the corners misplaces the zero set by more than `tolerance` finest steps.
     pub leaf_slack: u32,
     pub tolerance: f64,
+    /// A cube holding at least this many contour vertices is refined (the paper: more than one).
+    pub contour_vertices: u32,
 }
 
 impl Default for Refinement {
@@ -145,6 +147,7 @@ impl Default for Refinement {
             coarse: 5,
             leaf_slack: 2,
             tolerance: 0.5,
+            contour_vertices: 2,
         }
     }
 }
@@ -240,10 +243,12 @@ impl Field {
             first_level: l0,
             refined: Vec::new(),
         };
-        let fine_contour: IntSet<u64> = contour_points
-            .iter()
-            .map(|&p| Grid::key(field.grid.cube_of(p)))
-            .collect();
+        let mut fine_contour: IntMap<u64, u32> = IntMap::default();
+        for &p in contour_points {
+            *fine_contour
+                .entry(Grid::key(field.grid.cube_of(p)))
+                .or_insert(0) += 1;
+        }
         let cubes = field.grid.cubes;
         let mut active: Vec<[u32; 3]> = Vec::new();
         {
@@ -272,13 +277,13 @@ impl Field {
                 field.refined.push(IntSet::default());
                 break;
             }
-            let contour_here: IntSet<u64> = fine_contour
-                .iter()
-                .map(|&k| {
-                    let c = Grid::unkey(k);
-                    Grid::key([c[0] / s * s, c[1] / s * s, c[2] / s * s])
-                })
-                .collect();
+            let mut contour_count: IntMap<u64, u32> = IntMap::default();
+            for (&k, &n) in &fine_contour {
+                let c = Grid::unkey(k);
+                *contour_count
+                    .entry(Grid::key([c[0] / s * s, c[1] / s * s, c[2] / s * s]))
+                    .or_insert(0) += n;
+            }
             let half = s / 2;
             // Sign-changing cubes that may stay leaves: check their centre against trilinear.
             let must = l + refinement.leaf_slack < depth;
@@ -288,7 +293,8 @@ impl Field {
                 let v = field.corner_values(i, s);
                 let n_in = v.iter().filter(|&&x| is_inside(x)).count();
                 let crossing = n_in != 0 && n_in != 8;
-                if contour_here.contains(&Grid::key(i)) || (crossing && must) {
+                let contour = contour_count.get(&Grid::key(i)).copied().unwrap_or(0);
+                if contour >= refinement.contour_vertices || (crossing && must) {
                     refine.push(i);
                 } else if crossing {
                     candidates.push(i);
