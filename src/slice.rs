@@ -114,7 +114,8 @@ pub fn make_planes(mesh: &TriMesh, n: usize, seed: u64, mode: SliceMode) -> Vec<
 }
 
 /// Cut `mesh` by every plane; planes whose section is empty are skipped. `source_index` of each
-/// section is its position in the result.
+/// section is its position in the result. The result goes through [`crate::validate::validate`]
+/// (errors are located as `mesh: section i`).
 pub fn slice_mesh(mesh: &TriMesh, planes: &[Plane]) -> Result<Sections> {
     check_closed_manifold(mesh)?;
     let per_plane: Vec<Option<Vec<Region>>> = planes
@@ -132,11 +133,16 @@ pub fn slice_mesh(mesh: &TriMesh, planes: &[Plane]) -> Result<Sections> {
             });
         }
     }
-    Ok(Sections {
-        sections,
-        n_labels: 1,
-        warnings: Vec::new(),
-    })
+    // The shared validator checks what every reader's output satisfies (simple, non-crossing
+    // contours, holes inside their parents, orientation); a repair here would be a slicer bug.
+    crate::validate::validate(
+        Sections {
+            sections,
+            n_labels: 1,
+            warnings: Vec::new(),
+        },
+        "mesh",
+    )
 }
 
 /// Check that `mesh` bounds a solid: finite coordinates, indices in range, no degenerate triangle, and
