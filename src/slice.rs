@@ -576,6 +576,24 @@ mod tests {
     }
 
     #[test]
+    fn inside_out_mesh_gives_the_same_oriented_sections() {
+        let m = cube();
+        let mut flipped = m.clone();
+        flipped.triangles.iter_mut().for_each(|t| t.swap(1, 2));
+        let planes = [Plane::from_point_normal([0.3; 3], [0.2, 0.5, 1.0]).unwrap()];
+        let (a, b) = (
+            slice_mesh(&m, &planes).unwrap(),
+            slice_mesh(&flipped, &planes).unwrap(),
+        );
+        assert!(a.sections[0].regions[0].outer.signed_area() > 0.0);
+        let (x, y) = (
+            a.sections[0].regions[0].outer.signed_area(),
+            b.sections[0].regions[0].outer.signed_area(),
+        );
+        assert!((x - y).abs() < 1e-14, "{x} vs {y}"); // same polygon, other start vertex
+    }
+
+    #[test]
     fn open_mesh_is_rejected() {
         let mut m = cube();
         m.triangles.pop();
