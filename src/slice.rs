@@ -18,7 +18,7 @@
 //! The mesh must be a closed, consistently oriented 2-manifold (every directed edge once, its twin once);
 //! anything else is an `Error::Input`. Its global orientation does not matter (depth decides).
 //! The result passes through the shared validator (`crate::validate`). A plane exactly through a
-//! saddle vertex makes contours that touch there, which the validator rejects; [`make_planes`] keeps
+//! saddle vertex makes contours that touch there, which the validator may reject; [`make_planes`] keeps
 //! its planes clear of vertices so this only happens with planes the caller chooses.
 use crate::error::{Error, Result};
 use crate::geom::predicates::{orient2d, orient3d};
