@@ -36,7 +36,7 @@ fn reference_meshes_agree_with_their_sections() {
         let r = check_mesh(&mesh, Some(&secs));
         assert!(r.is_closed_manifold() && r.oriented, "{name}: {r:?}");
         assert_eq!(r.components, 1, "{name}");
-        let planes = r.sections.as_ref().unwrap();
+        let planes = &r.sections;
         assert_eq!(planes.len(), secs.sections.len());
         for p in planes {
             assert!(
