@@ -364,6 +364,7 @@ pub fn off_plane_tolerance(sections: &Sections) -> f64 {
 }
 
 /// Remove consecutive equal vertices (in 2D, closing edge included). True if any were removed.
+#[allow(clippy::needless_range_loop)]
 fn remove_consecutive_duplicates(c: &mut Contour) -> bool {
     let n = c.points2.len();
     let mut keep = vec![true; n];
