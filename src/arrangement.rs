@@ -11,6 +11,12 @@
 //! * A face polygon is convex and counter-clockwise seen from its plane's normal; section pieces are
 //!   counter-clockwise outer loops with clockwise holes, in pool vertex ids, and lie inside their face.
 //! * `Face::positive_cell` is the cell on the side the plane normal points to.
+mod build;
+mod cells;
+pub(crate) mod exact;
+mod pieces;
+mod reconcile;
+
 use crate::error::Result;
 use crate::sections::{Plane, Sections};
 use serde::{Deserialize, Serialize};
@@ -102,9 +108,80 @@ pub struct Arrangement {
 }
 
 impl Arrangement {
-    pub fn build(_sections: &Sections, _options: &ArrangementOptions) -> Result<Arrangement> {
-        Err(crate::error::Error::Unavailable(
-            "the plane arrangement is not implemented yet".into(),
-        ))
+    /// Build the arrangement of the sections' planes in the padded box, the global vertex pool and
+    /// the section pieces of every face. Duplicate planes (equal up to scale) are rejected.
+    pub fn build(sections: &Sections, options: &ArrangementOptions) -> Result<Arrangement> {
+        build::build(sections, options)
     }
+
+    /// Cell adjacency: one node per cell (weight = cell id), one edge per interior face (weight = face id).
+    pub fn adjacency_graph(&self) -> petgraph::graph::UnGraph<CellId, FaceId> {
+        let mut g = petgraph::graph::UnGraph::with_capacity(self.cells.len(), self.faces.len());
+        for c in 0..self.cells.len() {
+            g.add_node(c as CellId);
+        }
+        for (f, face) in self.faces.iter().enumerate() {
+            if let (Some(a), Some(b)) = (face.positive_cell, face.negative_cell) {
+                g.add_edge(
+                    petgraph::graph::NodeIndex::new(a as usize),
+                    petgraph::graph::NodeIndex::new(b as usize),
+                    f as FaceId,
+                );
+            }
+        }
+        g
+    }
+
+    /// (u,v) coordinates of pool vertex `v` in the frame of `plane`, if the vertex carries that tag.
+    pub fn uv(&self, v: VertexId, plane: PlaneId) -> Option<[f64; 2]> {
+        let tags = &self.pool.tags[v as usize];
+        tags.iter()
+            .position(|&t| t == plane)
+            .map(|k| self.pool.uv[v as usize][k])
+    }
+
+    /// Cells with at least one face carrying a section piece.
+    pub fn cells_with_sections(&self) -> usize {
+        self.cells
+            .iter()
+            .filter(|c| {
+                c.faces
+                    .iter()
+                    .any(|cf| !self.faces[cf.face as usize].pieces.is_empty())
+            })
+            .count()
+    }
+
+    /// Signed area (in the plane's frame) of a loop of pool vertices on `plane`.
+    pub fn loop_area(&self, plane: PlaneId, ids: &[VertexId]) -> f64 {
+        let pts: Vec<[f64; 2]> = ids
+            .iter()
+            .map(|&v| self.uv(v, plane).unwrap_or([0.0, 0.0]))
+            .collect();
+        polygon_area(&pts)
+    }
+
+    /// Area of a section piece (outer minus holes).
+    pub fn piece_area(&self, plane: PlaneId, piece: &SectionPiece) -> f64 {
+        self.loop_area(plane, &piece.outer)
+            + piece
+                .holes
+                .iter()
+                .map(|h| self.loop_area(plane, h))
+                .sum::<f64>()
+    }
+}
+
+pub(crate) fn polygon_area(p: &[[f64; 2]]) -> f64 {
+    let n = p.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let o = p[0];
+    let mut a = 0.0;
+    for i in 1..n - 1 {
+        let (b, c) = (p[i], p[i + 1]);
+        a += (b[0] - o[0]) * (c[1] - o[1]) - (b[1] - o[1]) * (c[0] - o[0]);
+    }
+    0.5 * a
 }

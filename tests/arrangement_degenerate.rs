@@ -1,0 +1,312 @@
+//! Degenerate plane configurations and contours through arrangement features.
+use proptest::prelude::*;
+use slice2solid::arrangement::{Arrangement, ArrangementOptions};
+use slice2solid::sections::{Contour, Plane, Region, Section, Sections};
+use slice2solid::Error;
+
+fn ball_sections(planes: &[([f64; 3], f64)], r: f64, n: usize) -> Sections {
+    let mut out = Sections {
+        sections: Vec::new(),
+        n_labels: 1,
+        warnings: Vec::new(),
+    };
+    for (k, &(normal, offset)) in planes.iter().enumerate() {
+        let plane = Plane::from_equation(normal, offset).unwrap();
+        let d = plane.offset;
+        let mut regions = Vec::new();
+        if d.abs() < r {
+            let rr = (r * r - d * d).sqrt();
+            let pts: Vec<[f64; 2]> = (0..n)
+                .map(|a| {
+                    let t = a as f64 / n as f64 * std::f64::consts::TAU + 0.1;
+                    [rr * t.cos(), rr * t.sin()]
+                })
+                .collect();
+            // An annulus every other plane, to exercise holes.
+            let holes = if k % 2 == 1 {
+                let h: Vec<[f64; 2]> = (0..n / 2)
+                    .map(|a| {
+                        let t = -(a as f64) / (n / 2) as f64 * std::f64::consts::TAU;
+                        [0.4 * rr * t.cos() + 0.05, 0.4 * rr * t.sin()]
+                    })
+                    .collect();
+                vec![Contour::from_2d(&plane, h)]
+            } else {
+                Vec::new()
+            };
+            regions.push(Region {
+                label: 1,
+                outer: Contour::from_2d(&plane, pts),
+                holes,
+            });
+        }
+        out.sections.push(Section {
+            plane,
+            regions,
+            source_index: k,
+            max_off_plane: 0.0,
+        });
+    }
+    out
+}
+
+/// Section on `plane` from 3D points lying exactly on it (axis planes: exact frames).
+fn polygon_section(plane: Plane, polys: &[Vec<[f64; 3]>], k: usize) -> Section {
+    let regions = polys
+        .iter()
+        .map(|p| {
+            let pts: Vec<[f64; 2]> = p.iter().map(|&x| plane.to_2d(x)).collect();
+            let mut c = Contour::from_2d(&plane, pts);
+            if c.signed_area() < 0.0 {
+                c.points2.reverse();
+                c.points3.reverse();
+            }
+            Region {
+                label: 1,
+                outer: c,
+                holes: Vec::new(),
+            }
+        })
+        .collect();
+    Section {
+        plane,
+        regions,
+        source_index: k,
+        max_off_plane: 0.0,
+    }
+}
+
+fn check_invariants(arr: &Arrangement, sections: &Sections) {
+    let (lo, hi) = arr.bbox;
+    let box_vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
+    let sum: f64 = arr.cells.iter().map(|c| c.volume).sum();
+    assert!(
+        ((sum - box_vol) / box_vol).abs() < 1e-12,
+        "volumes {sum} vs box {box_vol}"
+    );
+    for (f, face) in arr.faces.iter().enumerate() {
+        if arr.planes[face.plane as usize].section.is_some() {
+            let (p, n) = (
+                face.positive_cell.expect("positive"),
+                face.negative_cell.expect("negative"),
+            );
+            assert_ne!(p, n);
+            let fp = arr.cells[p as usize]
+                .faces
+                .iter()
+                .find(|cf| cf.face as usize == f)
+                .unwrap();
+            let fn_ = arr.cells[n as usize]
+                .faces
+                .iter()
+                .find(|cf| cf.face as usize == f)
+                .unwrap();
+            assert!(!fp.outward_is_plane_normal && fn_.outward_is_plane_normal);
+        } else {
+            assert!(face.positive_cell.is_none() && face.negative_cell.is_some());
+        }
+        for &v in &face.polygon {
+            assert!(arr.pool.tags[v as usize].contains(&face.plane));
+        }
+        // Each face vertex has at least three tags (it is an arrangement vertex).
+        for &v in &face.polygon {
+            assert!(arr.pool.tags[v as usize].len() >= 3);
+        }
+    }
+    // Every cell is closed: each (directed) edge of its faces appears once in each direction.
+    for c in &arr.cells {
+        let mut edges = std::collections::HashMap::new();
+        for cf in &c.faces {
+            let f = &arr.faces[cf.face as usize];
+            let mut poly = f.polygon.clone();
+            if !cf.outward_is_plane_normal {
+                poly.reverse();
+            }
+            for k in 0..poly.len() {
+                *edges
+                    .entry((poly[k], poly[(k + 1) % poly.len()]))
+                    .or_insert(0) += 1;
+            }
+        }
+        for (&(a, b), &n) in &edges {
+            assert_eq!(n, 1);
+            assert_eq!(
+                edges.get(&(b, a)),
+                Some(&1),
+                "cell not closed at edge {a}-{b}"
+            );
+        }
+    }
+    for (i, s) in sections.sections.iter().enumerate() {
+        let mut total = 0.0;
+        for face in arr.faces.iter().filter(|f| f.plane as usize == i) {
+            for piece in &face.pieces {
+                total += arr.piece_area(i as u32, piece);
+            }
+        }
+        let a = s.area();
+        assert!(
+            (total - a).abs() <= 1e-9 * a.max(1e-12),
+            "plane {i}: pieces {total} vs section {a}"
+        );
+    }
+}
+
+#[test]
+fn planes_through_a_common_line() {
+    let planes: Vec<([f64; 3], f64)> = (0..5)
+        .map(|k| {
+            let a = k as f64 * 0.6;
+            ([0.0, a.sin(), a.cos()], 0.0)
+        })
+        .chain([([1.0, 0.0, 0.0], 0.3)])
+        .collect();
+    let s = ball_sections(&planes, 1.0, 96);
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    check_invariants(&arr, &s);
+    // 5 planes through one line: 10 wedges, each cut by x = 0.3.
+    assert_eq!(arr.cells.len(), 20);
+    // The two arrangement vertices on the common line carry all five tags.
+    let five = arr
+        .pool
+        .tags
+        .iter()
+        .filter(|t| t.iter().filter(|&&p| p < 5).count() == 5)
+        .count();
+    assert!(five >= 2, "{five}");
+}
+
+#[test]
+fn four_planes_through_one_point() {
+    let planes = [
+        ([1.0, 0.0, 0.0], 0.0),
+        ([0.0, 1.0, 0.0], 0.0),
+        ([0.0, 0.0, 1.0], 0.0),
+        ([1.0, 1.0, 1.0], 0.0),
+        ([0.3, -0.7, 0.2], 0.0),
+    ];
+    let s = ball_sections(&planes, 1.0, 128);
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    check_invariants(&arr, &s);
+    let centre: Vec<_> = arr
+        .pool
+        .tags
+        .iter()
+        .filter(|t| t.iter().filter(|&&p| p < 5).count() == 5)
+        .collect();
+    assert_eq!(centre.len(), 1, "one vertex through all five planes");
+}
+
+#[test]
+fn nearly_parallel_planes() {
+    let e = 1e-9f64;
+    let planes = [
+        ([0.0, 0.0, 1.0], 0.0),
+        ([0.0, e.sin(), e.cos()], 1e-10),
+        ([1.0, 0.0, 0.0], 0.1),
+        ([0.0, 1.0, 0.2], 0.05),
+    ];
+    let s = ball_sections(&planes, 1.0, 64);
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    check_invariants(&arr, &s);
+}
+
+#[test]
+fn duplicate_planes_are_rejected() {
+    for dup in [([0.0, 0.0, 2.0], 0.2), ([0.0, 0.0, -1.0], -0.1)] {
+        let s = ball_sections(
+            &[([0.0, 0.0, 1.0], 0.1), ([1.0, 0.0, 0.0], 0.0), dup],
+            1.0,
+            32,
+        );
+        match Arrangement::build(&s, &ArrangementOptions::default()) {
+            Err(Error::Input { location, reason }) => {
+                assert!(
+                    location.contains('0') && location.contains('2'),
+                    "{location}"
+                );
+                assert!(reason.contains("duplicate"));
+            }
+            other => panic!(
+                "expected an input error, got {:?}",
+                other.map(|a| a.cells.len())
+            ),
+        }
+    }
+}
+
+#[test]
+fn contours_through_lines_and_vertices() {
+    let pz = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+    let px = Plane::from_equation([1.0, 0.0, 0.0], 0.0).unwrap();
+    let py = Plane::from_equation([0.0, 1.0, 0.0], -0.25).unwrap();
+    // On z = 0: a square with an edge along x = 0, a triangle with a vertex at the arrangement
+    // vertex (0, 0.25, 0), and a diamond touching x = 0 at one vertex.
+    let z_polys = vec![
+        vec![
+            [0.0, -0.5, 0.0],
+            [0.5, -0.5, 0.0],
+            [0.5, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+        ],
+        vec![[0.0, 0.25, 0.0], [-0.5, 0.5, 0.0], [-0.5, 0.3, 0.0]],
+        vec![
+            [-0.25, -0.25, 0.0],
+            [0.0, -0.75, 0.0],
+            [-0.25, -1.0, 0.0],
+            [-0.5, -0.75, 0.0],
+        ],
+    ];
+    // On x = 0: a square crossing both other planes' lines.
+    let x_polys = vec![vec![
+        [0.0, -0.5, -0.5],
+        [0.0, 0.5, -0.5],
+        [0.0, 0.5, 0.5],
+        [0.0, -0.5, 0.5],
+    ]];
+    let y_polys = vec![vec![
+        [-0.3, 0.25, -0.3],
+        [0.3, 0.25, -0.3],
+        [0.3, 0.25, 0.3],
+        [-0.3, 0.25, 0.3],
+    ]];
+    let s = Sections {
+        sections: vec![
+            polygon_section(pz, &z_polys, 0),
+            polygon_section(px, &x_polys, 1),
+            polygon_section(py, &y_polys, 2),
+        ],
+        n_labels: 1,
+        warnings: Vec::new(),
+    };
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    check_invariants(&arr, &s);
+    // The three synthetic sections disagree along their lines on purpose; nothing else is reported.
+    assert!(
+        arr.warnings.iter().all(|w| w.starts_with("sections")),
+        "{:?}",
+        arr.warnings
+    );
+    assert!(arr.max_disagreement > 0.1);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+    #[test]
+    fn random_planes(planes in prop::collection::vec(
+        ((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), -0.8f64..0.8), 1..=8)) {
+        let planes: Vec<([f64; 3], f64)> = planes
+            .into_iter()
+            .filter(|((a, b, c), _)| a * a + b * b + c * c > 1e-3)
+            .map(|((a, b, c), d)| {
+                let l = (a * a + b * b + c * c).sqrt();
+                ([a, b, c], d * l)
+            })
+            .collect();
+        prop_assume!(!planes.is_empty());
+        let s = ball_sections(&planes, 1.0, 48);
+        prop_assume!(s.sections.iter().any(|x| !x.regions.is_empty()));
+        let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+        check_invariants(&arr, &s);
+    }
+}
