@@ -566,6 +566,10 @@ mod timing {
             ("uniform", super::gen::uniform(n, 1)),
             ("planes40", super::gen::on_planes(n, 40, 1)),
         ] {
+            if let Ok(dir) = std::env::var("S2S_WRITE_DIR") {
+                let path = std::path::Path::new(&dir).join(format!("{name}_{n}.xyz"));
+                super::xyz::write_xyz(&path, &pts).unwrap();
+            }
             let t = std::time::Instant::now();
             let dt = super::Delaunay::new(&pts);
             eprintln!(
