@@ -102,7 +102,8 @@ impl Delaunay {
         }
         let mut dt = Delaunay::empty();
         // Merge exact duplicates first so that the kept vertex is the smallest index.
-        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(points.len());
+        let mut first: HashMap<[u64; 3], u32, FastHash> =
+            HashMap::with_capacity_and_hasher(points.len(), FastHash);
         let mut distinct = Vec::with_capacity(points.len());
         for (i, p) in points.iter().enumerate() {
             match first.entry(key(norm(*p))) {
@@ -406,6 +407,31 @@ impl Delaunay {
     }
 }
 
+/// A multiplicative hasher for coordinate bit patterns (SipHash is needlessly slow here, and
+/// inputs are not adversarial).
+#[derive(Clone, Copy, Default)]
+struct FastHash;
+impl std::hash::BuildHasher for FastHash {
+    type Hasher = FastHasher;
+    fn build_hasher(&self) -> FastHasher {
+        FastHasher(0)
+    }
+}
+struct FastHasher(u64);
+impl std::hash::Hasher for FastHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(23) ^ x).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
+
 /// -0.0 → 0.0 so that equal points have equal bits.
 #[inline]
 fn norm(p: P) -> P {
@@ -569,6 +595,7 @@ mod timing {
             if let Ok(dir) = std::env::var("S2S_WRITE_DIR") {
                 let path = std::path::Path::new(&dir).join(format!("{name}_{n}.xyz"));
                 super::xyz::write_xyz(&path, &pts).unwrap();
+                continue;
             }
             let t = std::time::Instant::now();
             let dt = super::Delaunay::new(&pts);

@@ -248,7 +248,10 @@ mod tests {
                 assert_eq!((-det).partial_cmp(&0.0), rs.partial_cmp(&0.0));
             }
         }
-        assert!(decided > 6000, "the filter decides the random cases: {decided}");
+        assert!(
+            decided > 6000,
+            "the filter decides the random cases: {decided}"
+        );
     }
     #[test]
     fn signs() {
