@@ -19,7 +19,11 @@ fn delaunay_cli_json_and_tets_file() {
         .arg(&tets_path)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(j["points"], 201);
     assert_eq!(j["vertices"], 200);
@@ -46,7 +50,10 @@ fn delaunay_cli_bad_input_is_an_error_with_a_line() {
     let dir = tempfile::tempdir().unwrap();
     let p = dir.path().join("bad.xyz");
     std::fs::write(&p, "0 0 0\n1 2\n").unwrap();
-    let out = bin().args(["delaunay", p.to_str().unwrap()]).output().unwrap();
+    let out = bin()
+        .args(["delaunay", p.to_str().unwrap()])
+        .output()
+        .unwrap();
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("bad.xyz:2"), "{err}");
@@ -58,7 +65,13 @@ fn delaunay_cli_oracle_switch() {
     let p = dir.path().join("p.xyz");
     xyz::write_xyz(&p, &gen::uniform(100, 6)).unwrap();
     let out = bin()
-        .args(["delaunay", p.to_str().unwrap(), "--json", "--oracle", "tetgen"])
+        .args([
+            "delaunay",
+            p.to_str().unwrap(),
+            "--json",
+            "--oracle",
+            "tetgen",
+        ])
         .output()
         .unwrap();
     if cfg!(feature = "tetgen") {

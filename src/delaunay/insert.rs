@@ -21,6 +21,23 @@ fn prefetch(tets: &[Tet], t: u32) {
     }
 }
 
+/// Record `t`. The triangulation's invariants (checked by `is_valid` in tests) guarantee that every
+/// neighbour id stored in a live record is a valid slot, so the hot loops skip bounds checks.
+#[inline(always)]
+fn tet(tets: &[Tet], t: u32) -> &Tet {
+    debug_assert!((t as usize) < tets.len());
+    // SAFETY: t is a neighbour or hint id of a valid triangulation, hence < tets.len().
+    unsafe { tets.get_unchecked(t as usize) }
+}
+
+/// Coordinates of finite internal vertex `v` (< pts.len() by construction).
+#[inline(always)]
+fn pt(pts: &[P], v: u32) -> P {
+    debug_assert!((v as usize) < pts.len());
+    // SAFETY: finite vertex ids stored in live records are internal ids < pts.len().
+    unsafe { *pts.get_unchecked(v as usize) }
+}
+
 #[inline]
 fn xorshift(mut x: u32) -> u32 {
     x ^= x << 13;
@@ -43,12 +60,12 @@ pub(super) fn walk(tets: &[Tet], pts: &[P], q: P, start: u32, rng: &mut u32) -> 
     let mut prev = NONE;
     'outer: loop {
         *rng = xorshift(*rng);
-        let tt = &tets[t as usize];
+        let tt = tet(tets, t);
         let p = [
-            pts[tt.v[0] as usize],
-            pts[tt.v[1] as usize],
-            pts[tt.v[2] as usize],
-            pts[tt.v[3] as usize],
+            pt(pts, tt.v[0]),
+            pt(pts, tt.v[1]),
+            pt(pts, tt.v[2]),
+            pt(pts, tt.v[3]),
         ];
         let r = (*rng >> 11) as usize;
         for k in 0..4 {
@@ -62,7 +79,7 @@ pub(super) fn walk(tets: &[Tet], pts: &[P], q: P, start: u32, rng: &mut u32) -> 
             if pred::orient(s[0], s[1], s[2], s[3]) < 0.0 {
                 prev = t;
                 t = n;
-                if tets[n as usize].is_infinite() {
+                if tet(tets, n).is_infinite() {
                     return t;
                 }
                 continue 'outer;
@@ -115,10 +132,10 @@ impl Delaunay {
     /// Perturbed conflict of tetrahedron `t` with point `q`.
     #[inline]
     pub(super) fn conflict(&self, t: u32, q: P) -> bool {
-        let tt = &self.tds.tets[t as usize];
+        let tt = tet(&self.tds.tets, t);
         let v = tt.v;
         if !tt.is_infinite() {
-            let p = |k: usize| self.pts[v[k] as usize];
+            let p = |k: usize| pt(&self.pts, v[k]);
             return pred::conflict_finite([p(0), p(1), p(2), p(3)], q);
         }
         let k = tt.index_of_vertex(INFINITE);
@@ -170,7 +187,7 @@ impl Delaunay {
         stack.push(t0);
         cavity.push(t0);
         while let Some(c) = stack.pop() {
-            let cn = self.tds.tets[c as usize].n;
+            let cn = tet(&self.tds.tets, c).n;
             for &n in &cn {
                 prefetch(&self.tds.tets, n);
             }
@@ -207,12 +224,12 @@ impl Delaunay {
             let j = nbt.index_of_neighbor(c);
             nbt.n[j] = nt;
             self.tds.tets[c as usize].n[i] = nt;
-            let mut finite = true;
-            for &w in &vs {
-                if w != INFINITE {
-                    self.vtet[w as usize] = nt;
-                } else {
-                    finite = false;
+            let finite = !self.tds.tets[nt as usize].is_infinite();
+            if self.track_vtet {
+                for &w in &vs {
+                    if w != INFINITE {
+                        self.vtet[w as usize] = nt;
+                    }
                 }
             }
             self.nfinite += finite as usize;

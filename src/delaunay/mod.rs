@@ -81,6 +81,8 @@ pub struct Delaunay {
     boundary: Vec<(u32, u8)>,
     outside: Vec<u32>,
     newt: Vec<u32>,
+    /// Whether insertions keep `vtet` up to date (off during the bulk build, which rebuilds it once).
+    track_vtet: bool,
 }
 
 impl Delaunay {
@@ -129,6 +131,7 @@ impl Delaunay {
             dt.int[d as usize] = dt.int[kept as usize];
         }
         dt.vtet = vec![NONE; dt.pts.len()];
+        dt.track_vtet = false;
         for k in 0..dt.pts.len() as u32 {
             let w = if dt.dim < 3 {
                 dt.add_pending(k)
@@ -136,6 +139,19 @@ impl Delaunay {
                 dt.insert_vertex(k)
             };
             debug_assert_eq!(w, k);
+        }
+        dt.track_vtet = true;
+        if dt.dim == 3 {
+            for t in 0..dt.tds.tets.len() as u32 {
+                let tt = &dt.tds.tets[t as usize];
+                if !tt.is_dead() {
+                    for w in tt.v {
+                        if w != INFINITE {
+                            dt.vtet[w as usize] = t;
+                        }
+                    }
+                }
+            }
         }
         Ok(dt)
     }
@@ -159,6 +175,7 @@ impl Delaunay {
             boundary: Vec::new(),
             outside: Vec::new(),
             newt: Vec::new(),
+            track_vtet: true,
         }
     }
 
