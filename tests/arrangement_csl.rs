@@ -62,3 +62,20 @@ fn every_shared_csl_file() {
         assert!(other.is_empty(), "{path:?}: {other:?}");
     }
 }
+
+#[test]
+#[ignore]
+fn horsers_disagreement_details() {
+    let s = common::read_csl_simple(&common::shared_dir().join("data/csl/Horsers.csl"));
+    let arr = Arrangement::build(
+        &s,
+        &ArrangementOptions {
+            snap_tolerance: 1e-6,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    for w in &arr.warnings {
+        eprintln!("{w}");
+    }
+}

@@ -137,10 +137,24 @@ fn check_invariants(arr: &Arrangement, sections: &Sections) {
             );
         }
     }
+    let nv = arr.pool.positions.len();
+    assert_eq!(arr.pool.tags.len(), nv);
+    assert_eq!(arr.pool.uv.len(), nv);
+    for v in 0..nv {
+        assert_eq!(arr.pool.tags[v].len(), arr.pool.uv[v].len());
+        assert!(
+            arr.pool.tags[v].windows(2).all(|w| w[0] < w[1]),
+            "tags sorted and unique"
+        );
+    }
     for (i, s) in sections.sections.iter().enumerate() {
         let mut total = 0.0;
         for face in arr.faces.iter().filter(|f| f.plane as usize == i) {
             for piece in &face.pieces {
+                for &v in piece.outer.iter().chain(piece.holes.iter().flatten()) {
+                    assert!((v as usize) < nv);
+                    assert!(arr.pool.tags[v as usize].contains(&(i as u32)));
+                }
                 total += arr.piece_area(i as u32, piece);
             }
         }
@@ -309,4 +323,92 @@ proptest! {
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
         check_invariants(&arr, &s);
     }
+}
+
+/// Two perpendicular planes whose square sections cross their common line at points `gap` apart.
+fn two_squares(gap: f64) -> Sections {
+    let pz = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+    let py = Plane::from_equation([0.0, 1.0, 0.0], 0.0).unwrap();
+    // Common line: the x-axis. z = 0 section spans x in [-0.5, 0.5]; y = 0 spans [-0.5 + gap, 0.5].
+    let z_polys = vec![vec![
+        [-0.5, -0.5, 0.0],
+        [0.5, -0.5, 0.0],
+        [0.5, 0.5, 0.0],
+        [-0.5, 0.5, 0.0],
+    ]];
+    let y_polys = vec![vec![
+        [-0.5 + gap, 0.0, -0.5],
+        [0.5, 0.0, -0.5],
+        [0.5, 0.0, 0.5],
+        [-0.5 + gap, 0.0, 0.5],
+    ]];
+    Sections {
+        sections: vec![
+            polygon_section(pz, &z_polys, 0),
+            polygon_section(py, &y_polys, 1),
+        ],
+        n_labels: 1,
+        warnings: Vec::new(),
+    }
+}
+
+fn line_vertices(arr: &Arrangement, plane: u32) -> Vec<u32> {
+    let mut v: Vec<u32> = arr
+        .faces
+        .iter()
+        .filter(|f| f.plane == plane)
+        .flat_map(|f| f.pieces.iter().flat_map(|p| p.outer.iter().copied()))
+        .filter(|&v| {
+            let t = &arr.pool.tags[v as usize];
+            t.contains(&0) && t.contains(&1) && t.len() == 2
+        })
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+#[test]
+fn close_crossings_are_snapped_to_one_shared_vertex() {
+    let s = two_squares(1e-5);
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    check_invariants(&arr, &s);
+    assert!(
+        (arr.max_disagreement - 1e-5).abs() < 1e-12,
+        "{}",
+        arr.max_disagreement
+    );
+    // Both planes' pieces use the same two vertices on the x-axis.
+    let (a, b) = (line_vertices(&arr, 0), line_vertices(&arr, 1));
+    assert_eq!(a.len(), 2, "{a:?}");
+    assert_eq!(a, b);
+    // No orphan: every pool vertex is used by a face polygon or a piece.
+    let mut used = vec![false; arr.pool.positions.len()];
+    for f in &arr.faces {
+        for &v in f.polygon.iter().chain(
+            f.pieces
+                .iter()
+                .flat_map(|p| p.outer.iter().chain(p.holes.iter().flatten())),
+        ) {
+            used[v as usize] = true;
+        }
+    }
+    assert!(used.iter().all(|&u| u));
+}
+
+#[test]
+fn far_crossings_are_kept_and_shared_along_the_line() {
+    let s = two_squares(0.1);
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    check_invariants(&arr, &s);
+    assert!(
+        (arr.max_disagreement - 0.1).abs() < 1e-12,
+        "{}",
+        arr.max_disagreement
+    );
+    assert!(arr.warnings.iter().any(|w| w.contains("disagree")));
+    // Plane 0's pieces pass through plane 1's crossing too (no T-junction along the line).
+    let (a, b) = (line_vertices(&arr, 0), line_vertices(&arr, 1));
+    assert_eq!(a.len(), 3, "{a:?}");
+    assert!(b.iter().all(|v| a.contains(v)));
 }

@@ -109,6 +109,7 @@ pub(super) fn build_pieces(
     diag: f64,
     options: &ArrangementOptions,
 ) -> Result<()> {
+    let n_arr = arr.pool.positions.len();
     let mut triples = HashMap::new();
     for (v, tags) in arr.pool.tags.iter().enumerate() {
         let n = tags.len();
@@ -150,7 +151,7 @@ pub(super) fn build_pieces(
     let warnings = std::mem::take(&mut ctx.warnings);
     let line_points = std::mem::take(&mut ctx.line_points);
     arr.warnings.extend(warnings);
-    super::reconcile::measure_disagreement(arr, &line_points, diag, options);
+    super::reconcile::reconcile(arr, &line_points, n_arr, diag, options);
     Ok(())
 }
 
