@@ -25,6 +25,7 @@ fn every_shared_csl_file() {
             ((sum - box_vol) / box_vol).abs() < 1e-12,
             "{path:?}: volumes"
         );
+        common::check_arrangement(&arr, &s);
         let mut worst_area = 0.0f64;
         for (i, sec) in s.sections.iter().enumerate() {
             let total: f64 = arr

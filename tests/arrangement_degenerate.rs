@@ -1,4 +1,5 @@
 //! Degenerate plane configurations and contours through arrangement features.
+mod common;
 use proptest::prelude::*;
 use slice2solid::arrangement::{Arrangement, ArrangementOptions};
 use slice2solid::sections::{Contour, Plane, Region, Section, Sections};
@@ -76,96 +77,6 @@ fn polygon_section(plane: Plane, polys: &[Vec<[f64; 3]>], k: usize) -> Section {
     }
 }
 
-fn check_invariants(arr: &Arrangement, sections: &Sections) {
-    let (lo, hi) = arr.bbox;
-    let box_vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-    let sum: f64 = arr.cells.iter().map(|c| c.volume).sum();
-    assert!(
-        ((sum - box_vol) / box_vol).abs() < 1e-12,
-        "volumes {sum} vs box {box_vol}"
-    );
-    for (f, face) in arr.faces.iter().enumerate() {
-        if arr.planes[face.plane as usize].section.is_some() {
-            let (p, n) = (
-                face.positive_cell.expect("positive"),
-                face.negative_cell.expect("negative"),
-            );
-            assert_ne!(p, n);
-            let fp = arr.cells[p as usize]
-                .faces
-                .iter()
-                .find(|cf| cf.face as usize == f)
-                .unwrap();
-            let fn_ = arr.cells[n as usize]
-                .faces
-                .iter()
-                .find(|cf| cf.face as usize == f)
-                .unwrap();
-            assert!(!fp.outward_is_plane_normal && fn_.outward_is_plane_normal);
-        } else {
-            assert!(face.positive_cell.is_none() && face.negative_cell.is_some());
-        }
-        for &v in &face.polygon {
-            assert!(arr.pool.tags[v as usize].contains(&face.plane));
-        }
-        // Each face vertex has at least three tags (it is an arrangement vertex).
-        for &v in &face.polygon {
-            assert!(arr.pool.tags[v as usize].len() >= 3);
-        }
-    }
-    // Every cell is closed: each (directed) edge of its faces appears once in each direction.
-    for c in &arr.cells {
-        let mut edges = std::collections::HashMap::new();
-        for cf in &c.faces {
-            let f = &arr.faces[cf.face as usize];
-            let mut poly = f.polygon.clone();
-            if !cf.outward_is_plane_normal {
-                poly.reverse();
-            }
-            for k in 0..poly.len() {
-                *edges
-                    .entry((poly[k], poly[(k + 1) % poly.len()]))
-                    .or_insert(0) += 1;
-            }
-        }
-        for (&(a, b), &n) in &edges {
-            assert_eq!(n, 1);
-            assert_eq!(
-                edges.get(&(b, a)),
-                Some(&1),
-                "cell not closed at edge {a}-{b}"
-            );
-        }
-    }
-    let nv = arr.pool.positions.len();
-    assert_eq!(arr.pool.tags.len(), nv);
-    assert_eq!(arr.pool.uv.len(), nv);
-    for v in 0..nv {
-        assert_eq!(arr.pool.tags[v].len(), arr.pool.uv[v].len());
-        assert!(
-            arr.pool.tags[v].windows(2).all(|w| w[0] < w[1]),
-            "tags sorted and unique"
-        );
-    }
-    for (i, s) in sections.sections.iter().enumerate() {
-        let mut total = 0.0;
-        for face in arr.faces.iter().filter(|f| f.plane as usize == i) {
-            for piece in &face.pieces {
-                for &v in piece.outer.iter().chain(piece.holes.iter().flatten()) {
-                    assert!((v as usize) < nv);
-                    assert!(arr.pool.tags[v as usize].contains(&(i as u32)));
-                }
-                total += arr.piece_area(i as u32, piece);
-            }
-        }
-        let a = s.area();
-        assert!(
-            (total - a).abs() <= 1e-9 * a.max(1e-12),
-            "plane {i}: pieces {total} vs section {a}"
-        );
-    }
-}
-
 #[test]
 fn planes_through_a_common_line() {
     let planes: Vec<([f64; 3], f64)> = (0..5)
@@ -177,7 +88,7 @@ fn planes_through_a_common_line() {
         .collect();
     let s = ball_sections(&planes, 1.0, 96);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    common::check_arrangement(&arr, &s);
     // 5 planes through one line: 10 wedges, each cut by x = 0.3.
     assert_eq!(arr.cells.len(), 20);
     // The two arrangement vertices on the common line carry all five tags.
@@ -201,7 +112,7 @@ fn four_planes_through_one_point() {
     ];
     let s = ball_sections(&planes, 1.0, 128);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    common::check_arrangement(&arr, &s);
     let centre: Vec<_> = arr
         .pool
         .tags
@@ -222,7 +133,7 @@ fn nearly_parallel_planes() {
     ];
     let s = ball_sections(&planes, 1.0, 64);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    common::check_arrangement(&arr, &s);
 }
 
 #[test]
@@ -294,7 +205,7 @@ fn contours_through_lines_and_vertices() {
         warnings: Vec::new(),
     };
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    common::check_arrangement(&arr, &s);
     // The three synthetic sections disagree along their lines on purpose; nothing else is reported.
     assert!(
         arr.warnings.iter().all(|w| w.starts_with("sections")),
@@ -321,7 +232,7 @@ proptest! {
         let s = ball_sections(&planes, 1.0, 48);
         prop_assume!(s.sections.iter().any(|x| !x.regions.is_empty()));
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-        check_invariants(&arr, &s);
+        common::check_arrangement(&arr, &s);
     }
 }
 
@@ -372,7 +283,7 @@ fn line_vertices(arr: &Arrangement, plane: u32) -> Vec<u32> {
 fn close_crossings_are_snapped_to_one_shared_vertex() {
     let s = two_squares(1e-5);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    common::check_arrangement(&arr, &s);
     assert!(
         (arr.max_disagreement - 1e-5).abs() < 1e-12,
         "{}",
@@ -400,7 +311,7 @@ fn close_crossings_are_snapped_to_one_shared_vertex() {
 fn far_crossings_are_kept_and_shared_along_the_line() {
     let s = two_squares(0.1);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    common::check_arrangement(&arr, &s);
     assert!(
         (arr.max_disagreement - 0.1).abs() < 1e-12,
         "{}",

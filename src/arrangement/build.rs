@@ -91,7 +91,9 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
     let wall_ids: [u32; 6] = std::array::from_fn(|k| (n_input + k) as u32);
     let mut builder = CellBuilder::new_box(eq, wall_ids);
     for h in 0..n_input as u32 {
-        builder.cut(h);
+        builder
+            .cut(h)
+            .map_err(|e| Error::Geometry(format!("arrangement: {e}")))?;
     }
 
     // Shared faces: identical (plane, vertex set) from both sides.

@@ -768,7 +768,7 @@ fn assemble(ctx: &mut Ctx, i: u32, loops: Vec<Vec<VertexId>>, label: i32) -> Vec
                     .find(|(v, _)| !ol.contains(v))
                     .map(|(_, p)| *p);
                 let Some(p) = probe else { continue };
-                if point_in_loop(p, ouv) && best.map_or(true, |(_, ba)| *a < ba) {
+                if point_in_loop(p, ouv) && best.is_none_or(|(_, ba)| *a < ba) {
                     best = Some((k, *a));
                 }
             }
