@@ -1,20 +1,13 @@
 //! The arrangement builds on every shared CSL file, with exact volume and area bookkeeping.
+mod arrangement_support;
 mod common;
 use slice2solid::arrangement::{Arrangement, ArrangementOptions};
 use std::time::Instant;
 
 #[test]
 fn every_shared_csl_file() {
-    let dir = common::shared_dir().join("data/csl");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "csl"))
-        .collect();
-    files.sort();
-    assert!(!files.is_empty());
-    for path in files {
-        let s = common::read_csl_simple(&path);
+    for path in common::shared_csl_files() {
+        let s = slice2solid::io::csl::read_csl(&path).unwrap();
         let t = Instant::now();
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
         let dt = t.elapsed();
@@ -25,7 +18,7 @@ fn every_shared_csl_file() {
             ((sum - box_vol) / box_vol).abs() < 1e-12,
             "{path:?}: volumes"
         );
-        common::check_arrangement(&arr, &s);
+        arrangement_support::check_arrangement(&arr, &s);
         let mut worst_area = 0.0f64;
         for (i, sec) in s.sections.iter().enumerate() {
             let total: f64 = arr
@@ -67,7 +60,8 @@ fn every_shared_csl_file() {
 #[test]
 #[ignore]
 fn horsers_disagreement_details() {
-    let s = common::read_csl_simple(&common::shared_dir().join("data/csl/Horsers.csl"));
+    let s =
+        slice2solid::io::csl::read_csl(&common::shared_dir().join("data/csl/Horsers.csl")).unwrap();
     let arr = Arrangement::build(
         &s,
         &ArrangementOptions {

@@ -1,5 +1,5 @@
 //! Degenerate plane configurations and contours through arrangement features.
-mod common;
+mod arrangement_support;
 use proptest::prelude::*;
 use slice2solid::arrangement::{Arrangement, ArrangementOptions};
 use slice2solid::sections::{Contour, Plane, Region, Section, Sections};
@@ -88,7 +88,7 @@ fn planes_through_a_common_line() {
         .collect();
     let s = ball_sections(&planes, 1.0, 96);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    common::check_arrangement(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
     // 5 planes through one line: 10 wedges, each cut by x = 0.3.
     assert_eq!(arr.cells.len(), 20);
     // The two arrangement vertices on the common line carry all five tags.
@@ -112,7 +112,7 @@ fn four_planes_through_one_point() {
     ];
     let s = ball_sections(&planes, 1.0, 128);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    common::check_arrangement(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
     let centre: Vec<_> = arr
         .pool
         .tags
@@ -133,7 +133,7 @@ fn nearly_parallel_planes() {
     ];
     let s = ball_sections(&planes, 1.0, 64);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    common::check_arrangement(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
 }
 
 #[test]
@@ -205,7 +205,7 @@ fn contours_through_lines_and_vertices() {
         warnings: Vec::new(),
     };
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    common::check_arrangement(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
     // The three synthetic sections disagree along their lines on purpose; nothing else is reported.
     assert!(
         arr.warnings.iter().all(|w| w.starts_with("sections")),
@@ -232,7 +232,7 @@ proptest! {
         let s = ball_sections(&planes, 1.0, 48);
         prop_assume!(s.sections.iter().any(|x| !x.regions.is_empty()));
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-        common::check_arrangement(&arr, &s);
+        arrangement_support::check_arrangement(&arr, &s);
     }
 }
 
@@ -283,7 +283,7 @@ fn line_vertices(arr: &Arrangement, plane: u32) -> Vec<u32> {
 fn close_crossings_are_snapped_to_one_shared_vertex() {
     let s = two_squares(1e-5);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    common::check_arrangement(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
     assert!(
         (arr.max_disagreement - 1e-5).abs() < 1e-12,
         "{}",
@@ -311,7 +311,7 @@ fn close_crossings_are_snapped_to_one_shared_vertex() {
 fn far_crossings_are_kept_and_shared_along_the_line() {
     let s = two_squares(0.1);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    common::check_arrangement(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
     assert!(
         (arr.max_disagreement - 0.1).abs() < 1e-12,
         "{}",
