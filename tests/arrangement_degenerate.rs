@@ -323,3 +323,78 @@ fn far_crossings_are_kept_and_shared_along_the_line() {
     assert_eq!(a.len(), 3, "{a:?}");
     assert!(b.iter().all(|v| a.contains(v)));
 }
+
+#[test]
+fn contours_crossing_diagonally_through_an_arrangement_vertex() {
+    let pz = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+    let px = Plane::from_equation([1.0, 0.0, 0.0], 0.0).unwrap();
+    let py = Plane::from_equation([0.0, 1.0, 0.0], 0.0).unwrap();
+    // First polygon: an edge from quadrant III to quadrant I through the origin (not a vertex);
+    // second: a vertex exactly at (0, 0, 0.0) of another plane pair is avoided, but one at the
+    // arrangement vertex of z = 0, x = 0, y = 0.5 is used.
+    let py2 = Plane::from_equation([0.0, 1.0, 0.0], -0.5).unwrap();
+    let z_polys = vec![
+        vec![[-0.5, -0.5, 0.0], [0.5, 0.5, 0.0], [0.6, -0.6, 0.0]],
+        vec![
+            [-0.3, 0.25, 0.0],
+            [0.0, 0.5, 0.0],
+            [0.3, 0.75, 0.0],
+            [-0.3, 0.75, 0.0],
+        ],
+    ];
+    let side = |k: usize| {
+        vec![vec![[0.9, 0.9, 0.9], [0.9, 0.95, 0.9], [0.95, 0.95, 0.95]]]
+            .into_iter()
+            .map(|p: Vec<[f64; 3]>| {
+                let pl = [px, py, py2][k];
+                p.into_iter()
+                    .map(|x| pl.to_3d(pl.to_2d(x)))
+                    .collect::<Vec<_>>()
+            })
+            .collect::<Vec<_>>()
+    };
+    let s = Sections {
+        sections: vec![
+            polygon_section(pz, &z_polys, 0),
+            polygon_section(px, &side(0), 1),
+            polygon_section(py, &side(1), 2),
+            polygon_section(py2, &side(2), 3),
+        ],
+        n_labels: 1,
+        warnings: Vec::new(),
+    };
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    arrangement_support::check_arrangement(&arr, &s);
+    assert!(
+        arr.warnings.iter().all(|w| w.starts_with("sections")),
+        "{:?}",
+        arr.warnings
+    );
+    // The origin (z, x, y) is used by the pieces of the three faces the triangle covers there; the
+    // vertex (0, 0.5, 0) is both a contour vertex and an arrangement vertex, used by the three
+    // faces that the second polygon touches there.
+    let origin = (0..arr.pool.tags.len() as u32)
+        .find(|&v| {
+            let t = &arr.pool.tags[v as usize];
+            t.contains(&0) && t.contains(&1) && t.contains(&2)
+        })
+        .unwrap();
+    let uses = arr
+        .faces
+        .iter()
+        .filter(|f| f.plane == 0 && f.pieces.iter().any(|p| p.outer.contains(&origin)))
+        .count();
+    assert_eq!(uses, 3);
+    let v05 = (0..arr.pool.tags.len() as u32)
+        .find(|&v| {
+            let t = &arr.pool.tags[v as usize];
+            t.contains(&0) && t.contains(&1) && t.contains(&3)
+        })
+        .unwrap();
+    let uses = arr
+        .faces
+        .iter()
+        .filter(|f| f.plane == 0 && f.pieces.iter().any(|p| p.outer.contains(&v05)))
+        .count();
+    assert_eq!(uses, 3);
+}

@@ -553,10 +553,27 @@ fn trace_face(ctx: &mut Ctx, i: u32, f: u32, w: &FaceWork, region: &Region) -> V
     let poly = ctx.arr.faces[f as usize].polygon.clone();
     let nc = poly.len();
     let mut loops: Vec<Vec<VertexId>> = w.closed.clone();
-    if w.runs.is_empty() && w.closed.is_empty() && w.bpoints.is_empty() {
-        // Fast path: the face is entirely inside or outside.
+    // Whether the face's boundary lies in the region when no contour crosses it: test the face's
+    // centroid (strictly inside the face, so on no contour that stays out of the face) and discount
+    // the contours wholly inside the face that surround it.
+    let background_inside = |ctx: &Ctx| -> bool {
         let c: Vec<[f64; 2]> = poly.iter().map(|&v| ctx.uv(v, i)).collect();
-        if inside_region(region, c[0]) {
+        let n = c.len() as f64;
+        let g = [
+            c.iter().map(|p| p[0]).sum::<f64>() / n,
+            c.iter().map(|p| p[1]).sum::<f64>() / n,
+        ];
+        let mut inside = inside_region(region, g);
+        for l in &w.closed {
+            let q: Vec<[f64; 2]> = l.iter().map(|&v| ctx.uv(v, i)).collect();
+            if point_in_loop(g, &q) {
+                inside = !inside;
+            }
+        }
+        inside
+    };
+    if w.runs.is_empty() && w.closed.is_empty() && w.bpoints.is_empty() {
+        if background_inside(ctx) {
             loops.push(poly);
         }
         return loops;
@@ -620,14 +637,7 @@ fn trace_face(ctx: &mut Ctx, i: u32, f: u32, w: &FaceWork, region: &Region) -> V
     let ring: Vec<VertexId> = entries.iter().map(|e| e.3).collect();
     if w.runs.is_empty() {
         // No contour crosses the boundary: the boundary is wholly inside or outside the region.
-        let probe = (0..nc)
-            .find(|&k| !bp.contains(&poly[k]))
-            .map(|k| cuv[k])
-            .unwrap_or_else(|| {
-                let (a, b) = (cuv[0], cuv[1 % nc]);
-                [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]
-            });
-        if inside_region(region, probe) {
+        if background_inside(ctx) {
             loops.push(ring);
         }
         return loops;
