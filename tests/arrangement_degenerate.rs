@@ -398,3 +398,28 @@ fn contours_crossing_diagonally_through_an_arrangement_vertex() {
         .count();
     assert_eq!(uses, 3);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+    /// Planes from a few normals with offsets on a grid: many planes through common lines and
+    /// points, parallel planes, contours through arrangement features.
+    #[test]
+    fn random_degenerate_planes(choice in prop::collection::vec((0usize..7, -2i32..=2), 1..=8)) {
+        const NORMALS: [[f64; 3]; 7] = [
+            [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 0.0],
+            [1.0, 0.0, 1.0], [0.0, 1.0, 1.0], [1.0, -1.0, 0.0],
+        ];
+        let mut seen = std::collections::HashSet::new();
+        let planes: Vec<([f64; 3], f64)> = choice
+            .into_iter()
+            .filter(|c| seen.insert(*c))
+            .map(|(n, o)| (NORMALS[n], 0.25 * o as f64))
+            .collect();
+        let s = ball_sections(&planes, 1.0, 40);
+        prop_assume!(s.sections.iter().any(|x| !x.regions.is_empty()));
+        let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+        arrangement_support::check_arrangement(&arr, &s);
+        let other: Vec<_> = arr.warnings.iter().filter(|w| !w.starts_with("sections")).collect();
+        prop_assert!(other.is_empty(), "{:?}", other);
+    }
+}
