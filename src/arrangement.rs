@@ -14,6 +14,7 @@
 mod build;
 mod cells;
 pub(crate) mod exact;
+mod fxhash;
 mod pieces;
 mod reconcile;
 

@@ -1,13 +1,13 @@
 //! Assembly of the `Arrangement`: box, duplicate check, cells, shared faces, pool, pieces.
 use super::cells::CellBuilder;
 use super::exact::same_plane;
+use super::fxhash::FxHashMap as HashMap;
 use super::{
     ArrPlane, Arrangement, ArrangementOptions, Cell, CellFace, Face, PlaneTags, VertexPool,
 };
 use crate::error::{Error, Result};
 use crate::sections::{Plane, Sections};
 use smallvec::SmallVec;
-use std::collections::HashMap;
 
 fn eq_of(p: &Plane) -> [f64; 4] {
     [p.normal[0], p.normal[1], p.normal[2], p.offset]
@@ -98,7 +98,7 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
 
     // Shared faces: identical (plane, vertex set) from both sides.
     let mut faces: Vec<Face> = Vec::new();
-    let mut face_index: HashMap<(u32, Vec<u32>), u32> = HashMap::new();
+    let mut face_index: HashMap<(u32, Vec<u32>), u32> = HashMap::default();
     let mut cells: Vec<Cell> = Vec::with_capacity(builder.cells.len());
     let mut cell_sign: Vec<Vec<i8>> = Vec::with_capacity(builder.cells.len());
     for (c, bc) in builder.cells.iter().enumerate() {

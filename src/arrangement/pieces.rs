@@ -12,12 +12,12 @@
 //! traced: contour runs, joined along the face boundary (counter-clockwise, through corners and every
 //! section point on the boundary) from where a run leaves the face to where the next one enters.
 use super::exact::{dot_plus, sign_dot_plus};
+use super::fxhash::FxHashMap as HashMap;
 use super::{polygon_area, Arrangement, ArrangementOptions, PlaneTags, SectionPiece, VertexId};
 use crate::error::Result;
 use crate::sections::{Contour, Region, Sections};
 use smallvec::SmallVec;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 
 struct Pt {
     id: VertexId,
@@ -110,7 +110,7 @@ pub(super) fn build_pieces(
     options: &ArrangementOptions,
 ) -> Result<()> {
     let n_arr = arr.pool.positions.len();
-    let mut triples = HashMap::new();
+    let mut triples = HashMap::default();
     for (v, tags) in arr.pool.tags.iter().enumerate() {
         let n = tags.len();
         for a in 0..n {
@@ -130,7 +130,7 @@ pub(super) fn build_pieces(
     let n_planes = ctx.arr.planes.len();
     // Faces per plane, keyed by the sign vector of their positive cell with the own entry zeroed.
     let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); n_planes];
-    let mut face_key: Vec<HashMap<Vec<i8>, u32>> = vec![HashMap::new(); n_planes];
+    let mut face_key: Vec<HashMap<Vec<i8>, u32>> = vec![HashMap::default(); n_planes];
     for (f, face) in ctx.arr.faces.iter().enumerate() {
         faces_of[face.plane as usize].push(f as u32);
         if let Some(c) = face.positive_cell.or(face.negative_cell) {
@@ -230,7 +230,7 @@ fn process_region(
     face_key: &HashMap<Vec<i8>, u32>,
     eff: &[Effect],
 ) {
-    let mut work: HashMap<u32, FaceWork> = HashMap::new();
+    let mut work: HashMap<u32, FaceWork> = HashMap::default();
     let contours: Vec<&Contour> = std::iter::once(&region.outer)
         .chain(region.holes.iter())
         .collect();

@@ -11,10 +11,10 @@
 //! * Unmatched points are kept by their own section (no section is altered beyond the tolerance),
 //!   and every section point lying on an edge of another plane's piece along L is inserted into that
 //!   piece's boundary, so the pieces of both planes share all their vertices along L (no T-junctions).
+use super::fxhash::FxHashMap as HashMap;
 use super::{Arrangement, ArrangementOptions, VertexId};
 use crate::sections::{cross, dot};
 use smallvec::SmallVec;
-use std::collections::HashMap;
 
 struct LinePoints {
     dir: [f64; 3],
@@ -35,7 +35,7 @@ pub(super) fn reconcile(
     options: &ArrangementOptions,
 ) {
     let n = arr.n_input as u32;
-    let mut lines: HashMap<(u32, u32), LinePoints> = HashMap::new();
+    let mut lines: HashMap<(u32, u32), LinePoints> = HashMap::default();
     for &(owner, v) in line_points {
         if (v as usize) < n_arr {
             continue;
@@ -80,7 +80,7 @@ pub(super) fn reconcile(
     let mut keys: Vec<(u32, u32)> = lines.keys().copied().collect();
     keys.sort_unstable();
     let mut worst = 0.0f64;
-    let mut merged_into: HashMap<VertexId, VertexId> = HashMap::new();
+    let mut merged_into: HashMap<VertexId, VertexId> = HashMap::default();
     let mut snapped = 0usize;
     let mut max_snap = 0.0f64;
     for key in &keys {
