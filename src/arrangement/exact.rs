@@ -274,9 +274,9 @@ mod tests {
                 let mut sub = [[0.0; 3]; 3];
                 for r in 1..4 {
                     let mut k = 0;
-                    for cc in 0..4 {
+                    for (cc, &x) in m[r].iter().enumerate() {
                         if cc != c {
-                            sub[r - 1][k] = m[r][cc];
+                            sub[r - 1][k] = x;
                             k += 1;
                         }
                     }

@@ -352,8 +352,8 @@ fn split_contour(
     let mut pts: Vec<Pt> = Vec::with_capacity(n * 2);
     // Pool ids of the contour vertices.
     let mut vid = Vec::with_capacity(n);
-    for k in 0..n {
-        let z = zeros_of(&sv[k]);
+    for (k, svk) in sv.iter().enumerate() {
+        let z = zeros_of(svk);
         let id = if z.len() >= 2 {
             ctx.arrangement_vertex(i, &z)
         } else {
