@@ -177,6 +177,44 @@ impl Arrangement {
             .count()
     }
 
+    /// Outward unit normal of a cell on one of its faces.
+    pub fn outward_normal(&self, cf: &CellFace) -> [f64; 3] {
+        let n = self.planes[self.faces[cf.face as usize].plane as usize]
+            .plane
+            .normal;
+        if cf.outward_is_plane_normal {
+            n
+        } else {
+            [-n[0], -n[1], -n[2]]
+        }
+    }
+
+    /// Every pool vertex on the boundary of a cell (face corners and piece vertices), sorted, unique.
+    pub fn cell_vertices(&self, c: CellId) -> Vec<VertexId> {
+        let mut out = Vec::new();
+        for cf in &self.cells[c as usize].faces {
+            let f = &self.faces[cf.face as usize];
+            out.extend_from_slice(&f.polygon);
+            for p in &f.pieces {
+                out.extend_from_slice(&p.outer);
+                for h in &p.holes {
+                    out.extend_from_slice(h);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// The faces of a cell that carry section pieces.
+    pub fn cell_section_faces(&self, c: CellId) -> impl Iterator<Item = &CellFace> + '_ {
+        self.cells[c as usize]
+            .faces
+            .iter()
+            .filter(move |cf| !self.faces[cf.face as usize].pieces.is_empty())
+    }
+
     /// Signed area (in the plane's frame) of a loop of pool vertices on `plane`.
     pub fn loop_area(&self, plane: PlaneId, ids: &[VertexId]) -> f64 {
         let pts: Vec<[f64; 2]> = ids
