@@ -125,3 +125,41 @@ fn many_planes_build_time() {
         );
     }
 }
+
+/// On files whose sections agree along every line, every point of a section on another input
+/// plane is ONE pool vertex used by the pieces of both planes.
+#[test]
+fn agreeing_files_share_every_crossing() {
+    for name in ["Elephant.csl", "eight_20.csl", "Armadillo-23-better.csl"] {
+        let path = common::shared_dir().join("data/csl").join(name);
+        let s = slice2solid::io::csl::read_csl(&path).unwrap();
+        let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+        let n = arr.n_input as u32;
+        let mut used: Vec<Vec<u32>> = vec![Vec::new(); arr.pool.positions.len()];
+        for f in &arr.faces {
+            for p in &f.pieces {
+                for &v in p.outer.iter().chain(p.holes.iter().flatten()) {
+                    if !used[v as usize].contains(&f.plane) {
+                        used[v as usize].push(f.plane);
+                    }
+                }
+            }
+        }
+        let (mut shared, mut lonely) = (0, 0);
+        for (v, tags) in arr.pool.tags.iter().enumerate() {
+            let input: Vec<u32> = tags.iter().copied().filter(|&t| t < n).collect();
+            if input.len() != 2 || used[v].is_empty() {
+                continue;
+            }
+            if input.iter().all(|t| used[v].contains(t)) {
+                shared += 1;
+            } else {
+                lonely += 1;
+            }
+        }
+        eprintln!("{name}: {shared} shared crossings, {lonely} used by one plane only, max disagreement {:.2e}", arr.max_disagreement);
+        assert!(arr.max_disagreement < 1e-6 * 3.0);
+        assert_eq!(lonely, 0);
+        assert!(shared > 0);
+    }
+}
