@@ -11,9 +11,34 @@
 //! * A face polygon is convex and counter-clockwise seen from its plane's normal; section pieces are
 //!   counter-clockwise outer loops with clockwise holes, in pool vertex ids, and lie inside their face.
 //! * `Face::positive_cell` is the cell on the side the plane normal points to.
+//!
+//! How it is built (see the submodules):
+//! * `cells`: the box (bbox of the sections padded by `margin × diagonal`, six walls with normals
+//!   pointing out) is cut by every input plane in turn. Each vertex is the intersection of three
+//!   planes; its side of another plane is the exact sign of a 4×4 determinant of plane equations
+//!   (`exact`: floating filter, then expansion arithmetic), so three planes through a line, four
+//!   through a point and nearly parallel planes give one consistent subdivision: a vertex exactly on
+//!   a plane gets its tag, and coinciding vertices are one vertex. Duplicate input planes (equal up
+//!   to scale, either orientation) are rejected with `Error::Input` naming both.
+//! * `pieces`: contour vertices are classified by the exact sign of `n·p + d` at their 3D point;
+//!   planes that share their line with another plane on the section's plane are decided through one
+//!   representative, planes that do not cut the section's plane inside the box have a constant side.
+//!   A contour edge crossing a plane gets one pool vertex tagged with both planes; a crossing or a
+//!   contour vertex lying on two planes of different lines is the arrangement vertex (same id).
+//!   Each contour stretch belongs to the face with its sign vector (a stretch lying on a line goes
+//!   to the face on its left); pieces are traced per face, joining contour runs along the face
+//!   boundary counter-clockwise, through every corner and every section point on it.
+//! * `reconcile` (DESIGN invariant 5): crossings of two sections on their common line closer than
+//!   `snap_tolerance × diagonal` and on the same arrangement edge are snapped to one vertex (midpoint
+//!   in 3D, each frame keeps its section's own (u,v)); the other points stay with their section and
+//!   are inserted into the other plane's piece edges along the line, so pieces of both planes share
+//!   all vertices on the line. `max_disagreement` is the largest Hausdorff distance, along a line,
+//!   between the two sections' points on it (or the longest interval when only one reaches it);
+//!   lines beyond the tolerance are listed in `warnings`.
 mod build;
 mod cells;
 pub(crate) mod exact;
+mod fxhash;
 mod pieces;
 mod reconcile;
 
@@ -150,6 +175,44 @@ impl Arrangement {
                     .any(|cf| !self.faces[cf.face as usize].pieces.is_empty())
             })
             .count()
+    }
+
+    /// Outward unit normal of a cell on one of its faces.
+    pub fn outward_normal(&self, cf: &CellFace) -> [f64; 3] {
+        let n = self.planes[self.faces[cf.face as usize].plane as usize]
+            .plane
+            .normal;
+        if cf.outward_is_plane_normal {
+            n
+        } else {
+            [-n[0], -n[1], -n[2]]
+        }
+    }
+
+    /// Every pool vertex on the boundary of a cell (face corners and piece vertices), sorted, unique.
+    pub fn cell_vertices(&self, c: CellId) -> Vec<VertexId> {
+        let mut out = Vec::new();
+        for cf in &self.cells[c as usize].faces {
+            let f = &self.faces[cf.face as usize];
+            out.extend_from_slice(&f.polygon);
+            for p in &f.pieces {
+                out.extend_from_slice(&p.outer);
+                for h in &p.holes {
+                    out.extend_from_slice(h);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// The faces of a cell that carry section pieces.
+    pub fn cell_section_faces(&self, c: CellId) -> impl Iterator<Item = &CellFace> + '_ {
+        self.cells[c as usize]
+            .faces
+            .iter()
+            .filter(move |cf| !self.faces[cf.face as usize].pieces.is_empty())
     }
 
     /// Signed area (in the plane's frame) of a loop of pool vertices on `plane`.

@@ -1,4 +1,5 @@
 //! Degenerate plane configurations and contours through arrangement features.
+mod arrangement_support;
 use proptest::prelude::*;
 use slice2solid::arrangement::{Arrangement, ArrangementOptions};
 use slice2solid::sections::{Contour, Plane, Region, Section, Sections};
@@ -76,82 +77,6 @@ fn polygon_section(plane: Plane, polys: &[Vec<[f64; 3]>], k: usize) -> Section {
     }
 }
 
-fn check_invariants(arr: &Arrangement, sections: &Sections) {
-    let (lo, hi) = arr.bbox;
-    let box_vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
-    let sum: f64 = arr.cells.iter().map(|c| c.volume).sum();
-    assert!(
-        ((sum - box_vol) / box_vol).abs() < 1e-12,
-        "volumes {sum} vs box {box_vol}"
-    );
-    for (f, face) in arr.faces.iter().enumerate() {
-        if arr.planes[face.plane as usize].section.is_some() {
-            let (p, n) = (
-                face.positive_cell.expect("positive"),
-                face.negative_cell.expect("negative"),
-            );
-            assert_ne!(p, n);
-            let fp = arr.cells[p as usize]
-                .faces
-                .iter()
-                .find(|cf| cf.face as usize == f)
-                .unwrap();
-            let fn_ = arr.cells[n as usize]
-                .faces
-                .iter()
-                .find(|cf| cf.face as usize == f)
-                .unwrap();
-            assert!(!fp.outward_is_plane_normal && fn_.outward_is_plane_normal);
-        } else {
-            assert!(face.positive_cell.is_none() && face.negative_cell.is_some());
-        }
-        for &v in &face.polygon {
-            assert!(arr.pool.tags[v as usize].contains(&face.plane));
-        }
-        // Each face vertex has at least three tags (it is an arrangement vertex).
-        for &v in &face.polygon {
-            assert!(arr.pool.tags[v as usize].len() >= 3);
-        }
-    }
-    // Every cell is closed: each (directed) edge of its faces appears once in each direction.
-    for c in &arr.cells {
-        let mut edges = std::collections::HashMap::new();
-        for cf in &c.faces {
-            let f = &arr.faces[cf.face as usize];
-            let mut poly = f.polygon.clone();
-            if !cf.outward_is_plane_normal {
-                poly.reverse();
-            }
-            for k in 0..poly.len() {
-                *edges
-                    .entry((poly[k], poly[(k + 1) % poly.len()]))
-                    .or_insert(0) += 1;
-            }
-        }
-        for (&(a, b), &n) in &edges {
-            assert_eq!(n, 1);
-            assert_eq!(
-                edges.get(&(b, a)),
-                Some(&1),
-                "cell not closed at edge {a}-{b}"
-            );
-        }
-    }
-    for (i, s) in sections.sections.iter().enumerate() {
-        let mut total = 0.0;
-        for face in arr.faces.iter().filter(|f| f.plane as usize == i) {
-            for piece in &face.pieces {
-                total += arr.piece_area(i as u32, piece);
-            }
-        }
-        let a = s.area();
-        assert!(
-            (total - a).abs() <= 1e-9 * a.max(1e-12),
-            "plane {i}: pieces {total} vs section {a}"
-        );
-    }
-}
-
 #[test]
 fn planes_through_a_common_line() {
     let planes: Vec<([f64; 3], f64)> = (0..5)
@@ -163,7 +88,7 @@ fn planes_through_a_common_line() {
         .collect();
     let s = ball_sections(&planes, 1.0, 96);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
     // 5 planes through one line: 10 wedges, each cut by x = 0.3.
     assert_eq!(arr.cells.len(), 20);
     // The two arrangement vertices on the common line carry all five tags.
@@ -187,7 +112,7 @@ fn four_planes_through_one_point() {
     ];
     let s = ball_sections(&planes, 1.0, 128);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
     let centre: Vec<_> = arr
         .pool
         .tags
@@ -208,7 +133,7 @@ fn nearly_parallel_planes() {
     ];
     let s = ball_sections(&planes, 1.0, 64);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
 }
 
 #[test]
@@ -280,7 +205,7 @@ fn contours_through_lines_and_vertices() {
         warnings: Vec::new(),
     };
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-    check_invariants(&arr, &s);
+    arrangement_support::check_arrangement(&arr, &s);
     // The three synthetic sections disagree along their lines on purpose; nothing else is reported.
     assert!(
         arr.warnings.iter().all(|w| w.starts_with("sections")),
@@ -307,6 +232,194 @@ proptest! {
         let s = ball_sections(&planes, 1.0, 48);
         prop_assume!(s.sections.iter().any(|x| !x.regions.is_empty()));
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
-        check_invariants(&arr, &s);
+        arrangement_support::check_arrangement(&arr, &s);
+    }
+}
+
+/// Two perpendicular planes whose square sections cross their common line at points `gap` apart.
+fn two_squares(gap: f64) -> Sections {
+    let pz = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+    let py = Plane::from_equation([0.0, 1.0, 0.0], 0.0).unwrap();
+    // Common line: the x-axis. z = 0 section spans x in [-0.5, 0.5]; y = 0 spans [-0.5 + gap, 0.5].
+    let z_polys = vec![vec![
+        [-0.5, -0.5, 0.0],
+        [0.5, -0.5, 0.0],
+        [0.5, 0.5, 0.0],
+        [-0.5, 0.5, 0.0],
+    ]];
+    let y_polys = vec![vec![
+        [-0.5 + gap, 0.0, -0.5],
+        [0.5, 0.0, -0.5],
+        [0.5, 0.0, 0.5],
+        [-0.5 + gap, 0.0, 0.5],
+    ]];
+    Sections {
+        sections: vec![
+            polygon_section(pz, &z_polys, 0),
+            polygon_section(py, &y_polys, 1),
+        ],
+        n_labels: 1,
+        warnings: Vec::new(),
+    }
+}
+
+fn line_vertices(arr: &Arrangement, plane: u32) -> Vec<u32> {
+    let mut v: Vec<u32> = arr
+        .faces
+        .iter()
+        .filter(|f| f.plane == plane)
+        .flat_map(|f| f.pieces.iter().flat_map(|p| p.outer.iter().copied()))
+        .filter(|&v| {
+            let t = &arr.pool.tags[v as usize];
+            t.contains(&0) && t.contains(&1) && t.len() == 2
+        })
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+#[test]
+fn close_crossings_are_snapped_to_one_shared_vertex() {
+    let s = two_squares(1e-5);
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    arrangement_support::check_arrangement(&arr, &s);
+    assert!(
+        (arr.max_disagreement - 1e-5).abs() < 1e-12,
+        "{}",
+        arr.max_disagreement
+    );
+    // Both planes' pieces use the same two vertices on the x-axis.
+    let (a, b) = (line_vertices(&arr, 0), line_vertices(&arr, 1));
+    assert_eq!(a.len(), 2, "{a:?}");
+    assert_eq!(a, b);
+    // No orphan: every pool vertex is used by a face polygon or a piece.
+    let mut used = vec![false; arr.pool.positions.len()];
+    for f in &arr.faces {
+        for &v in f.polygon.iter().chain(
+            f.pieces
+                .iter()
+                .flat_map(|p| p.outer.iter().chain(p.holes.iter().flatten())),
+        ) {
+            used[v as usize] = true;
+        }
+    }
+    assert!(used.iter().all(|&u| u));
+}
+
+#[test]
+fn far_crossings_are_kept_and_shared_along_the_line() {
+    let s = two_squares(0.1);
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    arrangement_support::check_arrangement(&arr, &s);
+    assert!(
+        (arr.max_disagreement - 0.1).abs() < 1e-12,
+        "{}",
+        arr.max_disagreement
+    );
+    assert!(arr.warnings.iter().any(|w| w.contains("disagree")));
+    // Plane 0's pieces pass through plane 1's crossing too (no T-junction along the line).
+    let (a, b) = (line_vertices(&arr, 0), line_vertices(&arr, 1));
+    assert_eq!(a.len(), 3, "{a:?}");
+    assert!(b.iter().all(|v| a.contains(v)));
+}
+
+#[test]
+fn contours_crossing_diagonally_through_an_arrangement_vertex() {
+    let pz = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+    let px = Plane::from_equation([1.0, 0.0, 0.0], 0.0).unwrap();
+    let py = Plane::from_equation([0.0, 1.0, 0.0], 0.0).unwrap();
+    // First polygon: an edge from quadrant III to quadrant I through the origin (not a vertex);
+    // second: a vertex exactly at (0, 0, 0.0) of another plane pair is avoided, but one at the
+    // arrangement vertex of z = 0, x = 0, y = 0.5 is used.
+    let py2 = Plane::from_equation([0.0, 1.0, 0.0], -0.5).unwrap();
+    let z_polys = vec![
+        vec![[-0.5, -0.5, 0.0], [0.5, 0.5, 0.0], [0.6, -0.6, 0.0]],
+        vec![
+            [-0.3, 0.25, 0.0],
+            [0.0, 0.5, 0.0],
+            [0.3, 0.75, 0.0],
+            [-0.3, 0.75, 0.0],
+        ],
+    ];
+    let side = |k: usize| {
+        vec![vec![[0.9, 0.9, 0.9], [0.9, 0.95, 0.9], [0.95, 0.95, 0.95]]]
+            .into_iter()
+            .map(|p: Vec<[f64; 3]>| {
+                let pl = [px, py, py2][k];
+                p.into_iter()
+                    .map(|x| pl.to_3d(pl.to_2d(x)))
+                    .collect::<Vec<_>>()
+            })
+            .collect::<Vec<_>>()
+    };
+    let s = Sections {
+        sections: vec![
+            polygon_section(pz, &z_polys, 0),
+            polygon_section(px, &side(0), 1),
+            polygon_section(py, &side(1), 2),
+            polygon_section(py2, &side(2), 3),
+        ],
+        n_labels: 1,
+        warnings: Vec::new(),
+    };
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    arrangement_support::check_arrangement(&arr, &s);
+    assert!(
+        arr.warnings.iter().all(|w| w.starts_with("sections")),
+        "{:?}",
+        arr.warnings
+    );
+    // The origin (z, x, y) is used by the pieces of the three faces the triangle covers there; the
+    // vertex (0, 0.5, 0) is both a contour vertex and an arrangement vertex, used by the three
+    // faces that the second polygon touches there.
+    let origin = (0..arr.pool.tags.len() as u32)
+        .find(|&v| {
+            let t = &arr.pool.tags[v as usize];
+            t.contains(&0) && t.contains(&1) && t.contains(&2)
+        })
+        .unwrap();
+    let uses = arr
+        .faces
+        .iter()
+        .filter(|f| f.plane == 0 && f.pieces.iter().any(|p| p.outer.contains(&origin)))
+        .count();
+    assert_eq!(uses, 3);
+    let v05 = (0..arr.pool.tags.len() as u32)
+        .find(|&v| {
+            let t = &arr.pool.tags[v as usize];
+            t.contains(&0) && t.contains(&1) && t.contains(&3)
+        })
+        .unwrap();
+    let uses = arr
+        .faces
+        .iter()
+        .filter(|f| f.plane == 0 && f.pieces.iter().any(|p| p.outer.contains(&v05)))
+        .count();
+    assert_eq!(uses, 3);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+    /// Planes from a few normals with offsets on a grid: many planes through common lines and
+    /// points, parallel planes, contours through arrangement features.
+    #[test]
+    fn random_degenerate_planes(choice in prop::collection::vec((0usize..7, -2i32..=2), 1..=8)) {
+        const NORMALS: [[f64; 3]; 7] = [
+            [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 0.0],
+            [1.0, 0.0, 1.0], [0.0, 1.0, 1.0], [1.0, -1.0, 0.0],
+        ];
+        let mut seen = std::collections::HashSet::new();
+        let planes: Vec<([f64; 3], f64)> = choice
+            .into_iter()
+            .filter(|c| seen.insert(*c))
+            .map(|(n, o)| (NORMALS[n], 0.25 * o as f64))
+            .collect();
+        let s = ball_sections(&planes, 1.0, 40);
+        prop_assume!(s.sections.iter().any(|x| !x.regions.is_empty()));
+        let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+        arrangement_support::check_arrangement(&arr, &s);
+        let other: Vec<_> = arr.warnings.iter().filter(|w| !w.starts_with("sections")).collect();
+        prop_assert!(other.is_empty(), "{:?}", other);
     }
 }

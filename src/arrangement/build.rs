@@ -1,13 +1,13 @@
 //! Assembly of the `Arrangement`: box, duplicate check, cells, shared faces, pool, pieces.
 use super::cells::CellBuilder;
 use super::exact::same_plane;
+use super::fxhash::FxHashMap as HashMap;
 use super::{
     ArrPlane, Arrangement, ArrangementOptions, Cell, CellFace, Face, PlaneTags, VertexPool,
 };
 use crate::error::{Error, Result};
 use crate::sections::{Plane, Sections};
 use smallvec::SmallVec;
-use std::collections::HashMap;
 
 fn eq_of(p: &Plane) -> [f64; 4] {
     [p.normal[0], p.normal[1], p.normal[2], p.offset]
@@ -91,12 +91,14 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
     let wall_ids: [u32; 6] = std::array::from_fn(|k| (n_input + k) as u32);
     let mut builder = CellBuilder::new_box(eq, wall_ids);
     for h in 0..n_input as u32 {
-        builder.cut(h);
+        builder
+            .cut(h)
+            .map_err(|e| Error::Geometry(format!("arrangement: {e}")))?;
     }
 
     // Shared faces: identical (plane, vertex set) from both sides.
     let mut faces: Vec<Face> = Vec::new();
-    let mut face_index: HashMap<(u32, Vec<u32>), u32> = HashMap::new();
+    let mut face_index: HashMap<(u32, Vec<u32>), u32> = HashMap::default();
     let mut cells: Vec<Cell> = Vec::with_capacity(builder.cells.len());
     let mut cell_sign: Vec<Vec<i8>> = Vec::with_capacity(builder.cells.len());
     for (c, bc) in builder.cells.iter().enumerate() {

@@ -7,8 +7,8 @@
 //! Vertices created on an edge (a,b) by plane h are keyed by (a,b,h), so the cells around an
 //! edge share them; faces are shared because both cells split them identically.
 use super::exact::{sign_det3, sign_det4};
+use super::fxhash::FxHashMap as HashMap;
 use super::PlaneTags;
-use std::collections::HashMap;
 
 /// A face of a cell during construction: counter-clockwise seen from outside the cell.
 #[derive(Clone, Debug)]
@@ -73,7 +73,7 @@ impl CellBuilder {
             tags: Vec::new(),
             pos: Vec::new(),
             cells: Vec::new(),
-            edge_vertex: HashMap::new(),
+            edge_vertex: HashMap::default(),
         };
         // corner index bits: x (0 lo, 1 hi), y, z.
         let mut corner = [0u32; 8];
@@ -172,7 +172,7 @@ impl CellBuilder {
     }
 
     /// Cut every cell by plane `h`.
-    pub fn cut(&mut self, h: u32) {
+    pub fn cut(&mut self, h: u32) -> Result<(), String> {
         let nv = self.pos.len();
         let mut side = Vec::with_capacity(nv);
         for v in 0..nv as u32 {
@@ -240,9 +240,9 @@ impl CellBuilder {
                 }
             }
             // Vertices created in this step lie on h.
-            let on_h = |v: u32| side.get(v as usize).map_or(true, |&s| s == 0);
+            let on_h = |v: u32| side.get(v as usize).is_none_or(|&s| s == 0);
             for (faces, s) in [(&mut pos_faces, 1i8), (&mut neg_faces, -1i8)] {
-                let mut next: HashMap<u32, u32> = HashMap::new();
+                let mut next: HashMap<u32, u32> = HashMap::default();
                 for f in faces.iter() {
                     let n = f.poly.len();
                     for i in 0..n {
@@ -252,12 +252,22 @@ impl CellBuilder {
                         }
                     }
                 }
-                let start = *next.keys().min().expect("a split cell has a cap");
+                let start = *next
+                    .keys()
+                    .min()
+                    .ok_or_else(|| format!("plane {h}: a split cell has no cap"))?;
                 let mut cap = vec![start];
                 let mut cur = next[&start];
                 while cur != start && cap.len() <= next.len() {
                     cap.push(cur);
-                    cur = next[&cur];
+                    cur = *next.get(&cur).ok_or_else(|| {
+                        format!("plane {h}: the cap of a split cell is not closed")
+                    })?;
+                }
+                if cur != start || cap.len() != next.len() || cap.len() < 3 {
+                    return Err(format!(
+                        "plane {h}: the cap of a split cell is not one polygon"
+                    ));
                 }
                 faces.push(BFace {
                     plane: h,
@@ -272,5 +282,6 @@ impl CellBuilder {
             }
         }
         self.cells = out;
+        Ok(())
     }
 }

@@ -26,13 +26,6 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 }
 
 impl Expansion {
-    pub fn from_f64(a: f64) -> Expansion {
-        if a == 0.0 {
-            Expansion(Vec::new())
-        } else {
-            Expansion(vec![a])
-        }
-    }
     pub fn product(a: f64, b: f64) -> Expansion {
         let (x, y) = two_product(a, b);
         let mut v = Vec::with_capacity(2);
@@ -115,6 +108,8 @@ impl Expansion {
             Some(_) => -1,
         }
     }
+    /// Approximate value (sum of the components).
+    #[allow(dead_code)]
     pub fn estimate(&self) -> f64 {
         self.0.iter().sum()
     }
@@ -279,9 +274,9 @@ mod tests {
                 let mut sub = [[0.0; 3]; 3];
                 for r in 1..4 {
                     let mut k = 0;
-                    for cc in 0..4 {
+                    for (cc, &x) in m[r].iter().enumerate() {
                         if cc != c {
-                            sub[r - 1][k] = m[r][cc];
+                            sub[r - 1][k] = x;
                             k += 1;
                         }
                     }

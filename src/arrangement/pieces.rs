@@ -12,12 +12,12 @@
 //! traced: contour runs, joined along the face boundary (counter-clockwise, through corners and every
 //! section point on the boundary) from where a run leaves the face to where the next one enters.
 use super::exact::{dot_plus, sign_dot_plus};
+use super::fxhash::FxHashMap as HashMap;
 use super::{polygon_area, Arrangement, ArrangementOptions, PlaneTags, SectionPiece, VertexId};
 use crate::error::Result;
 use crate::sections::{Contour, Region, Sections};
 use smallvec::SmallVec;
 use std::cmp::Ordering;
-use std::collections::HashMap;
 
 struct Pt {
     id: VertexId,
@@ -109,7 +109,8 @@ pub(super) fn build_pieces(
     diag: f64,
     options: &ArrangementOptions,
 ) -> Result<()> {
-    let mut triples = HashMap::new();
+    let n_arr = arr.pool.positions.len();
+    let mut triples = HashMap::default();
     for (v, tags) in arr.pool.tags.iter().enumerate() {
         let n = tags.len();
         for a in 0..n {
@@ -129,7 +130,7 @@ pub(super) fn build_pieces(
     let n_planes = ctx.arr.planes.len();
     // Faces per plane, keyed by the sign vector of their positive cell with the own entry zeroed.
     let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); n_planes];
-    let mut face_key: Vec<HashMap<Vec<i8>, u32>> = vec![HashMap::new(); n_planes];
+    let mut face_key: Vec<HashMap<Vec<i8>, u32>> = vec![HashMap::default(); n_planes];
     for (f, face) in ctx.arr.faces.iter().enumerate() {
         faces_of[face.plane as usize].push(f as u32);
         if let Some(c) = face.positive_cell.or(face.negative_cell) {
@@ -150,7 +151,7 @@ pub(super) fn build_pieces(
     let warnings = std::mem::take(&mut ctx.warnings);
     let line_points = std::mem::take(&mut ctx.line_points);
     arr.warnings.extend(warnings);
-    super::reconcile::measure_disagreement(arr, &line_points, diag, options);
+    super::reconcile::reconcile(arr, &line_points, n_arr, diag, options);
     Ok(())
 }
 
@@ -229,7 +230,7 @@ fn process_region(
     face_key: &HashMap<Vec<i8>, u32>,
     eff: &[Effect],
 ) {
-    let mut work: HashMap<u32, FaceWork> = HashMap::new();
+    let mut work: HashMap<u32, FaceWork> = HashMap::default();
     let contours: Vec<&Contour> = std::iter::once(&region.outer)
         .chain(region.holes.iter())
         .collect();
@@ -351,8 +352,8 @@ fn split_contour(
     let mut pts: Vec<Pt> = Vec::with_capacity(n * 2);
     // Pool ids of the contour vertices.
     let mut vid = Vec::with_capacity(n);
-    for k in 0..n {
-        let z = zeros_of(&sv[k]);
+    for (k, svk) in sv.iter().enumerate() {
+        let z = zeros_of(svk);
         let id = if z.len() >= 2 {
             ctx.arrangement_vertex(i, &z)
         } else {
@@ -552,10 +553,27 @@ fn trace_face(ctx: &mut Ctx, i: u32, f: u32, w: &FaceWork, region: &Region) -> V
     let poly = ctx.arr.faces[f as usize].polygon.clone();
     let nc = poly.len();
     let mut loops: Vec<Vec<VertexId>> = w.closed.clone();
-    if w.runs.is_empty() && w.closed.is_empty() && w.bpoints.is_empty() {
-        // Fast path: the face is entirely inside or outside.
+    // Whether the face's boundary lies in the region when no contour crosses it: test the face's
+    // centroid (strictly inside the face, so on no contour that stays out of the face) and discount
+    // the contours wholly inside the face that surround it.
+    let background_inside = |ctx: &Ctx| -> bool {
         let c: Vec<[f64; 2]> = poly.iter().map(|&v| ctx.uv(v, i)).collect();
-        if inside_region(region, c[0]) {
+        let n = c.len() as f64;
+        let g = [
+            c.iter().map(|p| p[0]).sum::<f64>() / n,
+            c.iter().map(|p| p[1]).sum::<f64>() / n,
+        ];
+        let mut inside = inside_region(region, g);
+        for l in &w.closed {
+            let q: Vec<[f64; 2]> = l.iter().map(|&v| ctx.uv(v, i)).collect();
+            if point_in_loop(g, &q) {
+                inside = !inside;
+            }
+        }
+        inside
+    };
+    if w.runs.is_empty() && w.closed.is_empty() && w.bpoints.is_empty() {
+        if background_inside(ctx) {
             loops.push(poly);
         }
         return loops;
@@ -619,14 +637,7 @@ fn trace_face(ctx: &mut Ctx, i: u32, f: u32, w: &FaceWork, region: &Region) -> V
     let ring: Vec<VertexId> = entries.iter().map(|e| e.3).collect();
     if w.runs.is_empty() {
         // No contour crosses the boundary: the boundary is wholly inside or outside the region.
-        let probe = (0..nc)
-            .find(|&k| !bp.contains(&poly[k]))
-            .map(|k| cuv[k])
-            .unwrap_or_else(|| {
-                let (a, b) = (cuv[0], cuv[1 % nc]);
-                [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]
-            });
-        if inside_region(region, probe) {
+        if background_inside(ctx) {
             loops.push(ring);
         }
         return loops;
@@ -767,7 +778,7 @@ fn assemble(ctx: &mut Ctx, i: u32, loops: Vec<Vec<VertexId>>, label: i32) -> Vec
                     .find(|(v, _)| !ol.contains(v))
                     .map(|(_, p)| *p);
                 let Some(p) = probe else { continue };
-                if point_in_loop(p, ouv) && best.map_or(true, |(_, ba)| *a < ba) {
+                if point_in_loop(p, ouv) && best.is_none_or(|(_, ba)| *a < ba) {
                     best = Some((k, *a));
                 }
             }
