@@ -7,7 +7,7 @@ use std::time::Instant;
 #[test]
 fn every_shared_csl_file() {
     for path in common::shared_csl_files() {
-        let s = slice2solid::io::csl::read_csl(&path).unwrap();
+        let s = slice2solid::io::read_sections(&path).unwrap();
         let t = Instant::now();
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
         let dt = t.elapsed();
