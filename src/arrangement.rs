@@ -215,6 +215,70 @@ impl Arrangement {
             .filter(move |cf| !self.faces[cf.face as usize].pieces.is_empty())
     }
 
+    /// Every face's boundary refined with the pool vertices lying on its edges (crossings of any
+    /// section with the edge's line, shared by the faces around that edge), counter-clockwise seen
+    /// from the plane normal, starting at `polygon[0]`. Conforming cell boundaries for the engines.
+    pub fn face_boundaries(&self) -> Vec<Vec<VertexId>> {
+        // Non-arrangement vertices on two or more planes, by plane pair.
+        let mut corner = vec![false; self.pool.positions.len()];
+        for f in &self.faces {
+            for &v in &f.polygon {
+                corner[v as usize] = true;
+            }
+        }
+        let mut on_line: fxhash::FxHashMap<(PlaneId, PlaneId), Vec<VertexId>> = Default::default();
+        for (v, tags) in self.pool.tags.iter().enumerate() {
+            if tags.len() < 2 || corner[v] {
+                continue;
+            }
+            for (k, &a) in tags.iter().enumerate() {
+                for &b in &tags[k + 1..] {
+                    on_line.entry((a, b)).or_default().push(v as VertexId);
+                }
+            }
+        }
+        let mut out = Vec::with_capacity(self.faces.len());
+        for face in &self.faces {
+            let p = face.plane;
+            let poly = &face.polygon;
+            let n = poly.len();
+            let mut b = Vec::with_capacity(n);
+            for e in 0..n {
+                let (a, c) = (poly[e], poly[(e + 1) % n]);
+                b.push(a);
+                let (pa, pc) = (
+                    self.pool.positions[a as usize],
+                    self.pool.positions[c as usize],
+                );
+                let d = [pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]];
+                let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                let mut extra: Vec<(f64, VertexId)> = Vec::new();
+                for &t in self.pool.tags[a as usize].iter() {
+                    if t == p || !self.pool.tags[c as usize].contains(&t) {
+                        continue;
+                    }
+                    let Some(list) = on_line.get(&(p.min(t), p.max(t))) else {
+                        continue;
+                    };
+                    for &v in list {
+                        let x = self.pool.positions[v as usize];
+                        let s =
+                            ((x[0] - pa[0]) * d[0] + (x[1] - pa[1]) * d[1] + (x[2] - pa[2]) * d[2])
+                                / len2;
+                        if s > 0.0 && s < 1.0 {
+                            extra.push((s, v));
+                        }
+                    }
+                }
+                extra.sort_by(|x, y| x.0.total_cmp(&y.0));
+                extra.dedup_by_key(|x| x.1);
+                b.extend(extra.into_iter().map(|x| x.1));
+            }
+            out.push(b);
+        }
+        out
+    }
+
     /// Signed area (in the plane's frame) of a loop of pool vertices on `plane`.
     pub fn loop_area(&self, plane: PlaneId, ids: &[VertexId]) -> f64 {
         let pts: Vec<[f64; 2]> = ids

@@ -7,7 +7,7 @@ use std::time::Instant;
 #[test]
 fn every_shared_csl_file() {
     for path in common::shared_csl_files() {
-        let s = slice2solid::io::csl::read_csl(&path).unwrap();
+        let s = slice2solid::io::read_sections(&path).unwrap();
         let t = Instant::now();
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
         let dt = t.elapsed();
@@ -160,4 +160,34 @@ fn agreeing_files_share_every_crossing() {
         assert_eq!(lonely, 0);
         assert!(shared > 0);
     }
+}
+
+/// Refined face boundaries hold every piece vertex lying on a face edge, in order (same area).
+#[test]
+fn face_boundaries_hold_the_crossings() {
+    let path = common::shared_dir().join("data/csl/Elephant.csl");
+    let s = slice2solid::io::read_sections(&path).unwrap();
+    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    let fb = arr.face_boundaries();
+    assert_eq!(fb.len(), arr.faces.len());
+    let mut refined = 0;
+    for (f, face) in arr.faces.iter().enumerate() {
+        let b = &fb[f];
+        refined += b.len() - face.polygon.len();
+        let a0 = arr.loop_area(face.plane, &face.polygon);
+        let a1 = arr.loop_area(face.plane, b);
+        assert!((a0 - a1).abs() <= 1e-9 * a0, "face {f}: {a0} vs {a1}");
+        // Every piece vertex on the face's boundary (tagged with another plane of an edge) is in it.
+        for p in &face.pieces {
+            for &v in p.outer.iter().chain(p.holes.iter().flatten()) {
+                if arr.pool.tags[v as usize].len() >= 2 {
+                    assert!(
+                        b.contains(&v),
+                        "face {f}: piece vertex {v} not on the refined boundary"
+                    );
+                }
+            }
+        }
+    }
+    assert!(refined > 0);
 }
