@@ -81,6 +81,7 @@ pub struct Delaunay {
     boundary: Vec<(u32, u8)>,
     outside: Vec<u32>,
     newt: Vec<u32>,
+    edge_table: Vec<(u64, u32, u8)>,
     /// Whether insertions keep `vtet` up to date (off during the bulk build, which rebuilds it once).
     track_vtet: bool,
 }
@@ -175,6 +176,7 @@ impl Delaunay {
             boundary: Vec::new(),
             outside: Vec::new(),
             newt: Vec::new(),
+            edge_table: Vec::new(),
             track_vtet: true,
         }
     }
