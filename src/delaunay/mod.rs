@@ -132,6 +132,11 @@ impl Delaunay {
             dt.int[d as usize] = dt.int[kept as usize];
         }
         dt.vtet = vec![NONE; dt.pts.len()];
+        // About 6.7 tetrahedra per point for most inputs: reserve once instead of regrowing
+        // (each regrowth copies the whole array and faults in fresh pages).
+        let expect = dt.pts.len() * 7 + 64;
+        dt.tds.tets.reserve(expect);
+        dt.tds.flags.reserve(expect);
         dt.track_vtet = false;
         for k in 0..dt.pts.len() as u32 {
             let w = if dt.dim < 3 {
