@@ -5,6 +5,9 @@ use super::pred::{self, P};
 use super::tds::{facet_key, other_two, Tet, INFINITE, IN_CAVITY, NONE, OUTSIDE};
 use super::Delaunay;
 
+/// Empty slot of the edge table (no edge has both endpoints equal to u32::MAX).
+const EMPTY_EDGE: u64 = u64::MAX;
+
 /// Hint the CPU to fetch a tetrahedron record we are about to read (the cavity search is bound by
 /// cache misses on neighbouring records; issuing the four loads together overlaps them).
 #[inline(always)]
@@ -234,39 +237,42 @@ impl Delaunay {
             }
             self.nfinite += finite as usize;
         }
-        // Pass 2: glue the new tetrahedra to each other. The neighbour of new tet (c,i) across its
-        // face {v,a,b} comes from the other boundary facet on edge ab: turn around ab inside the
-        // cavity, starting from c.
-        for (k, &(c, i)) in boundary.iter().enumerate() {
+        // Pass 2: glue the new tetrahedra to each other. Each edge {a,b} of the cavity boundary is
+        // shared by exactly two boundary facets, whose new tetrahedra meet across the face {v,a,b}:
+        // match them through a small open-addressing table keyed by the edge (stays in L1).
+        let bits = (usize::BITS - (4 * boundary.len()).leading_zeros()).max(4);
+        let size = 1usize << bits;
+        let mut table = std::mem::take(&mut self.edge_table);
+        table.clear();
+        table.resize(size, (EMPTY_EDGE, 0, 0));
+        for (k, &(_, i)) in boundary.iter().enumerate() {
             let nt = newt[k];
             let i = i as usize;
             let vs = self.tds.tets[nt as usize].v;
             for j in 0..4 {
-                if j == i || self.tds.tets[nt as usize].n[j] != NONE {
+                if j == i {
                     continue;
                 }
                 let (a, b) = other_two(i, j);
-                let (va, vb) = (vs[a], vs[b]);
-                let mut cur = c;
-                let mut f = j;
+                let (x, y) = (vs[a].min(vs[b]), vs[a].max(vs[b]));
+                let key = ((x as u64) << 32) | y as u64;
+                let mut h = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize;
                 loop {
-                    let ct = &self.tds.tets[cur as usize];
-                    let cv = ct.v;
-                    // the vertex of cur's face f other than a and b
-                    let (x, y) = other_two(f, cv.iter().position(|&w| w == va).unwrap());
-                    let wpos = if cv[x] == vb { y } else { x };
-                    let n = ct.n[f];
-                    if self.tds.flags[n as usize] & IN_CAVITY != 0 {
-                        f = self.tds.tets[n as usize].index_of_vertex(cv[wpos]);
-                        cur = n;
-                    } else {
-                        self.tds.tets[nt as usize].n[j] = n;
-                        self.tds.tets[n as usize].n[wpos] = nt;
+                    let e = table[h];
+                    if e.0 == EMPTY_EDGE {
+                        table[h] = (key, nt, j as u8);
                         break;
                     }
+                    if e.0 == key {
+                        self.tds.tets[nt as usize].n[j] = e.1;
+                        self.tds.tets[e.1 as usize].n[e.2 as usize] = nt;
+                        break;
+                    }
+                    h = (h + 1) & (size - 1);
                 }
             }
         }
+        self.edge_table = table;
         for &c in &cavity {
             self.tds.flags[c as usize] = 0;
             if !self.tds.tets[c as usize].is_infinite() {

@@ -10,8 +10,8 @@ use crate::geom::predicates as gp;
 
 pub type P = [f64; 3];
 
-/// > 0 when (a,b,c,d) has positive volume, < 0 negative, 0 coplanar. Exact sign (the magnitude
-/// approximates 6 × volume).
+/// Positive when (a,b,c,d) has positive volume, negative when negative, 0 when coplanar. Exact sign
+/// (the magnitude approximates 6 × volume).
 #[inline]
 pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
     let (det, bound) = orient3d_filter(a, b, c, d);
@@ -21,7 +21,8 @@ pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
     -gp::orient3d(a, b, c, d)
 }
 
-/// > 0 when e is strictly inside the circumsphere of the positive tetrahedron (a,b,c,d). Exact sign.
+/// Positive when e is strictly inside the circumsphere of the positive tetrahedron (a,b,c,d),
+/// negative outside, 0 on it. Exact sign.
 #[inline]
 pub fn insphere(a: P, b: P, c: P, d: P, e: P) -> f64 {
     let (det, bound) = insphere_filter(a, b, c, d, e);
