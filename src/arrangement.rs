@@ -11,6 +11,37 @@
 //! * A face polygon is convex and counter-clockwise seen from its plane's normal; section pieces are
 //!   counter-clockwise outer loops with clockwise holes, in pool vertex ids, and lie inside their face.
 //! * `Face::positive_cell` is the cell on the side the plane normal points to.
+//!
+//! How it is built (see the submodules):
+//! * `cells`: the box (bbox of the sections padded by `margin × diagonal`, six walls with normals
+//!   pointing out) is cut by every input plane in turn. Each vertex is the intersection of three
+//!   planes; its side of another plane is the exact sign of a 4×4 determinant of plane equations
+//!   (`exact`: floating filter, then expansion arithmetic), so three planes through a line, four
+//!   through a point and nearly parallel planes give one consistent subdivision: a vertex exactly on
+//!   a plane gets its tag, and coinciding vertices are one vertex. Duplicate input planes (equal up
+//!   to scale, either orientation) are rejected with `Error::Input` naming both.
+//! * `pieces`: contour vertices are classified by the exact sign of `n·p + d` at their 3D point;
+//!   planes that share their line with another plane on the section's plane are decided through one
+//!   representative, planes that do not cut the section's plane inside the box have a constant side.
+//!   A contour edge crossing a plane gets one pool vertex tagged with both planes; a crossing or a
+//!   contour vertex lying on two planes of different lines is the arrangement vertex (same id).
+//!   Each contour stretch belongs to the face with its sign vector (a stretch lying on a line goes
+//!   to the face on its left); pieces are traced per face, joining contour runs along the face
+//!   boundary counter-clockwise, through every corner and every section point on it.
+//! * `reconcile` (DESIGN invariant 5): crossings of two sections on their common line closer than
+//!   `snap_tolerance × diagonal` and on the same arrangement edge are snapped to one vertex (midpoint
+//!   in 3D, each frame keeps its section's own (u,v)); the other points stay with their section and
+//!   are inserted into the other plane's piece edges along the line, so pieces of both planes share
+//!   all vertices on the line. `max_disagreement` is the largest Hausdorff distance, along a line,
+//!   between the two sections' points on it (or the longest interval when only one reaches it);
+//!   lines beyond the tolerance are listed in `warnings`.
+mod build;
+mod cells;
+pub(crate) mod exact;
+mod fxhash;
+mod pieces;
+mod reconcile;
+
 use crate::error::Result;
 use crate::sections::{Plane, Sections};
 use serde::{Deserialize, Serialize};
@@ -102,9 +133,118 @@ pub struct Arrangement {
 }
 
 impl Arrangement {
-    pub fn build(_sections: &Sections, _options: &ArrangementOptions) -> Result<Arrangement> {
-        Err(crate::error::Error::Unavailable(
-            "the plane arrangement is not implemented yet".into(),
-        ))
+    /// Build the arrangement of the sections' planes in the padded box, the global vertex pool and
+    /// the section pieces of every face. Duplicate planes (equal up to scale) are rejected.
+    pub fn build(sections: &Sections, options: &ArrangementOptions) -> Result<Arrangement> {
+        build::build(sections, options)
     }
+
+    /// Cell adjacency: one node per cell (weight = cell id), one edge per interior face (weight = face id).
+    pub fn adjacency_graph(&self) -> petgraph::graph::UnGraph<CellId, FaceId> {
+        let mut g = petgraph::graph::UnGraph::with_capacity(self.cells.len(), self.faces.len());
+        for c in 0..self.cells.len() {
+            g.add_node(c as CellId);
+        }
+        for (f, face) in self.faces.iter().enumerate() {
+            if let (Some(a), Some(b)) = (face.positive_cell, face.negative_cell) {
+                g.add_edge(
+                    petgraph::graph::NodeIndex::new(a as usize),
+                    petgraph::graph::NodeIndex::new(b as usize),
+                    f as FaceId,
+                );
+            }
+        }
+        g
+    }
+
+    /// (u,v) coordinates of pool vertex `v` in the frame of `plane`, if the vertex carries that tag.
+    pub fn uv(&self, v: VertexId, plane: PlaneId) -> Option<[f64; 2]> {
+        let tags = &self.pool.tags[v as usize];
+        tags.iter()
+            .position(|&t| t == plane)
+            .map(|k| self.pool.uv[v as usize][k])
+    }
+
+    /// Cells with at least one face carrying a section piece.
+    pub fn cells_with_sections(&self) -> usize {
+        self.cells
+            .iter()
+            .filter(|c| {
+                c.faces
+                    .iter()
+                    .any(|cf| !self.faces[cf.face as usize].pieces.is_empty())
+            })
+            .count()
+    }
+
+    /// Outward unit normal of a cell on one of its faces.
+    pub fn outward_normal(&self, cf: &CellFace) -> [f64; 3] {
+        let n = self.planes[self.faces[cf.face as usize].plane as usize]
+            .plane
+            .normal;
+        if cf.outward_is_plane_normal {
+            n
+        } else {
+            [-n[0], -n[1], -n[2]]
+        }
+    }
+
+    /// Every pool vertex on the boundary of a cell (face corners and piece vertices), sorted, unique.
+    pub fn cell_vertices(&self, c: CellId) -> Vec<VertexId> {
+        let mut out = Vec::new();
+        for cf in &self.cells[c as usize].faces {
+            let f = &self.faces[cf.face as usize];
+            out.extend_from_slice(&f.polygon);
+            for p in &f.pieces {
+                out.extend_from_slice(&p.outer);
+                for h in &p.holes {
+                    out.extend_from_slice(h);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// The faces of a cell that carry section pieces.
+    pub fn cell_section_faces(&self, c: CellId) -> impl Iterator<Item = &CellFace> + '_ {
+        self.cells[c as usize]
+            .faces
+            .iter()
+            .filter(move |cf| !self.faces[cf.face as usize].pieces.is_empty())
+    }
+
+    /// Signed area (in the plane's frame) of a loop of pool vertices on `plane`.
+    pub fn loop_area(&self, plane: PlaneId, ids: &[VertexId]) -> f64 {
+        let pts: Vec<[f64; 2]> = ids
+            .iter()
+            .map(|&v| self.uv(v, plane).unwrap_or([0.0, 0.0]))
+            .collect();
+        polygon_area(&pts)
+    }
+
+    /// Area of a section piece (outer minus holes).
+    pub fn piece_area(&self, plane: PlaneId, piece: &SectionPiece) -> f64 {
+        self.loop_area(plane, &piece.outer)
+            + piece
+                .holes
+                .iter()
+                .map(|h| self.loop_area(plane, h))
+                .sum::<f64>()
+    }
+}
+
+pub(crate) fn polygon_area(p: &[[f64; 2]]) -> f64 {
+    let n = p.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let o = p[0];
+    let mut a = 0.0;
+    for i in 1..n - 1 {
+        let (b, c) = (p[i], p[i + 1]);
+        a += (b[0] - o[0]) * (c[1] - o[1]) - (b[1] - o[1]) * (c[0] - o[0]);
+    }
+    0.5 * a
 }

@@ -16,7 +16,10 @@
 //!   Every region gets label 1. Planes whose section is empty are skipped.
 //!
 //! The mesh must be a closed, consistently oriented 2-manifold (every directed edge once, its twin once);
-//! anything else is an `Error::Input`.
+//! anything else is an `Error::Input`. Its global orientation does not matter (depth decides).
+//! The result passes through the shared validator (`crate::validate`). A plane exactly through a
+//! saddle vertex makes contours that touch there, which the validator may reject; [`make_planes`] keeps
+//! its planes clear of vertices so this only happens with planes the caller chooses.
 use crate::error::{Error, Result};
 use crate::geom::predicates::{orient2d, orient3d};
 use crate::mesh::TriMesh;
@@ -114,7 +117,8 @@ pub fn make_planes(mesh: &TriMesh, n: usize, seed: u64, mode: SliceMode) -> Vec<
 }
 
 /// Cut `mesh` by every plane; planes whose section is empty are skipped. `source_index` of each
-/// section is its position in the result.
+/// section is its position in the result. The result goes through [`crate::validate::validate`]
+/// (errors are located as `mesh: section i`).
 pub fn slice_mesh(mesh: &TriMesh, planes: &[Plane]) -> Result<Sections> {
     check_closed_manifold(mesh)?;
     let per_plane: Vec<Option<Vec<Region>>> = planes
@@ -132,11 +136,16 @@ pub fn slice_mesh(mesh: &TriMesh, planes: &[Plane]) -> Result<Sections> {
             });
         }
     }
-    Ok(Sections {
-        sections,
-        n_labels: 1,
-        warnings: Vec::new(),
-    })
+    // The shared validator checks what every reader's output satisfies (simple, non-crossing
+    // contours, holes inside their parents, orientation); a repair here would be a slicer bug.
+    crate::validate::validate(
+        Sections {
+            sections,
+            n_labels: 1,
+            warnings: Vec::new(),
+        },
+        "mesh",
+    )
 }
 
 /// Check that `mesh` bounds a solid: finite coordinates, indices in range, no degenerate triangle, and
@@ -567,6 +576,24 @@ mod tests {
             Plane::from_point_normal([0.0, 0.0, 3.0], [0.0, 0.0, 1.0]).unwrap(),
         ];
         assert!(slice_mesh(&m, &planes).unwrap().sections.is_empty());
+    }
+
+    #[test]
+    fn inside_out_mesh_gives_the_same_oriented_sections() {
+        let m = cube();
+        let mut flipped = m.clone();
+        flipped.triangles.iter_mut().for_each(|t| t.swap(1, 2));
+        let planes = [Plane::from_point_normal([0.3; 3], [0.2, 0.5, 1.0]).unwrap()];
+        let (a, b) = (
+            slice_mesh(&m, &planes).unwrap(),
+            slice_mesh(&flipped, &planes).unwrap(),
+        );
+        assert!(a.sections[0].regions[0].outer.signed_area() > 0.0);
+        let (x, y) = (
+            a.sections[0].regions[0].outer.signed_area(),
+            b.sections[0].regions[0].outer.signed_area(),
+        );
+        assert!((x - y).abs() < 1e-14, "{x} vs {y}"); // same polygon, other start vertex
     }
 
     #[test]

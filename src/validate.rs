@@ -364,6 +364,7 @@ pub fn off_plane_tolerance(sections: &Sections) -> f64 {
 }
 
 /// Remove consecutive equal vertices (in 2D, closing edge included). True if any were removed.
+#[allow(clippy::needless_range_loop)]
 fn remove_consecutive_duplicates(c: &mut Contour) -> bool {
     let n = c.points2.len();
     let mut keep = vec![true; n];
@@ -938,6 +939,35 @@ mod tests {
         s.sections[0].regions[0].outer.points3[2][2] += 0.5;
         let e = validate(s, "m").unwrap_err().to_string();
         assert!(e.contains("vertex 2") && e.contains("off its plane"), "{e}");
+    }
+
+    #[test]
+    fn large_contour_crossing_found_by_the_grid() {
+        let p = z1();
+        let n = 20_000;
+        let circle: Vec<[f64; 2]> = (0..n)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / n as f64;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        let region = |pts: Vec<[f64; 2]>| Region {
+            label: 1,
+            outer: Contour::from_2d(&p, pts),
+            holes: vec![],
+        };
+        let t = std::time::Instant::now();
+        validate(one_plane(vec![region(circle.clone())]), "m").unwrap();
+        assert!(t.elapsed().as_secs_f64() < 1.0);
+        let mut crossed = circle;
+        crossed.swap(777, 778);
+        let e = validate(one_plane(vec![region(crossed)]), "m")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("edges 776 and 778") || e.contains("self-intersecting"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -33,6 +33,7 @@ fn check_json_and_exit_status() {
         assert!(j.get(key).is_some(), "missing {key}");
     }
     assert_eq!(j["closed"], true);
+    assert!(j.get("sections").is_none() && j.get("worst_section").is_none());
     assert_eq!(j["genus"], 0);
     assert!((j["volume"].as_f64().unwrap() - 1.0).abs() < 1e-9);
 
@@ -79,4 +80,51 @@ fn compare_json() {
     assert_eq!(j["samples"], 2000);
     // STL stores f32: the shift 0.1 is rounded, hence the tolerance
     assert!((j["iou"].as_f64().unwrap() - 0.9 / 1.1).abs() < 1e-6);
+}
+
+/// `$SLICE2SOLID_SHARED`, else `<crate>/../shared` when it exists, else `/work/shared`.
+fn shared_dir() -> std::path::PathBuf {
+    if let Ok(d) = std::env::var("SLICE2SOLID_SHARED") {
+        return d.into();
+    }
+    let local = std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
+    if local.exists() {
+        local
+    } else {
+        "/work/shared".into()
+    }
+}
+
+#[test]
+fn check_with_sections_json() {
+    let data = shared_dir().join("data");
+    let out = bin()
+        .args(["check", "--json", "--sections"])
+        .arg(data.join("csl/eight_15.csl"))
+        .arg(data.join("reference/eight_15.stl"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let planes = j["sections"].as_array().unwrap();
+    assert_eq!(planes.len(), 15);
+    for p in planes {
+        for key in [
+            "plane",
+            "source_index",
+            "area_input",
+            "area_mesh",
+            "sym_diff",
+            "relative",
+        ] {
+            assert!(p.get(key).is_some(), "missing {key}");
+        }
+        assert!(p["relative"].as_f64().unwrap() < 0.01);
+    }
+    assert!(j["worst_section"]["source_index"].is_u64());
+    assert_eq!(j["genus"], 2);
 }

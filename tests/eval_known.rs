@@ -257,7 +257,7 @@ fn cube_section_agrees_with_its_square() {
         warnings: vec![],
     };
     let r = check_mesh(&m, Some(&secs));
-    let s = r.sections.as_ref().unwrap();
+    let s = &r.sections;
     assert!((s[0].area_mesh - 2.0).abs() < 1e-12, "{s:?}");
     assert!(s[0].relative < 1e-12);
     assert!((s[1].area_input - 1.0).abs() < 1e-12);

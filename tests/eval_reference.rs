@@ -2,6 +2,7 @@
 use slice2solid::eval::check::check_mesh;
 use slice2solid::eval::compare::compare_meshes;
 use slice2solid::io::mesh::read_trimesh;
+use slice2solid::io::read_sections;
 use std::path::PathBuf;
 
 /// `$SLICE2SOLID_SHARED`, else `<crate>/../shared` when it exists, else `/work/shared`.
@@ -15,6 +16,58 @@ fn shared_dir() -> PathBuf {
     } else {
         PathBuf::from("/work/shared")
     }
+}
+
+const NAMES: [&str; 6] = [
+    "Elephant",
+    "balloondog",
+    "balloondog_box",
+    "eight_15",
+    "eight_20",
+    "hand",
+];
+
+#[test]
+fn reference_meshes_agree_with_their_sections() {
+    let dir = shared_dir().join("data");
+    for name in NAMES {
+        let mesh = read_trimesh(&dir.join(format!("reference/{name}.stl"))).unwrap();
+        let secs = read_sections(&dir.join(format!("csl/{name}.csl"))).unwrap();
+        let r = check_mesh(&mesh, Some(&secs));
+        assert!(r.is_closed_manifold() && r.oriented, "{name}: {r:?}");
+        assert_eq!(r.components, 1, "{name}");
+        let planes = &r.sections;
+        assert_eq!(planes.len(), secs.sections.len());
+        for p in planes {
+            assert!(
+                p.relative < 0.01,
+                "{name}: plane {} (input {}) differs by {}",
+                p.plane,
+                p.source_index,
+                p.relative
+            );
+            assert!(p.area_input > 0.0);
+        }
+        let w = r.worst_section.as_ref().unwrap();
+        println!(
+            "{name}: {} planes, worst plane {} relative {:.2e}; genus {}, self-intersections {} ({} vertex-disjoint)",
+            planes.len(),
+            w.source_index,
+            w.relative,
+            r.genus,
+            r.self_intersections,
+            r.self_intersections_vertex_disjoint
+        );
+    }
+}
+
+#[test]
+fn wrong_sections_are_detected() {
+    let dir = shared_dir().join("data");
+    let mesh = read_trimesh(&dir.join("reference/eight_15.stl")).unwrap();
+    let secs = read_sections(&dir.join("csl/balloondog.csl")).unwrap();
+    let r = check_mesh(&mesh, Some(&secs));
+    assert!(r.worst_section.unwrap().relative > 0.5);
 }
 
 #[test]

@@ -25,6 +25,12 @@ fn info_json_counts_the_example() {
     assert_eq!(v["contours"], 3);
     assert_eq!(v["holes"], 1);
     assert_eq!(v["bounding_box"]["max"], serde_json::json!([4.0, 4.0, 2.0]));
+    // Two parallel planes cut the padded box into 3 cells, all touching a section.
+    let (ok, out, err) = info(&[path, "--json", "--cells"]);
+    assert!(ok, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["arrangement"]["cells"], 3);
+    assert_eq!(v["arrangement"]["cells_with_sections"], 3);
     let (ok, out, _) = info(&[path]);
     assert!(
         ok && out.contains("contours:       3 (2 outer, 1 holes)"),

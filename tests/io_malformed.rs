@@ -181,7 +181,6 @@ fn csl_duplicate_planes() {
     let text = BASE
         .replacen("2 4 1 0 0 1 -1", "2 4 1 0 0 -2 0", 1)
         .replace(" 1\n", " 0\n");
-    let text = text.replacen("4 1 0 1 2 3\n", "4 1 0 1 2 3\n", 2);
     expect(
         &csl_error(&text),
         "t.csl:11: plane 2",

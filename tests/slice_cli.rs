@@ -44,7 +44,6 @@ fn open_mesh_is_rejected_naming_the_file() {
 }
 
 #[test]
-#[ignore = "needs the CSL/JSON writer and reader (helper io); un-ignore once merged from main"]
 fn sliced_reference_meshes_load_back_with_the_same_areas() {
     let dir = tempfile::tempdir().unwrap();
     for (name, mode, mode_arg) in [

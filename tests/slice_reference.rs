@@ -153,6 +153,8 @@ fn check_simple(name: &str, i: usize, sec: &slice2solid::Section) {
 }
 
 fn check_conventions(name: &str, s: &Sections) {
+    // The validator had nothing to repair: orientation and vertices are right as sliced.
+    assert!(s.warnings.is_empty(), "{name}: {:?}", s.warnings);
     for (i, sec) in s.sections.iter().enumerate() {
         assert!(!sec.regions.is_empty());
         check_simple(name, i, sec);
@@ -303,5 +305,19 @@ fn planes_through_mesh_vertices() {
             assert!(rel < 1e-9, "{name}: area {} vs {expect}", sec.area());
         }
         println!("{name}: {on_plane} vertices exactly on the cutting planes");
+    }
+}
+
+/// The evaluation module's own mesh/section comparison (slab symmetric difference, written by another
+/// hand) finds the sliced sections equal to the mesh's sections.
+#[test]
+fn eval_finds_no_difference_between_mesh_and_its_slices() {
+    for (name, mesh) in reference_meshes() {
+        let s = slice_mesh(&mesh, &make_planes(&mesh, 6, 11, SliceMode::Random)).unwrap();
+        let agreement = slice2solid::eval::section::section_agreement(&mesh, &s);
+        assert_eq!(agreement.len(), s.sections.len());
+        let worst = agreement.iter().map(|a| a.relative).fold(0.0, f64::max);
+        println!("{name}: worst relative symmetric difference {worst:e}");
+        assert!(worst < 1e-9, "{name}: {worst}");
     }
 }

@@ -89,7 +89,8 @@ fn print_table(name: &str, r: &CheckReport) {
             );
         }
     }
-    if let Some(secs) = &r.sections {
+    if !r.sections.is_empty() {
+        let secs = &r.sections;
         println!("  plane  source  area_input    area_mesh     sym_diff      relative");
         for s in secs {
             println!(

@@ -48,7 +48,14 @@ pub fn run(args: InfoArgs) -> Result<ExitCode> {
                     .any(|f| !a.faces[f.face as usize].pieces.is_empty())
             })
             .count();
-        Some((a.cells.len(), a.faces.len(), with_sections, ms))
+        Some((
+            a.cells.len(),
+            a.faces.len(),
+            with_sections,
+            ms,
+            a.max_disagreement,
+            a.warnings,
+        ))
     } else {
         None
     };
@@ -70,9 +77,9 @@ pub fn run(args: InfoArgs) -> Result<ExitCode> {
             "read_ms": read_ms,
             "warnings": s.warnings,
         });
-        if let Some((c, f, w, ms)) = cells {
-            doc["arrangement"] =
-                json!({"cells": c, "faces": f, "cells_with_sections": w, "build_ms": ms});
+        if let Some((c, f, w, ms, dis, warn)) = &cells {
+            doc["arrangement"] = json!({"cells": c, "faces": f, "cells_with_sections": w,
+                "build_ms": ms, "max_disagreement": dis, "warnings": warn});
         }
         println!(
             "{}",
@@ -111,8 +118,12 @@ pub fn run(args: InfoArgs) -> Result<ExitCode> {
         let rel = if diag > 0.0 { max_off / diag } else { 0.0 };
         println!("max off-plane:  {max_off:.3e} ({rel:.2e} of the diagonal; snapped)");
         println!("read in:        {read_ms:.1} ms");
-        if let Some((c, f, w, ms)) = cells {
+        if let Some((c, f, w, ms, dis, warn)) = &cells {
             println!("arrangement:    {c} cells, {f} faces, {w} cells with sections, built in {ms:.1} ms");
+            println!("                largest disagreement of two sections along a plane crossing: {dis:.3e}");
+            for w in warn {
+                println!("  arrangement: {w}");
+            }
         }
         if s.warnings.is_empty() {
             println!("warnings:       none");

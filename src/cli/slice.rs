@@ -40,13 +40,15 @@ pub fn run(args: SliceArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Slicing errors locate problems in "mesh"; name the file instead.
+/// Slicing errors locate problems in "mesh" (or "mesh: section i"); name the file instead.
 fn with_file(e: slice2solid::Error, file: &str) -> slice2solid::Error {
     match e {
-        slice2solid::Error::Input { location, reason } => slice2solid::Error::Input {
-            location: location.replacen("mesh", file, 1),
-            reason,
-        },
+        slice2solid::Error::Input { location, reason } if location.starts_with("mesh") => {
+            slice2solid::Error::Input {
+                location: location.replacen("mesh", file, 1),
+                reason,
+            }
+        }
         other => other,
     }
 }

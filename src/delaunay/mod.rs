@@ -19,9 +19,11 @@
 //! ties are broken by symbolic perturbation (see [`pred`]), so the result is a triangulation of the
 //! Delaunay subdivision for any input, with no flat tetrahedron even for coplanar hull points.
 pub mod gen;
+mod insert;
 #[allow(clippy::needless_range_loop)]
 pub mod pred;
 pub mod sort;
+mod tds;
 #[cfg(feature = "tetgen")]
 pub mod tetgen;
 mod validate;
@@ -29,14 +31,11 @@ pub mod xyz;
 
 use pred::P;
 use std::collections::HashMap;
+pub use tds::INFINITE;
+use tds::{Tds, NONE};
 
 pub type VertexId = u32;
 pub type TetId = u32;
-
-/// The vertex at infinity: every hull facet (a,b,c) carries an infinite tetrahedron (a,b,c,∞).
-pub const INFINITE: VertexId = u32::MAX;
-const NONE: u32 = u32::MAX;
-const DEAD: u32 = u32::MAX - 1;
 
 /// Where a query point lies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -52,39 +51,45 @@ pub enum Location {
 }
 
 /// Exact 3D Delaunay triangulation.
+///
+/// Internally vertices are numbered in insertion order (BRIO + Hilbert), so that the coordinates
+/// of neighbouring vertices are close in memory; the public API speaks external ids (input indices).
 #[derive(Clone, Debug)]
 pub struct Delaunay {
+    /// Coordinates by internal id.
     pts: Vec<P>,
-    /// Per tetrahedron: vertices (or `INFINITE`), `DEAD` in slot 0 when freed.
-    tv: Vec<[u32; 4]>,
-    /// Per tetrahedron: neighbour opposite vertex i.
-    tn: Vec<[u32; 4]>,
-    free: Vec<u32>,
-    /// One incident tetrahedron per vertex (NONE for merged duplicates / not yet triangulated).
+    /// Internal id → external id.
+    ext: Vec<u32>,
+    /// External id → internal id (a merged duplicate maps to its kept vertex).
+    int: Vec<u32>,
+    tds: Tds,
+    /// One incident tetrahedron per internal vertex (NONE while not triangulated).
     vtet: Vec<u32>,
+    /// (dropped, kept) external ids.
     dups: Vec<(VertexId, VertexId)>,
     /// Affine dimension of the vertex set so far (-1 empty .. 3).
     dim: i8,
-    /// While `dim < 3`: distinct vertices waiting for a full-dimensional simplex.
-    pending: Vec<VertexId>,
-    pending_keys: HashMap<[u64; 3], VertexId>,
+    /// While `dim < 3`: distinct internal vertices waiting for a full-dimensional simplex.
+    pending: Vec<u32>,
+    pending_keys: HashMap<[u64; 3], u32>,
     nfinite: usize,
     hint: u32,
-    rng: u64,
+    rng: u32,
     // Scratch buffers reused by every insertion.
-    mark: Vec<u32>,
-    stamp: u32,
     stack: Vec<u32>,
     cavity: Vec<u32>,
     boundary: Vec<(u32, u8)>,
-    edges: HashMap<u64, (u32, u8)>,
+    outside: Vec<u32>,
+    newt: Vec<u32>,
+    /// Whether insertions keep `vtet` up to date (off during the bulk build, which rebuilds it once).
+    track_vtet: bool,
 }
 
 impl Delaunay {
     /// Triangulates `points`; vertex ids are the input indices. Points at exactly the same position are
-    /// merged (see [`Delaunay::duplicates`]). Fewer than 4 affinely independent points give no
-    /// tetrahedra (see [`Delaunay::dimension`]). Non-finite coordinates are not allowed (use
-    /// [`Delaunay::try_new`] to get an error instead of a panic).
+    /// merged (see [`Delaunay::duplicates`]; the first occurrence is kept). Fewer than 4 affinely
+    /// independent points give no tetrahedra (see [`Delaunay::dimension`]). Panics on non-finite
+    /// coordinates (use [`Delaunay::try_new`] to get an error instead).
     pub fn new(points: &[[f64; 3]]) -> Delaunay {
         Self::try_new(points).expect("Delaunay::new: non-finite coordinate")
     }
@@ -98,14 +103,12 @@ impl Delaunay {
             ));
         }
         let mut dt = Delaunay::empty();
-        dt.pts = points.iter().map(|p| norm(*p)).collect();
-        dt.vtet = vec![NONE; points.len()];
         // Merge exact duplicates first so that the kept vertex is the smallest index.
-        let mut first: HashMap<[u64; 3], u32> = HashMap::with_capacity(points.len());
+        let mut first: HashMap<[u64; 3], u32, FastHash> =
+            HashMap::with_capacity_and_hasher(points.len(), FastHash);
         let mut distinct = Vec::with_capacity(points.len());
-        for (i, p) in dt.pts.iter().enumerate() {
-            let key = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-            match first.entry(key) {
+        for (i, p) in points.iter().enumerate() {
+            match first.entry(key(norm(*p))) {
                 std::collections::hash_map::Entry::Occupied(e) => {
                     dt.dups.push((i as u32, *e.get()))
                 }
@@ -116,21 +119,49 @@ impl Delaunay {
             }
         }
         drop(first);
-        let sub: Vec<P> = distinct.iter().map(|&i| dt.pts[i as usize]).collect();
-        let order: Vec<u32> = sort::brio_order(&sub)
-            .into_iter()
-            .map(|k| distinct[k as usize])
-            .collect();
-        dt.bootstrap(&order);
+        let sub: Vec<P> = distinct.iter().map(|&i| norm(points[i as usize])).collect();
+        let order = sort::brio_order(&sub);
+        dt.pts = order.iter().map(|&k| sub[k as usize]).collect();
+        dt.ext = order.iter().map(|&k| distinct[k as usize]).collect();
+        dt.int = vec![NONE; points.len()];
+        for (k, &e) in dt.ext.iter().enumerate() {
+            dt.int[e as usize] = k as u32;
+        }
+        for &(d, kept) in &dt.dups {
+            dt.int[d as usize] = dt.int[kept as usize];
+        }
+        dt.vtet = vec![NONE; dt.pts.len()];
+        dt.track_vtet = false;
+        for k in 0..dt.pts.len() as u32 {
+            let w = if dt.dim < 3 {
+                dt.add_pending(k)
+            } else {
+                dt.insert_vertex(k)
+            };
+            debug_assert_eq!(w, k);
+        }
+        dt.track_vtet = true;
+        if dt.dim == 3 {
+            for t in 0..dt.tds.tets.len() as u32 {
+                let tt = &dt.tds.tets[t as usize];
+                if !tt.is_dead() {
+                    for w in tt.v {
+                        if w != INFINITE {
+                            dt.vtet[w as usize] = t;
+                        }
+                    }
+                }
+            }
+        }
         Ok(dt)
     }
 
     fn empty() -> Delaunay {
         Delaunay {
             pts: Vec::new(),
-            tv: Vec::new(),
-            tn: Vec::new(),
-            free: Vec::new(),
+            ext: Vec::new(),
+            int: Vec::new(),
+            tds: Tds::default(),
             vtet: Vec::new(),
             dups: Vec::new(),
             dim: -1,
@@ -138,39 +169,25 @@ impl Delaunay {
             pending_keys: HashMap::new(),
             nfinite: 0,
             hint: 0,
-            rng: 0x9E37_79B9_7F4A_7C15,
-            mark: Vec::new(),
-            stamp: 0,
+            rng: 0x9E37_79B9,
             stack: Vec::new(),
             cavity: Vec::new(),
             boundary: Vec::new(),
-            edges: HashMap::new(),
+            outside: Vec::new(),
+            newt: Vec::new(),
+            track_vtet: true,
         }
     }
 
-    /// Inserts the vertices of `order` (ids already in `pts`): gathers them while the dimension is
-    /// below 3, builds the first tetrahedron as soon as possible, then inserts the rest.
-    fn bootstrap(&mut self, order: &[u32]) {
-        let mut k = 0;
-        while self.dim < 3 && k < order.len() {
-            self.add_pending(order[k]);
-            k += 1;
-        }
-        for &v in &order[k..] {
-            self.insert_vertex(v);
-        }
-    }
-
-    /// Lower-dimensional phase: keep distinct points, and start the 3D triangulation when the new
-    /// point leaves the affine hull of the previous ones.
-    fn add_pending(&mut self, v: u32) {
+    /// Lower-dimensional phase: keep distinct points, and start the 3D triangulation when internal
+    /// vertex `v` leaves the affine hull of the previous ones. Returns `v`, or the internal id of the
+    /// pending vertex at the same position.
+    fn add_pending(&mut self, v: u32) -> u32 {
         let p = self.pts[v as usize];
-        let key = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-        if let Some(&w) = self.pending_keys.get(&key) {
-            self.dups.push((v, w));
-            return;
+        if let Some(&w) = self.pending_keys.get(&key(p)) {
+            return w;
         }
-        self.pending_keys.insert(key, v);
+        self.pending_keys.insert(key(p), v);
         self.pending.push(v);
         let pp = |i: usize| self.pts[self.pending[i] as usize];
         let n = self.pending.len();
@@ -181,7 +198,7 @@ impl Delaunay {
                 if pred::collinear(pp(0), pp(1), p) {
                     1
                 } else {
-                    // keep the basis points first: move v to position 2
+                    // keep the basis points first
                     self.pending.swap(2, n - 1);
                     2
                 }
@@ -197,271 +214,13 @@ impl Delaunay {
             d => d,
         };
         if self.dim == 3 {
-            self.build_first_tet();
-            let rest: Vec<u32> = self.pending[4..].to_vec();
-            self.pending.clear();
+            let pend = std::mem::take(&mut self.pending);
             self.pending_keys = HashMap::new();
-            for v in rest {
-                self.insert_vertex(v);
+            self.build_first_tet([pend[0], pend[1], pend[2], pend[3]]);
+            for &w in &pend[4..] {
+                self.insert_vertex(w);
             }
         }
-    }
-
-    /// The first positive tetrahedron from pending[0..4] and its four infinite neighbours.
-    fn build_first_tet(&mut self) {
-        let mut v = [
-            self.pending[0],
-            self.pending[1],
-            self.pending[2],
-            self.pending[3],
-        ];
-        let p = |i: u32| self.pts[i as usize];
-        if pred::orient(p(v[0]), p(v[1]), p(v[2]), p(v[3])) < 0.0 {
-            v.swap(0, 1);
-        }
-        let mut cells = vec![v];
-        for i in 0..4 {
-            // replacing v[i] by ∞ flips the side, so swap two finite vertices to stay positive
-            let mut c = v;
-            c[i] = INFINITE;
-            c.swap((i + 1) % 4, (i + 2) % 4);
-            cells.push(c);
-        }
-        for c in &cells {
-            let t = self.alloc(*c);
-            for &w in c {
-                if w != INFINITE {
-                    self.vtet[w as usize] = t;
-                }
-            }
-        }
-        // adjacency by matching facets (only 5 cells)
-        for a in 0..5u32 {
-            for i in 0..4 {
-                let fa = facet_key(self.tv[a as usize], i);
-                for b in 0..5u32 {
-                    if a == b {
-                        continue;
-                    }
-                    for j in 0..4 {
-                        if facet_key(self.tv[b as usize], j) == fa {
-                            self.tn[a as usize][i] = b;
-                        }
-                    }
-                }
-            }
-        }
-        self.nfinite = 1;
-        self.hint = 0;
-    }
-
-    fn alloc(&mut self, v: [u32; 4]) -> u32 {
-        if let Some(t) = self.free.pop() {
-            self.tv[t as usize] = v;
-            self.tn[t as usize] = [NONE; 4];
-            t
-        } else {
-            self.tv.push(v);
-            self.tn.push([NONE; 4]);
-            self.mark.push(0);
-            (self.tv.len() - 1) as u32
-        }
-    }
-
-    #[inline]
-    fn next_rand(&mut self) -> u32 {
-        // xorshift64*
-        self.rng ^= self.rng >> 12;
-        self.rng ^= self.rng << 25;
-        self.rng ^= self.rng >> 27;
-        (self.rng.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 32) as u32
-    }
-
-    #[inline]
-    fn tet_points(&self, t: u32) -> [P; 4] {
-        let v = self.tv[t as usize];
-        let p = |w: u32| {
-            if w == INFINITE {
-                [0.0; 3]
-            } else {
-                self.pts[w as usize]
-            }
-        };
-        [p(v[0]), p(v[1]), p(v[2]), p(v[3])]
-    }
-
-    #[inline]
-    fn inf_index(&self, t: u32) -> Option<usize> {
-        self.tv[t as usize].iter().position(|&w| w == INFINITE)
-    }
-
-    /// Stochastic visibility walk from `start` to the tetrahedron containing `q` (closed), or to the
-    /// infinite tetrahedron whose hull facet sees `q` strictly.
-    fn walk(&mut self, q: P, start: u32) -> u32 {
-        let mut t = start;
-        if let Some(k) = self.inf_index(t) {
-            t = self.tn[t as usize][k];
-        }
-        let mut prev = NONE;
-        'outer: loop {
-            let r = self.next_rand() as usize;
-            let v = self.tv[t as usize];
-            let pts = self.tet_points(t);
-            for k in 0..4 {
-                let i = (r + k) & 3;
-                let n = self.tn[t as usize][i];
-                if n == prev {
-                    continue;
-                }
-                let mut s = pts;
-                s[i] = q;
-                if pred::orient(s[0], s[1], s[2], s[3]) < 0.0 {
-                    prev = t;
-                    t = n;
-                    if self.tv[t as usize].contains(&INFINITE) {
-                        return t;
-                    }
-                    continue 'outer;
-                }
-            }
-            let _ = v;
-            return t;
-        }
-    }
-
-    fn locate_internal(&mut self, q: P) -> Location {
-        if self.dim < 3 {
-            return Location::NoTets;
-        }
-        let mut start = self.hint;
-        if self.tv[start as usize][0] == DEAD {
-            start = (0..self.tv.len() as u32)
-                .find(|&t| self.tv[t as usize][0] != DEAD)
-                .unwrap();
-        }
-        let t = self.walk(q, start);
-        if self.tv[t as usize].contains(&INFINITE) {
-            return Location::Outside(t);
-        }
-        for &w in &self.tv[t as usize] {
-            if self.pts[w as usize] == q {
-                return Location::Vertex(w);
-            }
-        }
-        Location::InTet(t)
-    }
-
-    /// Perturbed conflict of tetrahedron `t` with point `q`.
-    #[inline]
-    fn conflict(&self, t: u32, q: P) -> bool {
-        let pts = self.tet_points(t);
-        match self.inf_index(t) {
-            None => pred::conflict_finite(pts, q),
-            Some(k) => {
-                let n = self.tn[t as usize][k];
-                let nv = self.tv[n as usize];
-                let j = (0..4).find(|&j| self.tn[n as usize][j] == t).unwrap();
-                let d = self.pts[nv[j] as usize];
-                pred::conflict_infinite(pts, k, d, q)
-            }
-        }
-    }
-
-    /// Inserts vertex `v` (already in `pts`) into the 3D triangulation; returns the id that represents
-    /// its position (v, or the kept vertex when v is a duplicate).
-    fn insert_vertex(&mut self, v: u32) -> u32 {
-        let q = self.pts[v as usize];
-        let t0 = match self.locate_internal(q) {
-            Location::Vertex(w) => {
-                self.dups.push((v, w));
-                return w;
-            }
-            Location::InTet(t) | Location::Outside(t) => t,
-            Location::NoTets => unreachable!(),
-        };
-        // Grow the conflict region (a ball, star-shaped from q under the perturbation).
-        self.stamp = self.stamp.wrapping_add(2);
-        if self.stamp < 2 {
-            self.mark.iter_mut().for_each(|m| *m = 0);
-            self.stamp = 2;
-        }
-        let cs = self.stamp;
-        let ns = self.stamp + 1;
-        let mut stack = std::mem::take(&mut self.stack);
-        let mut cavity = std::mem::take(&mut self.cavity);
-        let mut boundary = std::mem::take(&mut self.boundary);
-        stack.clear();
-        cavity.clear();
-        boundary.clear();
-        self.mark[t0 as usize] = cs;
-        stack.push(t0);
-        cavity.push(t0);
-        while let Some(c) = stack.pop() {
-            for i in 0..4 {
-                let n = self.tn[c as usize][i];
-                let m = self.mark[n as usize];
-                if m == cs {
-                    continue;
-                }
-                if m == ns {
-                    boundary.push((c, i as u8));
-                    continue;
-                }
-                if self.conflict(n, q) {
-                    self.mark[n as usize] = cs;
-                    stack.push(n);
-                    cavity.push(n);
-                } else {
-                    self.mark[n as usize] = ns;
-                    boundary.push((c, i as u8));
-                }
-            }
-        }
-        // Star the cavity boundary from v.
-        self.edges.clear();
-        let mut last = NONE;
-        for &(c, i) in &boundary {
-            let i = i as usize;
-            let mut vs = self.tv[c as usize];
-            vs[i] = v;
-            let nb = self.tn[c as usize][i];
-            let nt = self.alloc(vs);
-            last = nt;
-            self.tn[nt as usize][i] = nb;
-            let j = (0..4).find(|&j| self.tn[nb as usize][j] == c).unwrap();
-            self.tn[nb as usize][j] = nt;
-            if !vs.contains(&INFINITE) {
-                self.nfinite += 1;
-            }
-            for (j, &w) in vs.iter().enumerate() {
-                if j != i {
-                    let (a, b) = other_two(i, j);
-                    let (x, y) = (vs[a].min(vs[b]), vs[a].max(vs[b]));
-                    let key = ((x as u64) << 32) | y as u64;
-                    if let Some((ot, oj)) = self.edges.remove(&key) {
-                        self.tn[nt as usize][j] = ot;
-                        self.tn[ot as usize][oj as usize] = nt;
-                    } else {
-                        self.edges.insert(key, (nt, j as u8));
-                    }
-                }
-                if w != INFINITE {
-                    self.vtet[w as usize] = nt;
-                }
-            }
-        }
-        debug_assert!(self.edges.is_empty());
-        for &c in &cavity {
-            if !self.tv[c as usize].contains(&INFINITE) {
-                self.nfinite -= 1;
-            }
-            self.tv[c as usize][0] = DEAD;
-            self.free.push(c);
-        }
-        self.hint = last;
-        self.stack = stack;
-        self.cavity = cavity;
-        self.boundary = boundary;
         v
     }
 
@@ -470,39 +229,43 @@ impl Delaunay {
         &self.dups
     }
 
-    /// Inserts a point; returns its new id, or the id of the existing vertex at exactly that position.
-    /// Panics on non-finite coordinates.
+    /// Inserts a point; returns its new id, or the id of the existing vertex at exactly that position
+    /// (the new id is then recorded in [`Delaunay::duplicates`]). Panics on non-finite coordinates.
     pub fn insert(&mut self, p: [f64; 3]) -> VertexId {
         assert!(
             p.iter().all(|c| c.is_finite()),
             "Delaunay::insert: non-finite coordinate"
         );
-        let v = self.pts.len() as u32;
+        let e = self.int.len() as u32;
+        let k = self.pts.len() as u32;
         self.pts.push(norm(p));
+        self.ext.push(e);
         self.vtet.push(NONE);
-        if self.dim < 3 {
-            let before = self.dups.len();
-            self.add_pending(v);
-            if self.dups.len() > before && self.dups[before].0 == v {
-                return self.dups[before].1;
-            }
-            return v;
+        self.int.push(k);
+        let w = if self.dim < 3 {
+            self.add_pending(k)
+        } else {
+            self.insert_vertex(k)
+        };
+        if w != k {
+            self.pts.pop();
+            self.ext.pop();
+            self.vtet.pop();
+            self.int[e as usize] = w;
+            let kept = self.ext[w as usize];
+            self.dups.push((e, kept));
+            return kept;
         }
-        self.insert_vertex(v)
+        e
     }
 
     /// Number of vertex ids handed out (including merged duplicates).
     pub fn num_vertices(&self) -> usize {
-        self.pts.len()
+        self.int.len()
     }
 
     pub fn point(&self, v: VertexId) -> [f64; 3] {
-        self.pts[v as usize]
-    }
-
-    /// All points by id (merged duplicates included).
-    pub fn points(&self) -> &[[f64; 3]] {
-        &self.pts
+        self.pts[self.int[v as usize] as usize]
     }
 
     /// Affine dimension of the points: -1 (none), 0, 1, 2 (no tetrahedra) or 3.
@@ -512,15 +275,15 @@ impl Delaunay {
 
     /// Finite, alive tetrahedra.
     pub fn tets(&self) -> impl Iterator<Item = TetId> + '_ {
-        (0..self.tv.len() as u32).filter(move |&t| {
-            let v = &self.tv[t as usize];
-            v[0] != DEAD && !v.contains(&INFINITE)
+        (0..self.tds.tets.len() as u32).filter(move |&t| {
+            let tt = &self.tds.tets[t as usize];
+            !tt.is_dead() && !tt.is_infinite()
         })
     }
 
     /// All alive tetrahedra, infinite ones included.
     pub fn all_tets(&self) -> impl Iterator<Item = TetId> + '_ {
-        (0..self.tv.len() as u32).filter(move |&t| self.tv[t as usize][0] != DEAD)
+        (0..self.tds.tets.len() as u32).filter(move |&t| !self.tds.tets[t as usize].is_dead())
     }
 
     pub fn num_finite_tets(&self) -> usize {
@@ -529,39 +292,48 @@ impl Delaunay {
 
     /// Vertices of `t`; finite tetrahedra have positive volume (see the module doc). Infinite ones
     /// contain [`INFINITE`] and are positive when ∞ is replaced by a point beyond their hull facet.
+    #[inline]
     pub fn tet_vertices(&self, t: TetId) -> [VertexId; 4] {
-        self.tv[t as usize]
+        self.tds.tets[t as usize].v.map(|w| self.external(w))
+    }
+
+    #[inline]
+    fn external(&self, w: u32) -> u32 {
+        if w == INFINITE {
+            INFINITE
+        } else {
+            self.ext[w as usize]
+        }
     }
 
     /// Neighbour i is opposite vertex i (may be infinite).
+    #[inline]
     pub fn tet_neighbors(&self, t: TetId) -> [TetId; 4] {
-        self.tn[t as usize]
+        self.tds.tets[t as usize].n
     }
 
+    #[inline]
     pub fn is_infinite(&self, t: TetId) -> bool {
-        self.tv[t as usize].contains(&INFINITE)
+        self.tds.tets[t as usize].is_infinite()
     }
 
     /// Finite tetrahedra incident to `v` (a merged duplicate answers for its kept vertex).
-    #[allow(clippy::needless_range_loop)]
     pub fn vertex_tets(&self, v: VertexId) -> Vec<TetId> {
-        let v = self.canonical(v);
-        let t0 = match self.vtet.get(v as usize) {
-            Some(&t) if t != NONE => t,
-            _ => return Vec::new(),
+        let Some(&w) = self.int.get(v as usize) else {
+            return Vec::new();
         };
+        let t0 = self.vtet[w as usize];
+        if t0 == NONE {
+            return Vec::new();
+        }
         let mut seen = vec![t0];
         let mut k = 0;
         while k < seen.len() {
-            let t = seen[k];
+            let tt = &self.tds.tets[seen[k] as usize];
             k += 1;
-            let vs = self.tv[t as usize];
             for i in 0..4 {
-                if vs[i] != v {
-                    let n = self.tn[t as usize][i];
-                    if !seen.contains(&n) {
-                        seen.push(n);
-                    }
+                if tt.v[i] != w && !seen.contains(&tt.n[i]) {
+                    seen.push(tt.n[i]);
                 }
             }
         }
@@ -571,21 +343,27 @@ impl Delaunay {
 
     /// The vertex kept for `v` (itself unless `v` was merged into another vertex).
     pub fn canonical(&self, v: VertexId) -> VertexId {
-        self.dups
-            .iter()
-            .find(|d| d.0 == v)
-            .map(|d| d.1)
-            .unwrap_or(v)
+        self.ext[self.int[v as usize] as usize]
     }
 
     /// Locates `p` (see [`Location`]).
     pub fn locate(&self, p: [f64; 3]) -> Location {
-        let mut me = self.clone_walker();
-        me.locate_internal(norm(p))
-    }
-
-    fn clone_walker(&self) -> Walker<'_> {
-        Walker { dt: self }
+        if self.dim < 3 {
+            return Location::NoTets;
+        }
+        let q = norm(p);
+        let mut rng = 0x1234_5678;
+        let t = insert::walk(&self.tds.tets, &self.pts, q, self.hint, &mut rng);
+        let tt = &self.tds.tets[t as usize];
+        if tt.is_infinite() {
+            return Location::Outside(t);
+        }
+        for w in tt.v {
+            if self.pts[w as usize] == q {
+                return Location::Vertex(self.ext[w as usize]);
+            }
+        }
+        Location::InTet(t)
     }
 
     /// Each triangle of the triangulation once, as (tet, i): the facet of finite tetrahedron `tet`
@@ -593,7 +371,7 @@ impl Delaunay {
     pub fn facets(&self) -> impl Iterator<Item = (TetId, u8)> + '_ {
         self.tets().flat_map(move |t| {
             (0..4u8).filter_map(move |i| {
-                let n = self.tn[t as usize][i as usize];
+                let n = self.tds.tets[t as usize].n[i as usize];
                 (self.is_infinite(n) || t < n).then_some((t, i))
             })
         })
@@ -602,7 +380,7 @@ impl Delaunay {
     /// The three vertices (a,b,c) of facet (t, i), counter-clockwise seen from vertex i, i.e.
     /// `pred::orient(a,b,c,v_i) > 0` (the normal (b-a)×(c-a) points into `t`).
     pub fn facet_vertices(&self, t: TetId, i: u8) -> [VertexId; 3] {
-        let v = self.tv[t as usize];
+        let v = self.tet_vertices(t);
         const F: [[usize; 3]; 4] = [[1, 3, 2], [0, 2, 3], [0, 3, 1], [0, 1, 2]];
         let f = F[i as usize];
         [v[f[0]], v[f[1]], v[f[2]]]
@@ -613,7 +391,7 @@ impl Delaunay {
         let mut e: Vec<[VertexId; 2]> = self
             .tets()
             .flat_map(|t| {
-                let v = self.tv[t as usize];
+                let v = self.tet_vertices(t);
                 [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
                     .map(|(a, b)| [v[a].min(v[b]), v[a].max(v[b])])
             })
@@ -623,15 +401,17 @@ impl Delaunay {
         e
     }
 
-    /// Finite tetrahedra as a mesh over all vertex ids (merged duplicates stay as unused vertices).
+    /// Finite tetrahedra as a mesh over all external vertex ids (merged duplicates stay as unused
+    /// vertices), positively oriented as [`Delaunay::tet_vertices`].
     pub fn to_tet_mesh(&self) -> crate::mesh::TetMesh {
         crate::mesh::TetMesh {
-            vertices: self.pts.clone(),
-            tets: self.tets().map(|t| self.tv[t as usize]).collect(),
+            vertices: (0..self.int.len() as u32).map(|v| self.point(v)).collect(),
+            tets: self.tets().map(|t| self.tet_vertices(t)).collect(),
         }
     }
 
-    /// Checks every invariant; see `validate.rs`.
+    /// Checks every invariant exactly (see `validate.rs`): adjacency symmetry, positive orientation,
+    /// local Delaunay property of every facet (exact and perturbed), hull convexity, vertex coverage.
     pub fn is_valid(&self) -> Result<(), String> {
         validate::check(self)
     }
@@ -639,64 +419,33 @@ impl Delaunay {
     /// Bytes held by the kernel's arrays (capacity).
     pub fn memory_bytes(&self) -> usize {
         self.pts.capacity() * 24
-            + (self.tv.capacity() + self.tn.capacity()) * 16
-            + self.mark.capacity() * 4
-            + self.vtet.capacity() * 4
-            + self.free.capacity() * 4
+            + (self.ext.capacity() + self.int.capacity() + self.vtet.capacity()) * 4
+            + self.tds.bytes()
     }
 }
 
-/// Read-only locate: the walk needs a random source, so it runs on a throw-away state.
-struct Walker<'a> {
-    dt: &'a Delaunay,
+/// A multiplicative hasher for coordinate bit patterns (SipHash is needlessly slow here, and
+/// inputs are not adversarial).
+#[derive(Clone, Copy, Default)]
+struct FastHash;
+impl std::hash::BuildHasher for FastHash {
+    type Hasher = FastHasher;
+    fn build_hasher(&self) -> FastHasher {
+        FastHasher(0)
+    }
 }
-
-impl Walker<'_> {
-    fn locate_internal(&mut self, q: P) -> Location {
-        let dt = self.dt;
-        if dt.dim < 3 {
-            return Location::NoTets;
+struct FastHasher(u64);
+impl std::hash::Hasher for FastHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
         }
-        let mut t = if dt.tv[dt.hint as usize][0] != DEAD {
-            dt.hint
-        } else {
-            dt.all_tets().next().unwrap()
-        };
-        if let Some(k) = dt.inf_index(t) {
-            t = dt.tn[t as usize][k];
-        }
-        let mut rng: u32 = 0x1234_5678;
-        let mut prev = NONE;
-        'outer: loop {
-            rng ^= rng << 13;
-            rng ^= rng >> 17;
-            rng ^= rng << 5;
-            let pts = dt.tet_points(t);
-            for k in 0..4 {
-                let i = (rng as usize + k) & 3;
-                let n = dt.tn[t as usize][i];
-                if n == prev {
-                    continue;
-                }
-                let mut s = pts;
-                s[i] = q;
-                if pred::orient(s[0], s[1], s[2], s[3]) < 0.0 {
-                    prev = t;
-                    t = n;
-                    if dt.is_infinite(t) {
-                        return Location::Outside(t);
-                    }
-                    continue 'outer;
-                }
-            }
-            break;
-        }
-        for &w in &dt.tv[t as usize] {
-            if dt.pts[w as usize] == q {
-                return Location::Vertex(w);
-            }
-        }
-        Location::InTet(t)
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(23) ^ x).wrapping_mul(0x9E37_79B9_7F4A_7C15);
     }
 }
 
@@ -706,31 +455,9 @@ fn norm(p: P) -> P {
     [p[0] + 0.0, p[1] + 0.0, p[2] + 0.0]
 }
 
-/// The two positions of 0..4 other than i and j.
 #[inline]
-fn other_two(i: usize, j: usize) -> (usize, usize) {
-    let mut r = [0usize; 2];
-    let mut k = 0;
-    for m in 0..4 {
-        if m != i && m != j {
-            r[k] = m;
-            k += 1;
-        }
-    }
-    (r[0], r[1])
-}
-
-fn facet_key(v: [u32; 4], i: usize) -> [u32; 3] {
-    let mut f = [0u32; 3];
-    let mut k = 0;
-    for (m, &w) in v.iter().enumerate() {
-        if m != i {
-            f[k] = w;
-            k += 1;
-        }
-    }
-    f.sort_unstable();
-    f
+fn key(p: P) -> [u64; 3] {
+    [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]
 }
 
 #[cfg(test)]
@@ -882,6 +609,11 @@ mod timing {
             ("uniform", super::gen::uniform(n, 1)),
             ("planes40", super::gen::on_planes(n, 40, 1)),
         ] {
+            if let Ok(dir) = std::env::var("S2S_WRITE_DIR") {
+                let path = std::path::Path::new(&dir).join(format!("{name}_{n}.xyz"));
+                super::xyz::write_xyz(&path, &pts).unwrap();
+                continue;
+            }
             let t = std::time::Instant::now();
             let dt = super::Delaunay::new(&pts);
             eprintln!(

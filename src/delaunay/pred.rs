@@ -10,16 +10,91 @@ use crate::geom::predicates as gp;
 
 pub type P = [f64; 3];
 
-/// > 0 when (a,b,c,d) has positive volume, < 0 negative, 0 coplanar. Exact.
+/// > 0 when (a,b,c,d) has positive volume, < 0 negative, 0 coplanar. Exact sign (the magnitude
+/// approximates 6 × volume).
 #[inline]
 pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
+    let (det, bound) = orient3d_filter(a, b, c, d);
+    if det > bound || -det > bound {
+        return -det;
+    }
     -gp::orient3d(a, b, c, d)
 }
 
-/// > 0 when e is strictly inside the circumsphere of the positive tetrahedron (a,b,c,d). Exact.
+/// > 0 when e is strictly inside the circumsphere of the positive tetrahedron (a,b,c,d). Exact sign.
 #[inline]
 pub fn insphere(a: P, b: P, c: P, d: P, e: P) -> f64 {
+    let (det, bound) = insphere_filter(a, b, c, d, e);
+    if det > bound || -det > bound {
+        return -det;
+    }
     -gp::insphere(a, b, c, d, e)
+}
+
+// Semi-static filters. They evaluate Shewchuk's determinants (same expressions as his orient3d and
+// insphere, hence the same signs as `robust`) and bound the rounding error from the largest
+// coordinate differences instead of the permanent: Shewchuk's bounds are (7+56ε)ε·permanent and
+// (16+224ε)ε·permanent, and the permanents are at most 6·mx·my·mz and 72·M²·mx·my·mz (mx = largest
+// |x difference|, M = max(mx,my,mz)). Outside a safe exponent range the bound is +∞, so the caller
+// falls back to the adaptive exact predicate. A bound of +∞ is also returned for NaN.
+const EPS: f64 = f64::EPSILON / 2.0;
+const O3D_BOUND: f64 = (7.0 + 56.0 * EPS) * EPS * 6.0 * 1.001;
+const ISP_BOUND: f64 = (16.0 + 224.0 * EPS) * EPS * 72.0 * 1.001;
+
+#[inline(always)]
+fn in_safe_range(lo: f64, hi: f64) -> bool {
+    lo > 1e-55 && hi < 1e55
+}
+
+#[inline(always)]
+fn orient3d_filter(a: P, b: P, c: P, d: P) -> (f64, f64) {
+    let (adx, ady, adz) = (a[0] - d[0], a[1] - d[1], a[2] - d[2]);
+    let (bdx, bdy, bdz) = (b[0] - d[0], b[1] - d[1], b[2] - d[2]);
+    let (cdx, cdy, cdz) = (c[0] - d[0], c[1] - d[1], c[2] - d[2]);
+    let det = adz * (bdx * cdy - cdx * bdy)
+        + bdz * (cdx * ady - adx * cdy)
+        + cdz * (adx * bdy - bdx * ady);
+    let mx = adx.abs().max(bdx.abs()).max(cdx.abs());
+    let my = ady.abs().max(bdy.abs()).max(cdy.abs());
+    let mz = adz.abs().max(bdz.abs()).max(cdz.abs());
+    let lo = mx.min(my).min(mz);
+    let hi = mx.max(my).max(mz);
+    if !in_safe_range(lo, hi) {
+        return (det, f64::INFINITY);
+    }
+    (det, O3D_BOUND * mx * my * mz)
+}
+
+#[inline(always)]
+fn insphere_filter(a: P, b: P, c: P, d: P, e: P) -> (f64, f64) {
+    let (aex, aey, aez) = (a[0] - e[0], a[1] - e[1], a[2] - e[2]);
+    let (bex, bey, bez) = (b[0] - e[0], b[1] - e[1], b[2] - e[2]);
+    let (cex, cey, cez) = (c[0] - e[0], c[1] - e[1], c[2] - e[2]);
+    let (dex, dey, dez) = (d[0] - e[0], d[1] - e[1], d[2] - e[2]);
+    let ab = aex * bey - bex * aey;
+    let bc = bex * cey - cex * bey;
+    let cd = cex * dey - dex * cey;
+    let da = dex * aey - aex * dey;
+    let ac = aex * cey - cex * aey;
+    let bd = bex * dey - dex * bey;
+    let abc = aez * bc - bez * ac + cez * ab;
+    let bcd = bez * cd - cez * bd + dez * bc;
+    let cda = cez * da + dez * ac + aez * cd;
+    let dab = dez * ab + aez * bd + bez * da;
+    let alift = aex * aex + aey * aey + aez * aez;
+    let blift = bex * bex + bey * bey + bez * bez;
+    let clift = cex * cex + cey * cey + cez * cez;
+    let dlift = dex * dex + dey * dey + dez * dez;
+    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    let mx = aex.abs().max(bex.abs()).max(cex.abs()).max(dex.abs());
+    let my = aey.abs().max(bey.abs()).max(cey.abs()).max(dey.abs());
+    let mz = aez.abs().max(bez.abs()).max(cez.abs()).max(dez.abs());
+    let lo = mx.min(my).min(mz);
+    let hi = mx.max(my).max(mz);
+    if !in_safe_range(lo, hi) {
+        return (det, f64::INFINITY);
+    }
+    (det, ISP_BOUND * hi * hi * mx * my * mz)
 }
 
 /// Lexicographic order on coordinates (the perturbation order).
@@ -138,6 +213,46 @@ fn coplanar_conflict(t: [P; 4], k: usize, d: P, q: P) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
+
+    #[test]
+    fn filters_agree_with_exact_predicates() {
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+        let mut decided = 0;
+        for k in 0..20000 {
+            // mix of random and nearly degenerate inputs (points on a plane / sphere, rounded)
+            let mut p: [P; 5] = [[0.0; 3]; 5];
+            for q in p.iter_mut() {
+                *q = [r.gen(), r.gen(), r.gen()];
+            }
+            if k % 3 == 1 {
+                for q in p.iter_mut() {
+                    q[2] = 0.3 * q[0] + 0.7 * q[1];
+                }
+            }
+            if k % 3 == 2 {
+                for q in p.iter_mut() {
+                    let (t, u): (f64, f64) = (r.gen::<f64>() * 6.3, r.gen::<f64>() * 3.1);
+                    *q = [u.sin() * t.cos(), u.sin() * t.sin(), u.cos()];
+                }
+            }
+            let o = orient(p[0], p[1], p[2], p[3]);
+            let ro = -gp::orient3d(p[0], p[1], p[2], p[3]);
+            assert_eq!(o.partial_cmp(&0.0), ro.partial_cmp(&0.0));
+            let s = insphere(p[0], p[1], p[2], p[3], p[4]);
+            let rs = -gp::insphere(p[0], p[1], p[2], p[3], p[4]);
+            assert_eq!(s.partial_cmp(&0.0), rs.partial_cmp(&0.0));
+            let (det, bound) = insphere_filter(p[0], p[1], p[2], p[3], p[4]);
+            if det.abs() > bound {
+                decided += 1;
+                assert_eq!((-det).partial_cmp(&0.0), rs.partial_cmp(&0.0));
+            }
+        }
+        assert!(
+            decided > 6000,
+            "the filter decides the random cases: {decided}"
+        );
+    }
     #[test]
     fn signs() {
         let a = [0.0, 0.0, 0.0];

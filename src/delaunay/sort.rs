@@ -70,19 +70,20 @@ pub fn hilbert_keys(pts: &[[f64; 3]]) -> Vec<u64> {
         .collect()
 }
 
-/// BRIO order of all point indices: a random permutation cut into rounds of doubling size (the last
-/// round holds about half the points), each round sorted along the Hilbert curve. Deterministic.
+/// BRIO order of all point indices: a random permutation cut into rounds growing by a factor 8 (the
+/// last round holds 7/8 of the points, as CGAL's multiscale sort does), each round sorted along the
+/// Hilbert curve. Deterministic.
 pub fn brio_order(pts: &[[f64; 3]]) -> Vec<u32> {
     let n = pts.len();
     let keys = hilbert_keys(pts);
     let mut idx: Vec<u32> = (0..n as u32).collect();
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x5EED);
     idx.shuffle(&mut rng);
-    // round boundaries from the end: n/2, n/4, ... until a first round of at most 1000 points
+    // round boundaries from the end: n/8, n/64, ... until a first round of at most 1000 points
     let mut cuts = vec![n];
     let mut m = n;
     while m > 1000 {
-        m /= 2;
+        m /= 8;
         cuts.push(m);
     }
     cuts.push(0);

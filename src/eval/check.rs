@@ -45,9 +45,10 @@ pub struct CheckReport {
     /// Triangles whose three points are collinear, or that repeat a vertex index.
     pub degenerate_triangles: usize,
     pub component_details: Vec<ComponentReport>,
-    /// Per input plane (only with sections): the mesh's section against the input section.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub sections: Option<Vec<SectionAgreement>>,
+    /// Per input plane (only with sections; empty and absent from the JSON without): the mesh's
+    /// section against the input section.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sections: Vec<SectionAgreement>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub worst_section: Option<WorstSection>,
 }
@@ -74,9 +75,10 @@ pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
     let topo = analyze(mesh);
     let si = self_intersections(mesh);
     let genus = topo.components.iter().filter_map(|c| c.genus).sum();
-    let agreements = sections.map(|s| section_agreement(mesh, s));
-    let worst_section = agreements.as_ref().and_then(|a| {
-        a.iter()
+    let agreements = sections.map_or_else(Vec::new, |s| section_agreement(mesh, s));
+    let worst_section = {
+        agreements
+            .iter()
             .max_by(|x, y| x.relative.total_cmp(&y.relative))
             .map(|w| WorstSection {
                 plane: w.plane,
@@ -84,7 +86,7 @@ pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
                 relative: w.relative,
                 sym_diff: w.sym_diff,
             })
-    });
+    };
     CheckReport {
         vertices: mesh.vertices.len(),
         triangles: mesh.triangles.len(),

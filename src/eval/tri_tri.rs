@@ -228,4 +228,45 @@ mod tests {
         // same triangle twice
         assert!(mesh_triangles_intersect([0, 1, 2], [1, 2, 0], &v));
     }
+
+    use proptest::prelude::*;
+
+    fn tri() -> impl Strategy<Value = [P3; 3]> {
+        // small integer grid: many coplanar, collinear and touching configurations
+        proptest::array::uniform3(proptest::array::uniform3((-2i32..=2).prop_map(f64::from)))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+        /// The answer does not depend on the order of the triangles or of their vertices.
+        #[test]
+        fn symmetric_and_permutation_invariant(a in tri(), b in tri()) {
+            prop_assume!(!is_degenerate(a[0], a[1], a[2]) && !is_degenerate(b[0], b[1], b[2]));
+            let r = triangles_intersect(a, b);
+            prop_assert_eq!(r, triangles_intersect(b, a));
+            prop_assert_eq!(r, triangles_intersect([a[1], a[2], a[0]], b));
+            prop_assert_eq!(r, triangles_intersect([a[0], a[2], a[1]], [b[2], b[1], b[0]]));
+            // a shared corner point: the closed triangles always meet there
+            let c = [a[0], b[1], b[2]];
+            if !is_degenerate(c[0], c[1], c[2]) {
+                prop_assert!(triangles_intersect(a, c));
+            }
+        }
+
+        /// Index-sharing pairs: consistent with the closed test on the parts beyond the shared vertex.
+        #[test]
+        fn shared_vertex_consistent(a in tri(), b in tri()) {
+            let v = vec![a[0], a[1], a[2], b[1], b[2]];
+            let (ta, tb) = ([0u32, 1, 2], [0u32, 3, 4]);
+            prop_assume!(!is_degenerate(v[0], v[1], v[2]) && !is_degenerate(v[0], v[3], v[4]));
+            prop_assume!(v[3] != v[1] && v[3] != v[2] && v[4] != v[1] && v[4] != v[2]);
+            let r = mesh_triangles_intersect(ta, tb, &v);
+            prop_assert_eq!(r, mesh_triangles_intersect(tb, ta, &v));
+            prop_assert_eq!(r, mesh_triangles_intersect([1, 2, 0], [4, 0, 3], &v));
+            // beyond the shared vertex implies intersecting as closed triangles
+            if r {
+                prop_assert!(triangles_intersect([v[0], v[1], v[2]], [v[0], v[3], v[4]]));
+            }
+        }
+    }
 }

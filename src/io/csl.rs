@@ -374,7 +374,7 @@ pub fn parse_csl(text: &str, file_name: &str) -> Result<Sections> {
         let mut points2 = Vec::with_capacity(rp.vertices.len());
         for (i, v) in rp.vertices.iter().enumerate() {
             let off = rp.plane.signed_distance(*v).abs();
-            if !(off <= tol) {
+            if off > tol {
                 return Err(err(
                     rp.vertex_lines[i],
                     Some(rp.index),

@@ -288,7 +288,7 @@ pub fn parse_json(text: &str, file_name: &str) -> Result<Sections> {
             for (k, p) in c.points.iter().enumerate() {
                 if c.is_3d {
                     let off = plane.signed_distance(*p).abs();
-                    if !(off <= tol) {
+                    if off > tol {
                         return Err(err(
                             &format!("{}.points[{k}]", c.path),
                             format!(

@@ -1,0 +1,200 @@
+//! Assembly of the `Arrangement`: box, duplicate check, cells, shared faces, pool, pieces.
+use super::cells::CellBuilder;
+use super::exact::same_plane;
+use super::fxhash::FxHashMap as HashMap;
+use super::{
+    ArrPlane, Arrangement, ArrangementOptions, Cell, CellFace, Face, PlaneTags, VertexPool,
+};
+use crate::error::{Error, Result};
+use crate::sections::{Plane, Sections};
+use smallvec::SmallVec;
+
+fn eq_of(p: &Plane) -> [f64; 4] {
+    [p.normal[0], p.normal[1], p.normal[2], p.offset]
+}
+
+pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result<Arrangement> {
+    let n_input = sections.sections.len();
+    let (lo, hi) = sections.bounding_box().ok_or_else(|| {
+        Error::input(
+            "sections",
+            "no contour vertex: cannot bound the arrangement",
+        )
+    })?;
+    let diag = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt();
+    if !diag.is_finite() {
+        return Err(Error::input("sections", "non-finite bounding box"));
+    }
+    let input_eq: Vec<[f64; 4]> = sections.sections.iter().map(|s| eq_of(&s.plane)).collect();
+    for (i, e) in input_eq.iter().enumerate() {
+        if e.iter().any(|x| !x.is_finite()) {
+            return Err(Error::input(
+                format!("plane {}", sections.sections[i].source_index),
+                "non-finite plane equation",
+            ));
+        }
+    }
+    // Duplicate input planes are rejected (they would make a face with two sections).
+    for i in 0..n_input {
+        for j in i + 1..n_input {
+            if same_plane(input_eq[i], input_eq[j]) {
+                return Err(Error::input(
+                    format!(
+                        "planes {} and {}",
+                        sections.sections[i].source_index, sections.sections[j].source_index
+                    ),
+                    "duplicate planes (the same plane up to scale)",
+                ));
+            }
+        }
+    }
+    // Box: padded by margin·diag (at least a tiny absolute pad for a degenerate bbox); grown until
+    // no input plane coincides with a wall (only possible for planes with an empty section).
+    let mut pad = (options.margin.max(0.0) * diag)
+        .max(1e-9 * (1.0 + diag))
+        .max(f64::MIN_POSITIVE);
+    let (blo, bhi, walls) = loop {
+        let blo = [lo[0] - pad, lo[1] - pad, lo[2] - pad];
+        let bhi = [hi[0] + pad, hi[1] + pad, hi[2] + pad];
+        let mut walls = Vec::with_capacity(6);
+        for k in 0..3 {
+            let mut n = [0.0; 3];
+            n[k] = -1.0;
+            walls.push(Plane::from_equation(n, blo[k]).expect("axis plane"));
+            n[k] = 1.0;
+            walls.push(Plane::from_equation(n, -bhi[k]).expect("axis plane"));
+        }
+        let clash = walls
+            .iter()
+            .any(|w| input_eq.iter().any(|e| same_plane(*e, eq_of(w))));
+        if !clash {
+            break (blo, bhi, walls);
+        }
+        pad *= 1.5;
+    };
+    let mut planes: Vec<ArrPlane> = sections
+        .sections
+        .iter()
+        .enumerate()
+        .map(|(i, s)| ArrPlane {
+            plane: s.plane,
+            section: Some(i),
+        })
+        .collect();
+    for w in &walls {
+        planes.push(ArrPlane {
+            plane: *w,
+            section: None,
+        });
+    }
+    let eq: Vec<[f64; 4]> = planes.iter().map(|p| eq_of(&p.plane)).collect();
+    let wall_ids: [u32; 6] = std::array::from_fn(|k| (n_input + k) as u32);
+    let mut builder = CellBuilder::new_box(eq, wall_ids);
+    for h in 0..n_input as u32 {
+        builder
+            .cut(h)
+            .map_err(|e| Error::Geometry(format!("arrangement: {e}")))?;
+    }
+
+    // Shared faces: identical (plane, vertex set) from both sides.
+    let mut faces: Vec<Face> = Vec::new();
+    let mut face_index: HashMap<(u32, Vec<u32>), u32> = HashMap::default();
+    let mut cells: Vec<Cell> = Vec::with_capacity(builder.cells.len());
+    let mut cell_sign: Vec<Vec<i8>> = Vec::with_capacity(builder.cells.len());
+    for (c, bc) in builder.cells.iter().enumerate() {
+        let c = c as u32;
+        let mut cfaces = Vec::with_capacity(bc.faces.len());
+        let mut volume = 0.0;
+        let origin = builder.pos[bc.faces[0].poly[0] as usize];
+        for bf in &bc.faces {
+            let p: Vec<[f64; 3]> = bf
+                .poly
+                .iter()
+                .map(|&v| {
+                    let x = builder.pos[v as usize];
+                    [x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]]
+                })
+                .collect();
+            for i in 1..p.len() - 1 {
+                volume += det3(p[0], p[i], p[i + 1]) / 6.0;
+            }
+            let mut key_v = bf.poly.clone();
+            key_v.sort_unstable();
+            let key = (bf.plane, key_v);
+            // The cell is on the negative side of the plane: its outward normal is the plane normal.
+            let outward_is_plane_normal = bc.sign[bf.plane as usize] < 0;
+            let fid = match face_index.get(&key) {
+                Some(&f) => f,
+                None => {
+                    let polygon = if outward_is_plane_normal {
+                        bf.poly.clone()
+                    } else {
+                        bf.poly.iter().rev().copied().collect()
+                    };
+                    faces.push(Face {
+                        plane: bf.plane,
+                        positive_cell: None,
+                        negative_cell: None,
+                        polygon,
+                        pieces: Vec::new(),
+                    });
+                    face_index.insert(key, (faces.len() - 1) as u32);
+                    (faces.len() - 1) as u32
+                }
+            };
+            let f = &mut faces[fid as usize];
+            let slot = if outward_is_plane_normal {
+                &mut f.negative_cell
+            } else {
+                &mut f.positive_cell
+            };
+            if slot.is_some() {
+                return Err(Error::Geometry(format!(
+                    "arrangement: face {fid} has two cells on the same side"
+                )));
+            }
+            *slot = Some(c);
+            cfaces.push(CellFace {
+                face: fid,
+                outward_is_plane_normal,
+            });
+        }
+        cells.push(Cell {
+            faces: cfaces,
+            volume,
+        });
+        cell_sign.push(bc.sign.clone());
+    }
+
+    // Pool: the arrangement vertices first (ids = builder vertex ids).
+    let mut pool = VertexPool::default();
+    for v in 0..builder.pos.len() {
+        let pos = builder.pos[v];
+        let tags: PlaneTags = builder.tags[v].clone();
+        let uv: SmallVec<[[f64; 2]; 3]> = tags
+            .iter()
+            .map(|&t| planes[t as usize].plane.to_2d(pos))
+            .collect();
+        pool.positions.push(pos);
+        pool.tags.push(tags);
+        pool.uv.push(uv);
+    }
+
+    let mut arr = Arrangement {
+        planes,
+        n_input,
+        pool,
+        faces,
+        cells,
+        bbox: (blo, bhi),
+        max_disagreement: 0.0,
+        warnings: Vec::new(),
+    };
+    super::pieces::build_pieces(&mut arr, sections, &cell_sign, diag, options)?;
+    Ok(arr)
+}
+
+fn det3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+        + a[2] * (b[0] * c[1] - b[1] * c[0])
+}

@@ -1,0 +1,795 @@
+//! Face sections: every region of an input plane split by the other planes into one piece per face.
+//!
+//! Decisions are exact and made in one model: the side of a contour vertex with respect to a plane
+//! `P_j` is the exact sign of `n_j·p + d_j` at its 3D point `points3` (a fixed function of the vertex,
+//! so every vertex is on exactly one side, or on `P_j`). A contour edge whose endpoints are strictly
+//! on opposite sides crosses `P_j` at one new pool vertex tagged {i, j}; the order of several crossings
+//! along one edge is exact too (sign of a degree-2 polynomial in the plane values). A contour vertex or
+//! crossing that lies on two other planes is the arrangement vertex of that triple (same pool id).
+//!
+//! Each stretch of contour between two points is assigned to the face whose sign vector it has (an
+//! edge lying on `P_j` goes to the face on its left, where the region is). Inside a face the pieces are
+//! traced: contour runs, joined along the face boundary (counter-clockwise, through corners and every
+//! section point on the boundary) from where a run leaves the face to where the next one enters.
+use super::exact::{dot_plus, sign_dot_plus};
+use super::fxhash::FxHashMap as HashMap;
+use super::{polygon_area, Arrangement, ArrangementOptions, PlaneTags, SectionPiece, VertexId};
+use crate::error::Result;
+use crate::sections::{Contour, Region, Sections};
+use smallvec::SmallVec;
+use std::cmp::Ordering;
+
+struct Pt {
+    id: VertexId,
+    sv: Vec<i8>,
+}
+
+#[derive(Default)]
+struct FaceWork {
+    runs: Vec<Vec<VertexId>>,
+    closed: Vec<Vec<VertexId>>,
+    bpoints: Vec<VertexId>,
+}
+
+pub(super) struct Ctx<'a> {
+    pub arr: &'a mut Arrangement,
+    triples: HashMap<[u32; 3], VertexId>,
+    pub warnings: Vec<String>,
+    /// (section plane, pool id) of every section point that lies on another plane.
+    line_points: Vec<(u32, VertexId)>,
+}
+
+fn fsign(x: f64) -> i8 {
+    if x > 0.0 {
+        1
+    } else if x < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+impl<'a> Ctx<'a> {
+    fn add_pool(
+        &mut self,
+        pos: [f64; 3],
+        tags: PlaneTags,
+        plane: u32,
+        uv_here: [f64; 2],
+    ) -> VertexId {
+        let uv: SmallVec<[[f64; 2]; 3]> = tags
+            .iter()
+            .map(|&t| {
+                if t == plane {
+                    uv_here
+                } else {
+                    self.arr.planes[t as usize].plane.to_2d(pos)
+                }
+            })
+            .collect();
+        let p = &mut self.arr.pool;
+        p.positions.push(pos);
+        p.tags.push(tags);
+        p.uv.push(uv);
+        let id = (p.positions.len() - 1) as VertexId;
+        if p.tags[id as usize].len() > 1 {
+            self.line_points.push((plane, id));
+        }
+        id
+    }
+
+    /// The arrangement vertex through plane i and two of the planes in `zeros`, if any.
+    fn arrangement_vertex(&self, i: u32, zeros: &[u32]) -> Option<VertexId> {
+        for a in 0..zeros.len() {
+            for b in a + 1..zeros.len() {
+                let mut t = [i, zeros[a], zeros[b]];
+                // Only three planes meeting in a point identify a vertex (not three through a line).
+                let n = |p: u32| self.arr.planes[p as usize].plane.normal;
+                if super::exact::sign_det3(n(t[0]), n(t[1]), n(t[2])) == 0 {
+                    continue;
+                }
+                t.sort_unstable();
+                if let Some(&v) = self.triples.get(&t) {
+                    return Some(v);
+                }
+            }
+        }
+        None
+    }
+
+    fn uv(&self, v: VertexId, plane: u32) -> [f64; 2] {
+        self.arr.uv(v, plane).unwrap_or([f64::NAN, f64::NAN])
+    }
+}
+
+pub(super) fn build_pieces(
+    arr: &mut Arrangement,
+    sections: &Sections,
+    cell_sign: &[Vec<i8>],
+    diag: f64,
+    options: &ArrangementOptions,
+) -> Result<()> {
+    let n_arr = arr.pool.positions.len();
+    let mut triples = HashMap::default();
+    for (v, tags) in arr.pool.tags.iter().enumerate() {
+        let n = tags.len();
+        for a in 0..n {
+            for b in a + 1..n {
+                for c in b + 1..n {
+                    triples.insert([tags[a], tags[b], tags[c]], v as VertexId);
+                }
+            }
+        }
+    }
+    let mut ctx = Ctx {
+        arr,
+        triples,
+        warnings: Vec::new(),
+        line_points: Vec::new(),
+    };
+    let n_planes = ctx.arr.planes.len();
+    // Faces per plane, keyed by the sign vector of their positive cell with the own entry zeroed.
+    let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); n_planes];
+    let mut face_key: Vec<HashMap<Vec<i8>, u32>> = vec![HashMap::default(); n_planes];
+    for (f, face) in ctx.arr.faces.iter().enumerate() {
+        faces_of[face.plane as usize].push(f as u32);
+        if let Some(c) = face.positive_cell.or(face.negative_cell) {
+            let mut sv = cell_sign[c as usize].clone();
+            sv[face.plane as usize] = 0;
+            face_key[face.plane as usize].insert(sv, f as u32);
+        }
+    }
+    for (i, section) in sections.sections.iter().enumerate() {
+        if section.regions.is_empty() {
+            continue;
+        }
+        let eff = plane_effects(&ctx, i as u32, &face_key[i]);
+        for region in &section.regions {
+            process_region(&mut ctx, i as u32, region, &faces_of[i], &face_key[i], &eff);
+        }
+    }
+    let warnings = std::mem::take(&mut ctx.warnings);
+    let line_points = std::mem::take(&mut ctx.line_points);
+    arr.warnings.extend(warnings);
+    super::reconcile::reconcile(arr, &line_points, n_arr, diag, options);
+    Ok(())
+}
+
+/// How plane j splits plane i: not at all inside the box (constant side), or along a line shared by
+/// a class of planes, decided through one representative (`Rep(r, f)`: side = f · side of r).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Effect {
+    Own,
+    Const(i8),
+    Rep(u32, i8),
+}
+
+fn plane_effects(ctx: &Ctx, i: u32, face_key: &HashMap<Vec<i8>, u32>) -> Vec<Effect> {
+    let np = ctx.arr.planes.len();
+    let keys: Vec<&Vec<i8>> = face_key.keys().collect();
+    let eq: Vec<[f64; 4]> = ctx
+        .arr
+        .planes
+        .iter()
+        .map(|p| {
+            [
+                p.plane.normal[0],
+                p.plane.normal[1],
+                p.plane.normal[2],
+                p.plane.offset,
+            ]
+        })
+        .collect();
+    let mut eff = vec![Effect::Own; np];
+    let mut reps: Vec<u32> = Vec::new();
+    for j in 0..np {
+        if j as u32 == i {
+            continue;
+        }
+        let first = keys.first().map_or(-1, |k| k[j]);
+        if keys.iter().all(|k| k[j] == first) {
+            eff[j] = Effect::Const(first);
+            continue;
+        }
+        // Same line as an earlier representative: rank [P_i; P_r; P_j] = 2.
+        let mut found = None;
+        for &r in &reps {
+            if rank2(eq[i as usize], eq[r as usize], eq[j]) {
+                // The two planes' sides on P_i agree or are opposite on every face.
+                let k = keys.iter().find(|k| k[j] != 0 && k[r as usize] != 0);
+                let f = k.map_or(1, |k| k[j] * k[r as usize]);
+                found = Some(Effect::Rep(r, f));
+                break;
+            }
+        }
+        eff[j] = match found {
+            Some(e) => e,
+            None => {
+                reps.push(j as u32);
+                Effect::Rep(j as u32, 1)
+            }
+        };
+    }
+    eff
+}
+
+/// True when the three plane equations have rank 2 (three distinct planes through one line).
+fn rank2(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> bool {
+    const COLS: [[usize; 3]; 4] = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
+    COLS.iter().all(|cs| {
+        let r = |x: [f64; 4]| [x[cs[0]], x[cs[1]], x[cs[2]]];
+        super::exact::sign_det3(r(a), r(b), r(c)) == 0
+    })
+}
+
+fn process_region(
+    ctx: &mut Ctx,
+    i: u32,
+    region: &Region,
+    faces: &[u32],
+    face_key: &HashMap<Vec<i8>, u32>,
+    eff: &[Effect],
+) {
+    let mut work: HashMap<u32, FaceWork> = HashMap::default();
+    let contours: Vec<&Contour> = std::iter::once(&region.outer)
+        .chain(region.holes.iter())
+        .collect();
+    for c in &contours {
+        split_contour(ctx, i, c, face_key, eff, &mut work);
+    }
+    for &f in faces {
+        let w = work.remove(&f).unwrap_or_default();
+        let loops = trace_face(ctx, i, f, &w, region);
+        let pieces = assemble(ctx, i, loops, region.label);
+        ctx.arr.faces[f as usize].pieces.extend(pieces);
+    }
+}
+
+/// Sign of `t_j - t_k` where `t_m = v_m(p) / (v_m(p) - v_m(q))`, for two planes strictly crossed by pq.
+fn cmp_crossings(
+    eq_j: [f64; 4],
+    eq_k: [f64; 4],
+    p: [f64; 3],
+    q: [f64; 3],
+    sj: i8,
+    sk: i8,
+) -> Ordering {
+    // t_j - t_k = (vk_p vj_q - vj_p vk_q) / (D_j D_k), sign(D_m) = sign(v_m(p)).
+    let nj = [eq_j[0], eq_j[1], eq_j[2]];
+    let nk = [eq_k[0], eq_k[1], eq_k[2]];
+    let f = |n: [f64; 3], d: f64, x: [f64; 3]| {
+        let v = n[0] * x[0] + n[1] * x[1] + n[2] * x[2] + d;
+        let m = (n[0] * x[0]).abs() + (n[1] * x[1]).abs() + (n[2] * x[2]).abs() + d.abs();
+        (v, 8.0 * f64::EPSILON * m)
+    };
+    let (vjp, ejp) = f(nj, eq_j[3], p);
+    let (vjq, ejq) = f(nj, eq_j[3], q);
+    let (vkp, ekp) = f(nk, eq_k[3], p);
+    let (vkq, ekq) = f(nk, eq_k[3], q);
+    let a = vkp * vjq;
+    let b = vjp * vkq;
+    let diff = a - b;
+    let bound = ekp * (vjq.abs() + ejq)
+        + ejq * vkp.abs()
+        + ejp * (vkq.abs() + ekq)
+        + ekq * vjp.abs()
+        + 4.0 * f64::EPSILON * (a.abs() + b.abs());
+    let s = if diff.abs() > bound {
+        fsign(diff)
+    } else {
+        let vjp = dot_plus(nj, p, eq_j[3]);
+        let vjq = dot_plus(nj, q, eq_j[3]);
+        let vkp = dot_plus(nk, p, eq_k[3]);
+        let vkq = dot_plus(nk, q, eq_k[3]);
+        vkp.mul(&vjq).sub(&vjp.mul(&vkq)).sign()
+    };
+    match s * sj * sk {
+        1 => Ordering::Greater,
+        -1 => Ordering::Less,
+        _ => Ordering::Equal,
+    }
+}
+
+fn split_contour(
+    ctx: &mut Ctx,
+    i: u32,
+    c: &Contour,
+    face_key: &HashMap<Vec<i8>, u32>,
+    eff: &[Effect],
+    work: &mut HashMap<u32, FaceWork>,
+) {
+    let n = c.points2.len();
+    if n < 3 {
+        return;
+    }
+    let np = ctx.arr.planes.len();
+    let eq: Vec<[f64; 4]> = ctx
+        .arr
+        .planes
+        .iter()
+        .map(|p| {
+            [
+                p.plane.normal[0],
+                p.plane.normal[1],
+                p.plane.normal[2],
+                p.plane.offset,
+            ]
+        })
+        .collect();
+    let is_rep = |j: usize| eff[j] == Effect::Rep(j as u32, 1);
+    // Exact sides with respect to the representative planes; the others follow from them.
+    let expand = |r: &[i8]| -> Vec<i8> {
+        (0..np)
+            .map(|j| match eff[j] {
+                Effect::Own => 0,
+                Effect::Const(s) => s,
+                Effect::Rep(rep, f) => f * r[rep as usize],
+            })
+            .collect()
+    };
+    let rsv: Vec<Vec<i8>> = c
+        .points3
+        .iter()
+        .map(|&p| {
+            (0..np)
+                .map(|j| {
+                    if is_rep(j) {
+                        let e = eq[j];
+                        sign_dot_plus([e[0], e[1], e[2]], p, e[3])
+                    } else {
+                        0
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let sv: Vec<Vec<i8>> = rsv.iter().map(|r| expand(r)).collect();
+    let zeros_of = |s: &[i8]| -> Vec<u32> {
+        (0..np as u32)
+            .filter(|&j| j != i && s[j as usize] == 0)
+            .collect()
+    };
+    let mut pts: Vec<Pt> = Vec::with_capacity(n * 2);
+    // Pool ids of the contour vertices.
+    let mut vid = Vec::with_capacity(n);
+    for (k, svk) in sv.iter().enumerate() {
+        let z = zeros_of(svk);
+        let id = if z.len() >= 2 {
+            ctx.arrangement_vertex(i, &z)
+        } else {
+            None
+        };
+        let id = id.unwrap_or_else(|| {
+            let mut tags: PlaneTags = z.iter().copied().collect();
+            tags.push(i);
+            tags.sort_unstable();
+            ctx.add_pool(c.points3[k], tags, i, c.points2[k])
+        });
+        vid.push(id);
+    }
+    for k in 0..n {
+        let (a, b) = (k, (k + 1) % n);
+        pts.push(Pt {
+            id: vid[a],
+            sv: sv[a].clone(),
+        });
+        let (p3, q3) = (c.points3[a], c.points3[b]);
+        let mut cross: Vec<u32> = (0..np as u32)
+            .filter(|&j| rsv[a][j as usize] * rsv[b][j as usize] < 0)
+            .collect();
+        if cross.is_empty() {
+            continue;
+        }
+        let cmp = |x: u32, y: u32| {
+            cmp_crossings(
+                eq[x as usize],
+                eq[y as usize],
+                p3,
+                q3,
+                rsv[a][x as usize],
+                rsv[a][y as usize],
+            )
+        };
+        cross.sort_by(|&x, &y| cmp(x, y));
+        let mut g = 0;
+        while g < cross.len() {
+            let mut e = g + 1;
+            while e < cross.len() && cmp(cross[g], cross[e]) == Ordering::Equal {
+                e += 1;
+            }
+            let group = &cross[g..e];
+            let j0 = group[0];
+            let rs: Vec<i8> = (0..np as u32)
+                .map(|m| {
+                    let (sp, sq) = (rsv[a][m as usize], rsv[b][m as usize]);
+                    if !is_rep(m as usize) || group.contains(&m) {
+                        0
+                    } else if sp * sq < 0 {
+                        match cmp(m, j0) {
+                            Ordering::Less => sq,
+                            Ordering::Greater => sp,
+                            Ordering::Equal => 0,
+                        }
+                    } else if sp != 0 {
+                        sp
+                    } else {
+                        sq
+                    }
+                })
+                .collect();
+            let s = expand(&rs);
+            let z = zeros_of(&s);
+            let id = if z.len() >= 2 {
+                ctx.arrangement_vertex(i, &z)
+            } else {
+                None
+            };
+            let id = id.unwrap_or_else(|| {
+                let e0 = eq[j0 as usize];
+                let vp = e0[0] * p3[0] + e0[1] * p3[1] + e0[2] * p3[2] + e0[3];
+                let vq = e0[0] * q3[0] + e0[1] * q3[1] + e0[2] * q3[2] + e0[3];
+                let t = (vp / (vp - vq)).clamp(0.0, 1.0);
+                let (p2, q2) = (c.points2[a], c.points2[b]);
+                let uv = [p2[0] + t * (q2[0] - p2[0]), p2[1] + t * (q2[1] - p2[1])];
+                let pos = ctx.arr.planes[i as usize].plane.to_3d(uv);
+                let mut tags: PlaneTags = z.iter().copied().collect();
+                tags.push(i);
+                tags.sort_unstable();
+                ctx.add_pool(pos, tags, i, uv)
+            });
+            pts.push(Pt { id, sv: s });
+            g = e;
+        }
+    }
+    // Face of every stretch between consecutive points.
+    let m = pts.len();
+    let plane_i = ctx.arr.planes[i as usize].plane;
+    let mut fe = Vec::with_capacity(m);
+    for k in 0..m {
+        let (a, b) = (&pts[k], &pts[(k + 1) % m]);
+        let mut s = Vec::with_capacity(np);
+        for j in 0..np {
+            let v = if j as u32 == i {
+                0
+            } else if a.sv[j] != 0 {
+                a.sv[j]
+            } else if b.sv[j] != 0 {
+                b.sv[j]
+            } else {
+                // The stretch lies on P_j: it belongs to the face on its left (the region's side).
+                let pj = &ctx.arr.planes[j].plane;
+                let g = [
+                    crate::sections::dot(pj.normal, plane_i.u),
+                    crate::sections::dot(pj.normal, plane_i.v),
+                ];
+                let (ua, ub) = (ctx.uv(a.id, i), ctx.uv(b.id, i));
+                let d = [ub[0] - ua[0], ub[1] - ua[1]];
+                let x = -d[1] * g[0] + d[0] * g[1];
+                if x < 0.0 {
+                    -1
+                } else {
+                    1
+                }
+            };
+            s.push(v);
+        }
+        let f = match face_key.get(&s) {
+            Some(&f) => f,
+            None => {
+                // Only possible within rounding of a multiple point: take the closest sign vector.
+                let mut best = (usize::MAX, 0u32);
+                for (key, &f) in face_key {
+                    let d = key.iter().zip(&s).filter(|(x, y)| x != y).count();
+                    if d < best.0 {
+                        best = (d, f);
+                    }
+                }
+                ctx.warnings.push(format!(
+                    "plane {i}: a contour stretch has no exact face (rounding at a multiple point); assigned to the nearest face {}",
+                    best.1
+                ));
+                best.1
+            }
+        };
+        fe.push(f);
+    }
+    let on_boundary = |ctx: &Ctx, id: VertexId| ctx.arr.pool.tags[id as usize].len() > 1;
+    for k in 0..m {
+        let w = work.entry(fe[k]).or_default();
+        for id in [pts[k].id, pts[(k + 1) % m].id] {
+            if on_boundary(ctx, id) {
+                w.bpoints.push(id);
+            }
+        }
+    }
+    if fe.iter().all(|&f| f == fe[0]) {
+        work.entry(fe[0])
+            .or_default()
+            .closed
+            .push(pts.iter().map(|p| p.id).collect());
+        return;
+    }
+    let k0 = (0..m).find(|&k| fe[(k + m - 1) % m] != fe[k]).unwrap_or(0);
+    let mut k = k0;
+    loop {
+        let f = fe[k];
+        let mut run = vec![pts[k].id];
+        let mut kk = k;
+        loop {
+            run.push(pts[(kk + 1) % m].id);
+            kk = (kk + 1) % m;
+            if fe[kk] != f || kk == k0 {
+                break;
+            }
+        }
+        work.entry(f).or_default().runs.push(run);
+        k = kk;
+        if k == k0 {
+            break;
+        }
+    }
+}
+
+/// Even-odd point-in-region test in the plane's (u,v) frame.
+fn inside_region(region: &Region, p: [f64; 2]) -> bool {
+    let mut inside = false;
+    for c in std::iter::once(&region.outer).chain(region.holes.iter()) {
+        let q = &c.points2;
+        let n = q.len();
+        for k in 0..n {
+            let (a, b) = (q[k], q[(k + 1) % n]);
+            if (a[1] > p[1]) != (b[1] > p[1]) {
+                let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
+                if p[0] < x {
+                    inside = !inside;
+                }
+            }
+        }
+    }
+    inside
+}
+
+fn trace_face(ctx: &mut Ctx, i: u32, f: u32, w: &FaceWork, region: &Region) -> Vec<Vec<VertexId>> {
+    let poly = ctx.arr.faces[f as usize].polygon.clone();
+    let nc = poly.len();
+    let mut loops: Vec<Vec<VertexId>> = w.closed.clone();
+    // Whether the face's boundary lies in the region when no contour crosses it: test the face's
+    // centroid (strictly inside the face, so on no contour that stays out of the face) and discount
+    // the contours wholly inside the face that surround it.
+    let background_inside = |ctx: &Ctx| -> bool {
+        let c: Vec<[f64; 2]> = poly.iter().map(|&v| ctx.uv(v, i)).collect();
+        let n = c.len() as f64;
+        let g = [
+            c.iter().map(|p| p[0]).sum::<f64>() / n,
+            c.iter().map(|p| p[1]).sum::<f64>() / n,
+        ];
+        let mut inside = inside_region(region, g);
+        for l in &w.closed {
+            let q: Vec<[f64; 2]> = l.iter().map(|&v| ctx.uv(v, i)).collect();
+            if point_in_loop(g, &q) {
+                inside = !inside;
+            }
+        }
+        inside
+    };
+    if w.runs.is_empty() && w.closed.is_empty() && w.bpoints.is_empty() {
+        if background_inside(ctx) {
+            loops.push(poly);
+        }
+        return loops;
+    }
+    // Boundary list: corners and every section point on the boundary, counter-clockwise.
+    let cuv: Vec<[f64; 2]> = poly.iter().map(|&v| ctx.uv(v, i)).collect();
+    let mut entries: Vec<(usize, u8, f64, VertexId)> = Vec::new();
+    for (e, &c) in poly.iter().enumerate() {
+        entries.push((e, 0, 0.0, c));
+    }
+    let mut bp = w.bpoints.clone();
+    bp.sort_unstable();
+    bp.dedup();
+    for &x in &bp {
+        if poly.contains(&x) {
+            continue;
+        }
+        let tags = ctx.arr.pool.tags[x as usize].clone();
+        let xuv = ctx.uv(x, i);
+        let mut found = None;
+        for e in 0..nc {
+            let (a, b) = (poly[e], poly[(e + 1) % nc]);
+            let ta = &ctx.arr.pool.tags[a as usize];
+            let tb = &ctx.arr.pool.tags[b as usize];
+            if tags
+                .iter()
+                .any(|&t| t != i && ta.contains(&t) && tb.contains(&t))
+            {
+                found = Some(e);
+                break;
+            }
+        }
+        let e = match found {
+            Some(e) => e,
+            None => {
+                ctx.warnings.push(format!(
+                    "plane {i}: section point {x} on the boundary of face {f} matches no edge; placed on the nearest"
+                ));
+                (0..nc)
+                    .min_by(|&a, &b| {
+                        seg_dist(xuv, cuv[a], cuv[(a + 1) % nc]).total_cmp(&seg_dist(
+                            xuv,
+                            cuv[b],
+                            cuv[(b + 1) % nc],
+                        ))
+                    })
+                    .unwrap_or(0)
+            }
+        };
+        let (a, b) = (cuv[e], cuv[(e + 1) % nc]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        let t = if len2 > 0.0 {
+            (((xuv[0] - a[0]) * d[0] + (xuv[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        entries.push((e, 1, t, x));
+    }
+    entries.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.total_cmp(&y.2)));
+    let ring: Vec<VertexId> = entries.iter().map(|e| e.3).collect();
+    if w.runs.is_empty() {
+        // No contour crosses the boundary: the boundary is wholly inside or outside the region.
+        if background_inside(ctx) {
+            loops.push(ring);
+        }
+        return loops;
+    }
+    let pos: HashMap<VertexId, usize> = ring.iter().enumerate().map(|(k, &v)| (v, k)).collect();
+    let enter: HashMap<VertexId, usize> = w
+        .runs
+        .iter()
+        .enumerate()
+        .map(|(r, run)| (run[0], r))
+        .collect();
+    let nr = w.runs.len();
+    let mut next = vec![usize::MAX; nr];
+    let mut chain: Vec<Vec<VertexId>> = vec![Vec::new(); nr];
+    for (r, run) in w.runs.iter().enumerate() {
+        let leave = *run.last().unwrap();
+        let Some(&p0) = pos.get(&leave) else {
+            ctx.warnings.push(format!(
+                "plane {i}: face {f}: a contour leaves the face at a point not on its boundary"
+            ));
+            continue;
+        };
+        let mut k = (p0 + 1) % ring.len();
+        let mut steps = 0;
+        while steps < ring.len() {
+            let v = ring[k];
+            if let Some(&r2) = enter.get(&v) {
+                next[r] = r2;
+                break;
+            }
+            chain[r].push(v);
+            k = (k + 1) % ring.len();
+            steps += 1;
+        }
+    }
+    let mut used = vec![false; nr];
+    for r0 in 0..nr {
+        if used[r0] {
+            continue;
+        }
+        let mut lp = Vec::new();
+        let mut r = r0;
+        let mut ok = true;
+        while !used[r] {
+            used[r] = true;
+            let run = &w.runs[r];
+            lp.extend_from_slice(&run[..run.len() - 1]);
+            lp.push(*run.last().unwrap());
+            lp.extend_from_slice(&chain[r]);
+            if next[r] == usize::MAX {
+                ok = false;
+                break;
+            }
+            r = next[r];
+        }
+        if !ok || r != r0 {
+            ctx.warnings.push(format!(
+                "plane {i}: face {f}: inconsistent section boundary (contours touching or crossing); a loop was dropped"
+            ));
+            continue;
+        }
+        loops.push(lp);
+    }
+    loops
+}
+
+fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let q = [a[0] + t * d[0] - p[0], a[1] + t * d[1] - p[1]];
+    (q[0] * q[0] + q[1] * q[1]).sqrt()
+}
+
+fn point_in_loop(p: [f64; 2], q: &[[f64; 2]]) -> bool {
+    let mut inside = false;
+    let n = q.len();
+    for k in 0..n {
+        let (a, b) = (q[k], q[(k + 1) % n]);
+        if (a[1] > p[1]) != (b[1] > p[1]) {
+            let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
+            if p[0] < x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+/// Outer loops (positive area) with the holes (negative area) they contain.
+fn assemble(ctx: &mut Ctx, i: u32, loops: Vec<Vec<VertexId>>, label: i32) -> Vec<SectionPiece> {
+    let mut outers: Vec<(Vec<VertexId>, Vec<[f64; 2]>, f64)> = Vec::new();
+    let mut holes: Vec<(Vec<VertexId>, Vec<[f64; 2]>)> = Vec::new();
+    for lp in loops {
+        // Drop immediate repeats (a point that is both a run end and a chain start).
+        let mut l: Vec<VertexId> = Vec::with_capacity(lp.len());
+        for v in lp {
+            if l.last() != Some(&v) {
+                l.push(v);
+            }
+        }
+        while l.len() > 1 && l.first() == l.last() {
+            l.pop();
+        }
+        if l.len() < 3 {
+            continue;
+        }
+        let uv: Vec<[f64; 2]> = l.iter().map(|&v| ctx.uv(v, i)).collect();
+        let a = polygon_area(&uv);
+        if a > 0.0 {
+            outers.push((l, uv, a));
+        } else if a < 0.0 {
+            holes.push((l, uv));
+        }
+    }
+    let mut pieces: Vec<SectionPiece> = outers
+        .iter()
+        .map(|(l, _, _)| SectionPiece {
+            label,
+            outer: l.clone(),
+            holes: Vec::new(),
+        })
+        .collect();
+    for (h, huv) in holes {
+        let owner = if outers.len() == 1 {
+            Some(0)
+        } else {
+            // Smallest outer containing a vertex of the hole that is not one of its own vertices.
+            let mut best: Option<(usize, f64)> = None;
+            for (k, (ol, ouv, a)) in outers.iter().enumerate() {
+                let probe = h
+                    .iter()
+                    .zip(&huv)
+                    .find(|(v, _)| !ol.contains(v))
+                    .map(|(_, p)| *p);
+                let Some(p) = probe else { continue };
+                if point_in_loop(p, ouv) && best.is_none_or(|(_, ba)| *a < ba) {
+                    best = Some((k, *a));
+                }
+            }
+            best.map(|b| b.0)
+        };
+        match owner {
+            Some(k) => pieces[k].holes.push(h),
+            None => ctx.warnings.push(format!(
+                "plane {i}: a hole of a section piece lies in no outer loop; dropped"
+            )),
+        }
+    }
+    pieces
+}
