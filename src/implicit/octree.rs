@@ -1,9 +1,13 @@
-//! Where to evaluate the indicator: an octree over the box, refined coarse-to-fine where the function
-//! changes sign among a cube's corners or the cube holds section contour vertices (paper §4.5), down to
-//! depth D; then, at the finest level, the sign-changing cubes are followed across every face that has
-//! a sign change, so the set of finest cubes handed to the extraction contains the whole zero set it
-//! touches (no holes where the octree stopped early). Only needed grid nodes are evaluated (sparse hash
-//! map keyed by finest-grid node), in parallel with rayon, one level or wave at a time.
+//! Where to evaluate the indicator: an octree over the box (cubic cells, the longest side split into
+//! 2^depth), refined coarse-to-fine (paper §4.5) where a cube holds more than one section contour
+//! vertex, or where the function changes sign among its corners — always down to `depth − 2`, and
+//! below that only where the trilinear interpolation of the corners misplaces the zero set by more than
+//! half a finest step (checked with one evaluation at the cube centre). Inside a coarser leaf the
+//! function is the trilinear interpolation of its corners, as in the paper's octree oracle. At the
+//! finest level the sign-changing cubes are followed across every face with a sign change, so the set
+//! of finest cubes handed to the extraction contains the whole zero set it touches (closed surface).
+//! Evaluations are batched per level and run in parallel with rayon; nodes live in a hash map keyed by
+//! finest-grid node.
 use super::indicator::Indicator;
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
