@@ -8,7 +8,7 @@ pub struct TriMesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
-/// A tetrahedral mesh. Tetrahedra are positively oriented (orient3d(a,b,c,d) > 0 in `robust`'s convention).
+/// A tetrahedral mesh. Tetrahedra have positive volume: (b−a)·((c−a)×(d−a)) > 0, i.e. `robust::orient3d(a,b,c,d) < 0`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct TetMesh {
     pub vertices: Vec<[f64; 3]>,
