@@ -38,7 +38,8 @@ pub struct Topology {
     pub repeated_index_triangles: usize,
     pub closed: bool,
     pub manifold: bool,
-    /// Consistent orientation on every edge and positive volume of every closed component.
+    /// Consistent orientation on every edge, and every closed shell facing out of the material:
+    /// positive volume, or negative for a cavity shell enclosed by an odd number of other shells.
     pub oriented: bool,
     pub euler: i64,
     pub components: Vec<ComponentReport>,
@@ -176,17 +177,14 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
         }
     }
     let mut euler = 0;
-    let mut all_volumes_positive = true;
     for (c, cr) in comps.iter_mut().enumerate() {
         cr.euler = cr.vertices as i64 - cr.edges as i64 + cr.triangles as i64;
         euler += cr.euler;
         if cr.closed && !comp_inconsistent[c] && !comp_nonmanifold_vertex[c] {
             cr.genus = Some((2 - cr.euler) / 2);
         }
-        if cr.closed && cr.volume <= 0.0 {
-            all_volumes_positive = false;
-        }
     }
+    let all_volumes_positive = shells_face_outward(mesh, &comps, &tri_comp);
     let rep = repeated.iter().filter(|&&b| b).count();
     let closed = boundary == 0 && nonmanifold == 0 && rep == 0 && !tris.is_empty();
     let manifold = nonmanifold == 0 && nonmanifold_vertices == 0 && rep == 0;
@@ -204,6 +202,62 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
         euler,
         components: comps,
     }
+}
+
+/// Outward orientation of closed shells: a shell enclosed by an even number of other shells bounds
+/// material (positive volume), one enclosed by an odd number bounds a cavity (negative volume).
+/// Nesting is decided by the winding number of one vertex of the shell with respect to each other shell.
+fn shells_face_outward(mesh: &TriMesh, comps: &[ComponentReport], tri_comp: &[u32]) -> bool {
+    let closed: Vec<usize> = (0..comps.len()).filter(|&c| comps[c].closed).collect();
+    if closed.iter().all(|&c| comps[c].volume > 0.0) && closed.len() < 2 {
+        return true;
+    }
+    let mut tris_of: Vec<Vec<[u32; 3]>> = vec![Vec::new(); comps.len()];
+    for (ti, t) in mesh.triangles.iter().enumerate() {
+        if tri_comp[ti] != u32::MAX {
+            tris_of[tri_comp[ti] as usize].push(*t);
+        }
+    }
+    let v = &mesh.vertices;
+    let bbox = |tris: &[[u32; 3]]| {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for t in tris {
+            for &i in t {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(v[i as usize][k]);
+                    hi[k] = hi[k].max(v[i as usize][k]);
+                }
+            }
+        }
+        (lo, hi)
+    };
+    let boxes: Vec<_> = tris_of.iter().map(|t| bbox(t)).collect();
+    closed.par_iter().all(|&c| {
+        let p = v[tris_of[c][0][0] as usize];
+        let depth = closed
+            .iter()
+            .filter(|&&d| d != c)
+            .filter(|&&d| (0..3).all(|k| boxes[d].0[k] <= p[k] && p[k] <= boxes[d].1[k]))
+            .filter(|&&d| winding_number(v, &tris_of[d], p).abs() > 0.5)
+            .count();
+        (comps[c].volume > 0.0) == (depth % 2 == 0)
+    })
+}
+
+/// Generalised winding number of a closed shell around `p` (sum of signed solid angles / 4π).
+fn winding_number(v: &[[f64; 3]], tris: &[[u32; 3]], p: [f64; 3]) -> f64 {
+    let mut total = 0.0;
+    for t in tris {
+        let a = sub(v[t[0] as usize], p);
+        let b = sub(v[t[1] as usize], p);
+        let c = sub(v[t[2] as usize], p);
+        let (la, lb, lc) = (norm(a), norm(b), norm(c));
+        let num = det3(a, b, c);
+        let den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+        total += 2.0 * num.atan2(den);
+    }
+    total / (4.0 * std::f64::consts::PI)
 }
 
 /// Every undirected edge in exactly two triangles, no triangle repeating an index (cheaper than
@@ -345,4 +399,42 @@ pub(crate) fn norm(a: [f64; 3]) -> f64 {
 }
 fn det3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
     dot(a, cross(b, c))
+}
+
+#[cfg(test)]
+mod cavity_tests {
+    use super::*;
+    use crate::eval::shapes::{cuboid, merged};
+
+    fn flipped(m: &TriMesh) -> TriMesh {
+        let mut m = m.clone();
+        for t in &mut m.triangles {
+            t.swap(1, 2);
+        }
+        m
+    }
+
+    #[test]
+    fn a_cavity_shell_facing_into_the_cavity_is_outward() {
+        let outer = cuboid([0.0; 3], [4.0; 3]);
+        let inner = cuboid([1.0; 3], [2.0; 3]);
+        assert!(analyze(&merged(&outer, &flipped(&inner))).oriented);
+        // The same inner shell facing out of the cavity is inside-out material.
+        assert!(!analyze(&merged(&outer, &inner)).oriented);
+        // An island inside the cavity faces out again (depth 2).
+        let island = cuboid([1.25; 3], [1.75; 3]);
+        let nested = merged(&merged(&outer, &flipped(&inner)), &island);
+        assert!(analyze(&nested).oriented);
+        assert!(
+            !analyze(&merged(
+                &merged(&outer, &flipped(&inner)),
+                &flipped(&island)
+            ))
+            .oriented
+        );
+        // Two disjoint positive shells, and a lone inside-out one.
+        let apart = cuboid([5.0; 3], [6.0; 3]);
+        assert!(analyze(&merged(&outer, &apart)).oriented);
+        assert!(!analyze(&flipped(&outer)).oriented);
+    }
 }
