@@ -1,1 +1,16 @@
-//! (to be written)
+//! Measuring instruments for any triangle mesh (ours or another tool's):
+//! * [`check::check_mesh`]: closed, manifold, oriented, exact self-intersections, components, Euler
+//!   characteristic and genus, volume and area; with input sections, per-plane agreement of the mesh's
+//!   exact section with the input section.
+//! * [`compare::compare_meshes`]: volumetric IoU, Chamfer L1/L2 and Hausdorff distances against a
+//!   reference, normalised by the reference's bounding-box diagonal.
+pub mod bvh;
+pub mod check;
+pub mod compare;
+pub mod section;
+pub mod shapes;
+pub mod topology;
+pub mod tri_tri;
+
+pub use check::{check_mesh, CheckReport};
+pub use compare::{compare_meshes, CompareReport};

@@ -1,0 +1,176 @@
+//! `check`: is a triangle mesh a valid solid boundary, and (optionally) do its sections agree with
+//! the input cross-sections?
+use super::bvh::{triangle_boxes, Bvh};
+use super::section::{section_agreement, SectionAgreement};
+use super::topology::{analyze, ComponentReport};
+use super::tri_tri::{is_degenerate, mesh_triangles_intersect};
+use crate::mesh::TriMesh;
+use crate::sections::Sections;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// Everything `check` measures. Field names are the JSON keys scripts rely on.
+#[derive(Clone, Debug, Serialize)]
+pub struct CheckReport {
+    pub vertices: usize,
+    pub triangles: usize,
+    /// Every undirected edge is used by exactly two triangles (and no triangle repeats a vertex).
+    pub closed: bool,
+    /// Edge-manifold (no edge in three or more triangles) and vertex-manifold (every vertex fan is one
+    /// disk, or one half-disk on the boundary), no triangle repeating a vertex index.
+    pub manifold: bool,
+    /// Every two-triangle edge is used once in each direction, and every closed component has
+    /// positive signed volume (normals point outward).
+    pub oriented: bool,
+    /// Number of intersecting triangle pairs (exact; triangles sharing vertices count only when they
+    /// overlap beyond what they share; degenerate triangles are not tested).
+    pub self_intersections: usize,
+    /// The intersecting pairs whose triangles share no vertex (what `shared/eval/evaluate.py` counts,
+    /// except that it ignores contacts within rounding: it tests strict crossings with a 1e-12 margin).
+    pub self_intersections_vertex_disjoint: usize,
+    /// One intersecting pair (triangle indices), the smallest in lexicographic order.
+    pub self_intersection_example: Option<[usize; 2]>,
+    pub components: usize,
+    /// V − E + F over the used vertices.
+    pub euler: i64,
+    /// Sum of the genera of the components where defined (closed, oriented, manifold components).
+    pub genus: i64,
+    /// Signed volume (divergence theorem), area.
+    pub volume: f64,
+    pub area: f64,
+    pub boundary_edges: usize,
+    pub nonmanifold_edges: usize,
+    pub nonmanifold_vertices: usize,
+    pub inconsistent_edges: usize,
+    /// Triangles whose three points are collinear, or that repeat a vertex index.
+    pub degenerate_triangles: usize,
+    pub component_details: Vec<ComponentReport>,
+    /// Per input plane (only with sections): the mesh's section against the input section.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sections: Option<Vec<SectionAgreement>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worst_section: Option<WorstSection>,
+}
+
+/// The plane whose section disagrees most (largest `relative`).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct WorstSection {
+    /// Index into `sections`.
+    pub plane: usize,
+    /// The plane's index in the input file.
+    pub source_index: usize,
+    pub relative: f64,
+    pub sym_diff: f64,
+}
+
+impl CheckReport {
+    pub fn is_closed_manifold(&self) -> bool {
+        self.closed && self.manifold
+    }
+}
+
+/// Check `mesh`; with `sections`, also compare its section by every input plane with the input.
+pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
+    let topo = analyze(mesh);
+    let si = self_intersections(mesh);
+    let genus = topo.components.iter().filter_map(|c| c.genus).sum();
+    let agreements = sections.map(|s| section_agreement(mesh, s));
+    let worst_section = agreements.as_ref().and_then(|a| {
+        a.iter()
+            .max_by(|x, y| x.relative.total_cmp(&y.relative))
+            .map(|w| WorstSection {
+                plane: w.plane,
+                source_index: w.source_index,
+                relative: w.relative,
+                sym_diff: w.sym_diff,
+            })
+    });
+    CheckReport {
+        vertices: mesh.vertices.len(),
+        triangles: mesh.triangles.len(),
+        closed: topo.closed,
+        manifold: topo.manifold,
+        oriented: topo.oriented,
+        self_intersections: si.count,
+        self_intersections_vertex_disjoint: si.vertex_disjoint,
+        self_intersection_example: si.example,
+        components: topo.components.len(),
+        euler: topo.euler,
+        genus,
+        volume: topo.components.iter().map(|c| c.volume).sum(),
+        area: topo.components.iter().map(|c| c.area).sum(),
+        boundary_edges: topo.boundary_edges,
+        nonmanifold_edges: topo.nonmanifold_edges,
+        nonmanifold_vertices: topo.nonmanifold_vertices,
+        inconsistent_edges: topo.inconsistent_edges,
+        degenerate_triangles: si.collinear + topo.repeated_index_triangles,
+        component_details: topo.components,
+        sections: agreements,
+        worst_section,
+    }
+}
+
+/// Intersecting triangle pairs of one mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SelfIntersections {
+    pub count: usize,
+    /// Pairs sharing no vertex index.
+    pub vertex_disjoint: usize,
+    /// The smallest intersecting pair (i < j).
+    pub example: Option<[usize; 2]>,
+    /// Triangles with three collinear (distinct-index) points, skipped.
+    pub collinear: usize,
+}
+
+/// Count intersecting triangle pairs: BVH of triangle boxes, candidate pairs (i < j) with overlapping
+/// boxes, exact test (rayon over i).
+pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
+    let v = &mesh.vertices;
+    let t = &mesh.triangles;
+    let skip: Vec<bool> = t
+        .par_iter()
+        .map(|tr| {
+            tr[0] == tr[1]
+                || tr[1] == tr[2]
+                || tr[0] == tr[2]
+                || is_degenerate(v[tr[0] as usize], v[tr[1] as usize], v[tr[2] as usize])
+        })
+        .collect();
+    let collinear = skip
+        .iter()
+        .zip(t)
+        .filter(|(&s, tr)| s && tr[0] != tr[1] && tr[1] != tr[2] && tr[0] != tr[2])
+        .count();
+    let bvh = Bvh::build(triangle_boxes(v, t));
+    let merge = |a: SelfIntersections, b: SelfIntersections| SelfIntersections {
+        count: a.count + b.count,
+        vertex_disjoint: a.vertex_disjoint + b.vertex_disjoint,
+        example: match (a.example, b.example) {
+            (Some(x), Some(y)) => Some(x.min(y)),
+            (x, y) => x.or(y),
+        },
+        collinear: 0,
+    };
+    let mut out = (0..t.len())
+        .into_par_iter()
+        .filter(|&i| !skip[i])
+        .map(|i| {
+            let mut r = SelfIntersections::default();
+            bvh.for_each_overlap(bvh.item_box(i as u32), |j| {
+                let j = j as usize;
+                if j > i && !skip[j] && mesh_triangles_intersect(t[i], t[j], v) {
+                    r.count += 1;
+                    if !t[i].iter().any(|x| t[j].contains(x)) {
+                        r.vertex_disjoint += 1;
+                    }
+                    if r.example.map_or(true, |f| j < f[1]) {
+                        r.example = Some([i, j]);
+                    }
+                }
+            });
+            r
+        })
+        .reduce(SelfIntersections::default, merge);
+    out.collinear = collinear;
+    out
+}

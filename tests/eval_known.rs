@@ -1,0 +1,291 @@
+//! `check` and `compare` on synthetic meshes with known answers.
+use slice2solid::eval::check::check_mesh;
+use slice2solid::eval::compare::{compare_meshes, compare_meshes_with_lines};
+use slice2solid::eval::shapes::{cuboid, icosphere, merged, torus, translated, unit_cube};
+use slice2solid::sections::{Contour, Plane, Region, Section, Sections};
+use slice2solid::TriMesh;
+
+#[test]
+fn cube_is_a_valid_solid() {
+    let r = check_mesh(&unit_cube(), None);
+    assert!(r.closed && r.manifold && r.oriented, "{r:?}");
+    assert!(r.is_closed_manifold());
+    assert_eq!(r.self_intersections, 0);
+    assert_eq!(r.components, 1);
+    assert_eq!(r.euler, 2);
+    assert_eq!(r.genus, 0);
+    assert!((r.volume - 1.0).abs() < 1e-12);
+    assert!((r.area - 6.0).abs() < 1e-12);
+}
+
+#[test]
+fn torus_has_genus_one() {
+    let r = check_mesh(&torus(2.0, 0.5, 48, 24), None);
+    assert!(r.is_closed_manifold() && r.oriented, "{r:?}");
+    assert_eq!(r.euler, 0);
+    assert_eq!(r.genus, 1);
+    assert_eq!(r.self_intersections, 0);
+    assert!(r.volume > 0.0);
+}
+
+#[test]
+fn two_disjoint_spheres_are_two_components() {
+    let m = merged(
+        &icosphere([0.0; 3], 1.0, 3),
+        &icosphere([3.0, 0.0, 0.0], 1.0, 3),
+    );
+    let r = check_mesh(&m, None);
+    assert_eq!(r.components, 2);
+    assert_eq!(r.euler, 4);
+    assert_eq!(r.genus, 0);
+    assert!(r.is_closed_manifold() && r.oriented);
+    assert_eq!(r.self_intersections, 0);
+    for c in &r.component_details {
+        assert_eq!(c.genus, Some(0));
+        assert!(c.volume > 0.0);
+    }
+}
+
+#[test]
+fn fine_sphere_has_no_self_intersection() {
+    let s = icosphere([0.1, 0.2, 0.3], 1.0, 6); // 81 920 triangles
+    let r = check_mesh(&s, None);
+    assert_eq!(r.self_intersections, 0, "{:?}", r.self_intersection_example);
+    assert!(r.is_closed_manifold() && r.oriented);
+    let v = 4.0 / 3.0 * std::f64::consts::PI;
+    assert!((r.volume - v).abs() / v < 1e-3);
+}
+
+#[test]
+fn flipped_triangle_is_not_oriented() {
+    let mut m = icosphere([0.0; 3], 1.0, 2);
+    m.triangles[5].swap(1, 2);
+    let r = check_mesh(&m, None);
+    assert!(r.closed && r.manifold);
+    assert!(!r.oriented);
+    assert_eq!(r.inconsistent_edges, 3);
+    // an inside-out mesh is consistent but not outward
+    let mut inv = unit_cube();
+    for t in &mut inv.triangles {
+        t.swap(1, 2);
+    }
+    let r = check_mesh(&inv, None);
+    assert_eq!(r.inconsistent_edges, 0);
+    assert!(!r.oriented && r.volume < 0.0);
+}
+
+#[test]
+fn a_hole_is_not_closed() {
+    let mut m = icosphere([0.0; 3], 1.0, 2);
+    m.triangles.remove(7);
+    let r = check_mesh(&m, None);
+    assert!(!r.closed && !r.is_closed_manifold());
+    assert!(r.manifold);
+    assert_eq!(r.boundary_edges, 3);
+    assert!(!slice2solid::eval::topology::is_closed(&m));
+    assert!(slice2solid::eval::topology::is_closed(&icosphere([0.0; 3], 1.0, 2)));
+    assert_eq!(r.euler, 1); // a disk
+}
+
+#[test]
+fn pinched_vertex_is_not_manifold() {
+    // two cubes sharing one corner vertex (index-welded)
+    let a = unit_cube();
+    let mut b = translated(&unit_cube(), [1.0, 1.0, 1.0]);
+    // b's vertex 0 is (1,1,1) = a's vertex 7: weld it
+    let off = a.vertices.len() as u32;
+    let mut m = merged(&a, &b);
+    for t in &mut m.triangles[12..] {
+        for x in t.iter_mut() {
+            if *x == off {
+                *x = 7;
+            }
+        }
+    }
+    b.vertices.clear();
+    let r = check_mesh(&m, None);
+    assert!(r.closed);
+    assert!(!r.manifold);
+    assert_eq!(r.nonmanifold_vertices, 1);
+    assert!(!r.is_closed_manifold());
+}
+
+#[test]
+fn interpenetrating_cubes_self_intersect() {
+    let m = merged(&unit_cube(), &translated(&unit_cube(), [0.5, 0.3, 0.2]));
+    let r = check_mesh(&m, None);
+    assert!(r.is_closed_manifold());
+    assert!(r.self_intersections > 0);
+    assert_eq!(r.self_intersections, r.self_intersections_vertex_disjoint);
+    let [i, j] = r.self_intersection_example.unwrap();
+    assert!(i < 12 && j >= 12);
+    // touching cubes (face to face, unwelded) touch: counted, exact
+    let m = merged(&unit_cube(), &translated(&unit_cube(), [1.0, 0.0, 0.0]));
+    assert!(check_mesh(&m, None).self_intersections > 0);
+    // separated by a hair: none
+    let m = merged(
+        &unit_cube(),
+        &translated(&unit_cube(), [1.0 + 1e-12, 0.0, 0.0]),
+    );
+    assert_eq!(check_mesh(&m, None).self_intersections, 0);
+}
+
+#[test]
+fn folded_neighbour_is_a_self_intersection() {
+    // a square split into two triangles, plus a third triangle folded back onto the first
+    let m = TriMesh {
+        vertices: vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.2, 0.0],
+        ],
+        triangles: vec![[0, 1, 2], [0, 2, 3], [1, 4, 2]],
+    };
+    let r = check_mesh(&m, None);
+    assert_eq!(r.self_intersections, 1);
+    assert_eq!(r.self_intersections_vertex_disjoint, 0);
+    assert_eq!(r.self_intersection_example, Some([0, 2]));
+}
+
+#[test]
+fn shifted_cube_iou() {
+    let a = unit_cube();
+    let b = translated(&a, [0.1, 0.0, 0.0]);
+    let r = compare_meshes_with_lines(&a, &b, 5000, 1, 4096);
+    // Every line parallel to the long axis meets both cubes exactly: exact up to rounding.
+    assert!((r.iou - 0.9 / 1.1).abs() < 1e-9, "{r:?}");
+    assert!((r.volume_mesh - 1.0).abs() < 1e-9);
+    // diagonal shift: intersection 0.9³, union 2 − 0.9³; stratified error bound stated loosely
+    let c = translated(&a, [0.1, 0.1, 0.1]);
+    let r = compare_meshes_with_lines(&a, &c, 5000, 1, 65536);
+    let want = 0.729 / (2.0 - 0.729);
+    assert!((r.iou - want).abs() < 2e-3, "{} vs {want}", r.iou);
+    assert!(r.mesh_closed && r.reference_closed);
+    // Hausdorff between the two cubes (by surface): the farthest a point of one is from the other
+    // surface is the shift's length, normalised by the diagonal √3 of the reference.
+    assert!(r.hausdorff_surface <= 0.1 * 3f64.sqrt() / 3f64.sqrt() * 1.0001 + 1e-12);
+}
+
+#[test]
+fn identical_meshes_compare_perfectly_and_deterministically() {
+    let s = icosphere([0.0; 3], 1.0, 4);
+    let r = compare_meshes(&s, &s, 2000, 3);
+    assert!((r.iou - 1.0).abs() < 1e-12);
+    assert!(r.chamfer_l1_surface < 1e-9 && r.hausdorff_surface < 1e-9);
+    // sample-to-sample distances are the sampling spacing, small but positive
+    assert!(r.chamfer_l1 > 0.0 && r.chamfer_l1 < 0.02);
+    let r2 = compare_meshes(&s, &s, 2000, 3);
+    assert_eq!(r.chamfer_l1, r2.chamfer_l1);
+    assert_eq!(r.iou, r2.iou);
+}
+
+#[test]
+fn spheres_distance() {
+    // concentric spheres radius 1 and 1.1: every surface distance ≈ 0.1 (tessellation error < 0.01)
+    let a = icosphere([0.0; 3], 1.0, 5);
+    let b = icosphere([0.0; 3], 1.1, 5);
+    let r = compare_meshes_with_lines(&a, &b, 5000, 0, 16384);
+    let d = b.vertices.iter().fold([f64::MAX, f64::MIN], |m, p| {
+        [m[0].min(p[0]), m[1].max(p[0])]
+    });
+    let diag = (d[1] - d[0]) * 3f64.sqrt();
+    assert!((r.chamfer_l1_surface * diag - 0.1).abs() < 0.005, "{r:?}");
+    assert!((r.hausdorff_surface * diag - 0.1).abs() < 0.01);
+    // IoU = volume ratio of the two polyhedra
+    let want = check_mesh(&a, None).volume / check_mesh(&b, None).volume;
+    assert!((r.iou - want).abs() < 1e-3, "{} vs {want}", r.iou);
+}
+
+#[test]
+fn cube_section_agrees_with_its_square() {
+    // planes through a box: z = 0.3 (axis aligned) and a tilted one
+    let m = cuboid([0.0; 3], [1.0, 2.0, 1.0]);
+    let z = Plane::from_equation([0.0, 0.0, 1.0], -0.3).unwrap();
+    // the section of the box by z=0.3 in the plane's frame
+    let corners = [
+        [0.0, 0.0, 0.3],
+        [1.0, 0.0, 0.3],
+        [1.0, 2.0, 0.3],
+        [0.0, 2.0, 0.3],
+    ];
+    let mut p2: Vec<[f64; 2]> = corners.iter().map(|&c| z.to_2d(c)).collect();
+    let signed: f64 = (0..4)
+        .map(|i| p2[i][0] * p2[(i + 1) % 4][1] - p2[(i + 1) % 4][0] * p2[i][1])
+        .sum();
+    if signed < 0.0 {
+        p2.reverse();
+    }
+    let good = Section {
+        plane: z,
+        regions: vec![Region {
+            label: 1,
+            outer: Contour::from_2d(&z, p2.clone()),
+            holes: vec![],
+        }],
+        source_index: 4,
+        max_off_plane: 0.0,
+    };
+    // a wrong input: the square shrunk to x ≤ 0.5
+    let half: Vec<[f64; 2]> = corners
+        .iter()
+        .map(|&c| z.to_2d([c[0].min(0.5), c[1], c[2]]))
+        .collect();
+    let mut half = half;
+    let s2: f64 = (0..4)
+        .map(|i| half[i][0] * half[(i + 1) % 4][1] - half[(i + 1) % 4][0] * half[i][1])
+        .sum();
+    if s2 < 0.0 {
+        half.reverse();
+    }
+    let bad = Section {
+        plane: z,
+        regions: vec![Region {
+            label: 1,
+            outer: Contour::from_2d(&z, half),
+            holes: vec![],
+        }],
+        source_index: 9,
+        max_off_plane: 0.0,
+    };
+    let secs = Sections {
+        sections: vec![good, bad],
+        n_labels: 1,
+        warnings: vec![],
+    };
+    let r = check_mesh(&m, Some(&secs));
+    let s = r.sections.as_ref().unwrap();
+    assert!((s[0].area_mesh - 2.0).abs() < 1e-12, "{s:?}");
+    assert!(s[0].relative < 1e-12);
+    assert!((s[1].area_input - 1.0).abs() < 1e-12);
+    assert!((s[1].sym_diff - 1.0).abs() < 1e-12);
+    let w = r.worst_section.unwrap();
+    assert_eq!((w.plane, w.source_index), (1, 9));
+}
+
+#[test]
+fn tilted_section_of_sphere_has_polygon_area() {
+    let m = icosphere([0.0; 3], 1.0, 5);
+    let pl = Plane::from_equation([0.3, -0.5, 0.8], 0.2).unwrap();
+    let sec = Section {
+        plane: pl,
+        regions: vec![],
+        source_index: 0,
+        max_off_plane: 0.0,
+    };
+    let segs = slice2solid::eval::section::mesh_section(&m, &sec);
+    let shoelace: f64 = segs
+        .iter()
+        .map(|(p, q)| 0.5 * (p[0] * q[1] - q[0] * p[1]))
+        .sum();
+    // circle of radius sqrt(1 - d²), d = distance of the plane from the centre
+    let d = 0.2 / (0.09f64 + 0.25 + 0.64).sqrt();
+    let want = std::f64::consts::PI * (1.0 - d * d);
+    assert!(
+        (shoelace - want).abs() / want < 2e-3,
+        "{shoelace} vs {want}"
+    );
+    let empty = slice2solid::eval::section::symmetric_difference(&[], &segs);
+    assert!((empty.area_b - shoelace).abs() < 1e-9);
+}
