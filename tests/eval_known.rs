@@ -83,7 +83,9 @@ fn a_hole_is_not_closed() {
     assert!(r.manifold);
     assert_eq!(r.boundary_edges, 3);
     assert!(!slice2solid::eval::topology::is_closed(&m));
-    assert!(slice2solid::eval::topology::is_closed(&icosphere([0.0; 3], 1.0, 2)));
+    assert!(slice2solid::eval::topology::is_closed(&icosphere(
+        [0.0; 3], 1.0, 2
+    )));
     assert_eq!(r.euler, 1); // a disk
 }
 

@@ -32,12 +32,19 @@ pub struct CellResult {
     pub branching_samples: u64,
 }
 
-/// Triangulate `points` with our exact kernel; finite tets, positively oriented, input vertex ids.
+/// Triangulate `points` with our exact kernel; finite tets in input vertex ids, positively oriented
+/// in `robust`'s convention (`orient3d > 0`, as `TetMesh` wants; the kernel hands out the opposite
+/// orientation, positive volume, so two vertices are swapped). Exact duplicates are merged by the
+/// kernel into the smallest index.
 pub fn delaunay_tets(points: &[[f64; 3]]) -> Result<Vec<[u32; 4]>> {
-    let _ = points;
-    Err(crate::error::Error::Unavailable(
-        "the Delaunay kernel has not landed on this branch yet".into(),
-    ))
+    let dt = crate::delaunay::Delaunay::try_new(points)?;
+    Ok(dt
+        .tets()
+        .map(|t| {
+            let v = dt.tet_vertices(t);
+            [v[0], v[1], v[3], v[2]]
+        })
+        .collect())
 }
 
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.

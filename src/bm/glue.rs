@@ -137,10 +137,21 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             }
             1 => {
                 let (c, s) = *attaching[0];
+                let mut flat = 0.0;
                 for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
                     if att {
                         tris.push(map3(&maps[c], t));
+                    } else {
+                        flat += tri_area(&positions, map3(&maps[c], t));
                     }
+                }
+                if flat > 0.0 {
+                    g.flat_zone_faces += 1;
+                    g.flat_zone_area += flat;
+                    g.warnings.push(format!(
+                        "face {f} (plane {}): flat zone of area {flat:.4e} attached from neither side (not in the solid)",
+                        arr.faces[f as usize].plane
+                    ));
                 }
             }
             _ => {
@@ -187,7 +198,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     g.double_sheet_triangles = count_double_sheet(&tris);
     if g.double_sheet_triangles > 0 {
         g.warnings.push(format!(
-            "{} section triangles lie in flat zones attached from neither side but triangulated differently by the two cells (zero-thickness sheets)",
+            "{} surface triangles touch non-manifold edges (singularities where pieces meet, or overlapping flat-zone sheets)",
             g.double_sheet_triangles
         ));
     }
