@@ -2,7 +2,10 @@
 //! classification, pruning, and what the gluing needs (kept tets, non-planar boundary, per face the
 //! section triangles seen from this cell and whether the cell attaches to them).
 use super::cell_input::CellInput;
-use super::classify::{classify, Classifier, TetType};
+use super::classify::{classify, tet_type, Classifier, TetType};
+
+/// Rounds of branching sampling (sample, re-triangulate) per cell.
+const BRANCHING_ROUNDS: usize = 1;
 use super::complex::{outward_face, Complex, NONE};
 use super::prune::{prune, PruneCounts};
 use crate::error::Result;
@@ -60,9 +63,25 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
     let mut tets = delaunay_tets(&input.points)?;
     let mut n_branch = 0;
     if branching {
-        let samples =
-            super::branching::samples(&input, &Complex::new(input.points.len(), tets.clone()));
-        if !samples.is_empty() {
+        for _round in 0..BRANCHING_ROUNDS {
+            let cx = Complex::new(input.points.len(), tets.clone());
+            let ty: Vec<TetType> = cx
+                .tets
+                .iter()
+                .map(|t| {
+                    tet_type([
+                        input.mask[t[0] as usize],
+                        input.mask[t[1] as usize],
+                        input.mask[t[2] as usize],
+                        input.mask[t[3] as usize],
+                    ])
+                    .0
+                })
+                .collect();
+            let samples = super::branching::samples(&input, &cx, &ty);
+            if samples.is_empty() {
+                break;
+            }
             for (s, q, p3) in samples {
                 input.add_local_vertex(s, q, p3);
                 n_branch += 1;

@@ -112,6 +112,7 @@ impl SectionLocator {
 pub struct Slot {
     pub face: FaceId,
     pub plane: PlaneId,
+    pub geom: crate::sections::Plane,
     /// The cell's outward normal on this face is the plane normal.
     pub outward_is_plane_normal: bool,
     /// Boundary loops (outer and holes) in local ids, with Steiner splits applied.
@@ -183,6 +184,7 @@ impl CellInput {
             .map(|cf| Slot {
                 face: cf.face,
                 plane: arr.faces[cf.face as usize].plane,
+                geom: arr.planes[arr.faces[cf.face as usize].plane as usize].plane,
                 outward_is_plane_normal: cf.outward_is_plane_normal,
                 loops: Vec::new(),
                 uv: vec![[f64::NAN; 2]; n],

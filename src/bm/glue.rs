@@ -31,6 +31,15 @@ pub struct Glued {
     pub flat_zone_area: f64,
     pub double_sheet_triangles: u64,
     pub nonconforming_faces: u64,
+    pub pinched_vertices: u64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// Boundary triangle inside this cell.
+    Cell(u32),
+    /// Section triangle on this face.
+    Face(u32),
 }
 
 fn tri_area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
@@ -65,6 +74,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         })
         .collect();
     let mut tris: Vec<[u32; 3]> = Vec::new();
+    let mut kind: Vec<Kind> = Vec::new();
     let mut tets: Vec<[u32; 4]> = Vec::new();
     let map3 = |m: &[u32], t: [u32; 3]| [m[t[0] as usize], m[t[1] as usize], m[t[2] as usize]];
     // per face: (cell, side data)
@@ -73,6 +83,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         let Some(r) = r else { continue };
         let m = &maps[c];
         tris.extend(r.nonplanar.iter().map(|&t| map3(m, t)));
+        kind.resize(tris.len(), Kind::Cell(c as u32));
         tets.extend(r.kept.iter().map(|t| {
             [
                 m[t[0] as usize],
@@ -141,6 +152,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                 for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
                     if att {
                         tris.push(map3(&maps[c], t));
+                        kind.push(Kind::Face(f));
                     } else {
                         flat += tri_area(&positions, map3(&maps[c], t));
                     }
@@ -160,6 +172,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                         if !att {
                             let t = map3(&maps[c], t);
                             tris.push([t[0], t[2], t[1]]);
+                            kind.push(Kind::Face(f));
                         }
                     }
                 }
@@ -189,12 +202,20 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             drop[j] = true;
         }
     }
-    let tris: Vec<[u32; 3]> = tris
+    let (mut tris, kind): (Vec<[u32; 3]>, Vec<Kind>) = tris
         .into_iter()
+        .zip(kind)
         .zip(drop)
         .filter(|(_, d)| !d)
         .map(|(t, _)| t)
-        .collect();
+        .unzip();
+    g.pinched_vertices = unpinch(arr, &mut positions, &mut tris, &kind);
+    if g.pinched_vertices > 0 {
+        g.warnings.push(format!(
+            "{} vertices where the solid touched a section from above only (branching on an unattached side) were lifted off the plane (paper Fig. 12b)",
+            g.pinched_vertices
+        ));
+    }
     g.double_sheet_triangles = count_double_sheet(&tris);
     if g.double_sheet_triangles > 0 {
         g.warnings.push(format!(
@@ -278,4 +299,83 @@ fn count_double_sheet(tris: &[[u32; 3]]) -> u64 {
             })
         })
         .count() as u64
+}
+
+/// Where the solid touches a section plane from one side only along the branching diagram (two
+/// wedges meeting at an edge of a section that the other side does not attach to), the surface is
+/// pinched: a vertex interior to a face's planar output (its planar triangles close a fan around it)
+/// also carries non-planar triangles. Following the paper's remedy (displace the branching points
+/// slightly into the cell), the vertex is split: the non-planar triangles of each cell get a copy
+/// lifted by a tiny distance into that cell, the planar fan keeps the original. Returns the number of
+/// split vertices.
+fn unpinch(
+    arr: &Arrangement,
+    positions: &mut Vec<[f64; 3]>,
+    tris: &mut [[u32; 3]],
+    kind: &[Kind],
+) -> u64 {
+    let mut at: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (i, t) in tris.iter().enumerate() {
+        for &v in t {
+            at.entry(v).or_default().push(i);
+        }
+    }
+    let mut vs: Vec<u32> = at.keys().copied().collect();
+    vs.sort_unstable();
+    let mut split = 0;
+    for v in vs {
+        let list = &at[&v];
+        let mut face = None;
+        let mut ok = true;
+        let mut has_cell = false;
+        let mut edge_count: HashMap<u32, i32> = HashMap::new();
+        let mut min_len = f64::INFINITY;
+        for &i in list {
+            match kind[i] {
+                Kind::Face(f) => {
+                    if face.is_some_and(|g| g != f) {
+                        ok = false;
+                    }
+                    face = Some(f);
+                    for &w in &tris[i] {
+                        if w != v {
+                            *edge_count.entry(w).or_default() += 1;
+                            let d =
+                                crate::sections::sub(positions[w as usize], positions[v as usize]);
+                            min_len = min_len.min(crate::sections::dot(d, d).sqrt());
+                        }
+                    }
+                }
+                Kind::Cell(_) => has_cell = true,
+            }
+        }
+        let Some(f) = face else { continue };
+        if !ok || !has_cell || edge_count.values().any(|&c| c != 2) {
+            continue;
+        }
+        let face = &arr.faces[f as usize];
+        let n = arr.planes[face.plane as usize].plane.normal;
+        let delta = 1e-3 * min_len;
+        let mut copies: HashMap<u32, u32> = HashMap::new();
+        for &i in list {
+            let Kind::Cell(c) = kind[i] else { continue };
+            let id = *copies.entry(c).or_insert_with(|| {
+                let s = if face.positive_cell == Some(c) {
+                    delta
+                } else {
+                    -delta
+                };
+                let p = positions[v as usize];
+                positions.push([p[0] + s * n[0], p[1] + s * n[1], p[2] + s * n[2]]);
+                (positions.len() - 1) as u32
+            });
+            for w in tris[i].iter_mut() {
+                if *w == v {
+                    *w = id;
+                }
+            }
+        }
+        split += 1;
+    }
+    split
 }

@@ -156,6 +156,7 @@ pub fn reconstruct(
         .values
         .insert("flat_zone_area".into(), glued.flat_zone_area);
     report.count("nonconforming_faces", glued.nonconforming_faces);
+    report.count("pinched_vertices_lifted", glued.pinched_vertices);
     report.warnings.extend(glued.warnings);
     Ok(Solid {
         surface: glued.surface,
