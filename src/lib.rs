@@ -16,6 +16,7 @@ pub mod mesh;
 pub mod reconstruct;
 pub mod sections;
 pub mod slice;
+pub mod validate;
 
 pub use error::{Error, Result};
 pub use mesh::{TetMesh, TriMesh};

@@ -1,5 +1,5 @@
-mod common;
-use common::*;
+mod bm_common;
+use bm_common::*;
 use slice2solid::{Options, Report};
 use std::collections::HashMap;
 #[test]

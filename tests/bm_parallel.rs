@@ -1,8 +1,8 @@
 //! Boissonnat–Memari on parallel planes (arrangement built by hand): the paper's configurations
 //! that need no general arrangement. Each result must be a closed, oriented, manifold surface with
 //! the expected components and genus, whose sections agree with the input.
-mod common;
-use common::*;
+mod bm_common;
+use bm_common::*;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::{Options, Report};
 

@@ -1,9 +1,79 @@
-use crate::DelaunayArgs;
+use crate::{DelaunayArgs, Oracle};
+use slice2solid::delaunay::{xyz, Delaunay};
 use slice2solid::{Error, Result};
+use std::fmt::Write as _;
 use std::process::ExitCode;
+use std::time::Instant;
 
-pub fn run(_args: DelaunayArgs) -> Result<ExitCode> {
+pub fn run(args: DelaunayArgs) -> Result<ExitCode> {
+    let points = xyz::read_xyz(&args.points)?;
+    let (tets, vertices, seconds, kernel_bytes) = match args.oracle {
+        None => {
+            let start = Instant::now();
+            let dt = Delaunay::try_new(&points)?;
+            let seconds = start.elapsed().as_secs_f64();
+            let tets: Vec<[u32; 4]> = dt.tets().map(|t| dt.tet_vertices(t)).collect();
+            let vertices = dt.num_vertices() - dt.duplicates().len();
+            (tets, vertices, seconds, Some(dt.memory_bytes()))
+        }
+        Some(Oracle::Tetgen) => {
+            let (tets, seconds) = run_tetgen(&points)?;
+            let mut used = vec![false; points.len()];
+            tets.iter().flatten().for_each(|&v| used[v as usize] = true);
+            (tets, used.iter().filter(|&&u| u).count(), seconds, None)
+        }
+    };
+    if let Some(path) = &args.tets {
+        let mut s = String::with_capacity(tets.len() * 32);
+        for t in &tets {
+            let _ = writeln!(s, "{} {} {} {}", t[0], t[1], t[2], t[3]);
+        }
+        std::fs::write(path, s).map_err(|e| Error::io(path, e))?;
+    }
+    let peak = peak_rss_bytes();
+    if args.json {
+        let mut j = serde_json::json!({
+            "points": points.len(),
+            "vertices": vertices,
+            "tets": tets.len(),
+            "seconds": seconds,
+            "peak_bytes": peak.or(kernel_bytes),
+        });
+        if let Some(k) = kernel_bytes {
+            j["kernel_bytes"] = k.into();
+        }
+        println!("{j}");
+    } else {
+        println!(
+            "{} points, {} vertices, {} tetrahedra in {:.3} s (peak memory {} MB)",
+            points.len(),
+            vertices,
+            tets.len(),
+            seconds,
+            peak.or(kernel_bytes).unwrap_or(0) / (1 << 20)
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(feature = "tetgen")]
+fn run_tetgen(points: &[[f64; 3]]) -> Result<(Vec<[u32; 4]>, f64)> {
+    let start = Instant::now();
+    let tets = slice2solid::delaunay::tetgen::tetgen_delaunay(points)?;
+    Ok((tets, start.elapsed().as_secs_f64()))
+}
+
+#[cfg(not(feature = "tetgen"))]
+fn run_tetgen(_points: &[[f64; 3]]) -> Result<(Vec<[u32; 4]>, f64)> {
     Err(Error::Unavailable(
-        "`delaunay` is not implemented yet".into(),
+        "the TetGen oracle is not built in: rebuild with `--features tetgen`".into(),
     ))
+}
+
+/// Peak resident set size of this process (VmHWM), where /proc is available.
+fn peak_rss_bytes() -> Option<usize> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: usize = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
 }

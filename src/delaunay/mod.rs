@@ -18,9 +18,14 @@
 //! stochastic visibility walk, points inserted in BRIO + Hilbert order. Every decision is exact and
 //! ties are broken by symbolic perturbation (see [`pred`]), so the result is a triangulation of the
 //! Delaunay subdivision for any input, with no flat tetrahedron even for coplanar hull points.
+pub mod gen;
+#[allow(clippy::needless_range_loop)]
 pub mod pred;
 pub mod sort;
+#[cfg(feature = "tetgen")]
+pub mod tetgen;
 mod validate;
+pub mod xyz;
 
 use pred::P;
 use std::collections::HashMap;
@@ -538,6 +543,7 @@ impl Delaunay {
     }
 
     /// Finite tetrahedra incident to `v` (a merged duplicate answers for its kept vertex).
+    #[allow(clippy::needless_range_loop)]
     pub fn vertex_tets(&self, v: VertexId) -> Vec<TetId> {
         let v = self.canonical(v);
         let t0 = match self.vtet.get(v as usize) {
@@ -859,5 +865,54 @@ mod degenerate_tests {
         }
         let dt = Delaunay::new(&pts);
         dt.is_valid().unwrap();
+    }
+}
+
+#[cfg(test)]
+mod timing {
+    /// `cargo test --lib delaunay::timing -- --ignored --nocapture` (profile test, opt-level 2).
+    #[test]
+    #[ignore]
+    fn timing() {
+        let n: usize = std::env::var("S2S_N")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(100_000);
+        for (name, pts) in [
+            ("uniform", super::gen::uniform(n, 1)),
+            ("planes40", super::gen::on_planes(n, 40, 1)),
+        ] {
+            let t = std::time::Instant::now();
+            let dt = super::Delaunay::new(&pts);
+            eprintln!(
+                "{name} {n}: {:.3} s, {} tets",
+                t.elapsed().as_secs_f64(),
+                dt.num_finite_tets()
+            );
+        }
+    }
+}
+
+#[cfg(test)]
+mod timing_degenerate {
+    #[test]
+    #[ignore]
+    fn timing_degenerate() {
+        for (name, pts) in [
+            ("circles", super::gen::circles(10, 200)),
+            ("circles6", super::gen::circles(6, 100)),
+            ("polytope", super::gen::polytope_faces(5000, 30, 5)),
+        ] {
+            let t = std::time::Instant::now();
+            let dt = super::Delaunay::new(&pts);
+            eprintln!(
+                "{name}: {:.3} s, {} tets",
+                t.elapsed().as_secs_f64(),
+                dt.num_finite_tets()
+            );
+            let t = std::time::Instant::now();
+            dt.is_valid().unwrap();
+            eprintln!("valid {name}: {:.3} s", t.elapsed().as_secs_f64());
+        }
     }
 }

@@ -2,6 +2,7 @@
 //! matching facets, (2) positive finite tetrahedra, (3) a locally convex hull closed by infinite
 //! tetrahedra and (4) locally Delaunay facets imply a Delaunay triangulation of the vertices
 //! (Delaunay's lemma), and (5) every non-merged vertex is used.
+#![allow(clippy::needless_range_loop)]
 use super::{pred, Delaunay, DEAD, INFINITE, NONE};
 
 pub(super) fn check(dt: &Delaunay) -> Result<(), String> {

@@ -5,6 +5,7 @@
 //! Boxes are built from the exact input coordinates with `min`/`max` (no rounding), so closed box
 //! overlap is a conservative filter for exact predicates.
 
+#![allow(clippy::needless_range_loop)] // small fixed-size coordinate loops read better indexed
 use smallvec::SmallVec;
 
 const LEAF: usize = 4;

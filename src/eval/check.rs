@@ -163,7 +163,7 @@ pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
                     if !t[i].iter().any(|x| t[j].contains(x)) {
                         r.vertex_disjoint += 1;
                     }
-                    if r.example.map_or(true, |f| j < f[1]) {
+                    if r.example.is_none_or(|f| j < f[1]) {
                         r.example = Some([i, j]);
                     }
                 }

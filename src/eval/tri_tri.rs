@@ -12,6 +12,7 @@
 //! * all three shared: the same triangle twice, which overlaps.
 //!
 //! Degenerate (collinear) triangles are not tested here; `check` counts them separately.
+#![allow(clippy::needless_range_loop)] // small fixed-size coordinate loops read better indexed
 use crate::geom::predicates::{orient2d, orient3d};
 
 type P3 = [f64; 3];

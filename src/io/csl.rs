@@ -1,2 +1,622 @@
-//! (to be written) csl reader and writer. API: read_csl(path) / parse_csl(text, file_name) -> Result<Sections>,
-//! write_csl(path, &Sections) -> Result<()>, to_csl_string(&Sections) -> String.
+//! CSL, the cross-section format of the public reconstruction datasets.
+//!
+//! ```text
+//! CSLC
+//! n_planes n_labels
+//! index n_vertices n_components a b c d      (per plane; the plane is a x + b y + c z + d = 0)
+//! x y z                                      (n_vertices lines)
+//! count[hP] label i0 i1 ...                  (n_components lines)
+//! ```
+//! The file is read as a stream of whitespace-separated tokens, so leading spaces, blank lines and
+//! wrapped lines are accepted; every token remembers its line for error messages.
+//!
+//! Indexing, determined from the shared data: vertex indices are 0-based (Heart-simplified.csl,
+//! plane 1, has 47 vertices and its component uses exactly 0..=46). The parent `P` of a hole `hP`
+//! is the 0-based position of a component in the same plane: Horsers.csl has `11h0`, and in every
+//! shared file the hole lies inside component P counted from 0 (the loader's nesting check
+//! verifies this for each file in `tests/io_shared_csl.rs`).
+//!
+//! A hole's own label is accepted and ignored: the region's label is its outer component's.
+//! The writer prints shortest round-trip decimals (`{}` of f64), so CSL → CSL reproduces the 3D
+//! vertices exactly; the 2D coordinates come back within a few ulps (re-projection).
+use crate::error::{Error, Result};
+use crate::sections::{Contour, Plane, Region, Section, Sections};
+use crate::validate::{
+    self, check_coordinate, ContourId, Locator, Role, OFF_PLANE_RELATIVE_TOLERANCE,
+};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Read a CSL file.
+pub fn read_csl(path: &Path) -> Result<Sections> {
+    let text = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let text = String::from_utf8_lossy(&text);
+    parse_csl(&text, &path.display().to_string())
+}
+
+/// Write a CSL file.
+pub fn write_csl(path: &Path, sections: &Sections) -> Result<()> {
+    std::fs::write(path, to_csl_string(sections)).map_err(|e| Error::io(path, e))
+}
+
+struct Tokens<'a> {
+    toks: Vec<(&'a str, usize)>,
+    pos: usize,
+    last_line: usize,
+}
+
+impl<'a> Tokens<'a> {
+    fn new(text: &'a str) -> Self {
+        let mut toks = Vec::new();
+        let mut last_line = 1;
+        for (i, line) in text.lines().enumerate() {
+            last_line = i + 1;
+            toks.extend(line.split_whitespace().map(|t| (t, i + 1)));
+        }
+        Tokens {
+            toks,
+            pos: 0,
+            last_line,
+        }
+    }
+    /// Next token and its line, or the last line of the file and `None` at the end.
+    fn next(&mut self) -> (Option<&'a str>, usize) {
+        match self.toks.get(self.pos) {
+            Some(&(t, l)) => {
+                self.pos += 1;
+                (Some(t), l)
+            }
+            None => (None, self.last_line),
+        }
+    }
+}
+
+/// Where we are, for messages: `FILE:LINE: plane P, component C`.
+fn at(file: &str, line: usize, plane: Option<usize>, component: Option<usize>) -> String {
+    let mut s = format!("{file}:{line}");
+    if let Some(p) = plane {
+        write!(s, ": plane {p}").unwrap();
+        if let Some(c) = component {
+            write!(s, ", component {c}").unwrap();
+        }
+    }
+    s
+}
+
+/// One component as written in the file.
+struct RawComponent {
+    line: usize,
+    hole_of: Option<usize>,
+    label: i32,
+    indices: Vec<usize>,
+}
+
+struct RawPlane {
+    index: usize,
+    line: usize,
+    plane: Plane,
+    vertices: Vec<[f64; 3]>,
+    vertex_lines: Vec<usize>,
+    components: Vec<RawComponent>,
+}
+
+/// Line numbers of what the reader built, for validation messages.
+struct CslLocator<'a> {
+    file: &'a str,
+    planes: Vec<(usize, usize)>, // (CSL index, line)
+    /// Per section, per region: (outer component, hole components); component → line.
+    regions: Vec<Vec<(usize, Vec<usize>)>>,
+    component_lines: Vec<Vec<usize>>,
+}
+
+impl Locator for CslLocator<'_> {
+    fn plane(&self, s: usize) -> String {
+        let (index, line) = self.planes[s];
+        at(self.file, line, Some(index), None)
+    }
+    fn contour(&self, id: ContourId) -> String {
+        let (outer, holes) = &self.regions[id.section][id.region];
+        let c = match id.role {
+            Role::Outer => *outer,
+            Role::Hole(h) => holes[h],
+        };
+        let (index, _) = self.planes[id.section];
+        at(
+            self.file,
+            self.component_lines[id.section][c],
+            Some(index),
+            Some(c),
+        )
+    }
+}
+
+/// Parse CSL text; `file_name` is used in messages. The result is validated (see `validate`).
+pub fn parse_csl(text: &str, file_name: &str) -> Result<Sections> {
+    let mut t = Tokens::new(text);
+    let err =
+        |line, plane, comp, reason: String| Error::input(at(file_name, line, plane, comp), reason);
+
+    match t.next() {
+        (Some("CSLC"), _) => {}
+        (Some(other), l) => {
+            return Err(err(
+                l,
+                None,
+                None,
+                format!(
+                    "not a CSL file: expected header `CSLC`, found `{}`",
+                    clip(other)
+                ),
+            ))
+        }
+        (None, l) => {
+            return Err(err(
+                l,
+                None,
+                None,
+                "empty file: expected header `CSLC`".into(),
+            ))
+        }
+    }
+    let n_planes = uint(&mut t, file_name, None, None, "the number of planes")?;
+    let n_labels = uint(&mut t, file_name, None, None, "the number of labels")?;
+
+    let mut raw = Vec::new();
+    for _ in 0..n_planes {
+        let (first, line) = t.next();
+        let index = match first {
+            Some(tok) => parse_uint(tok).ok_or_else(|| {
+                err(
+                    line,
+                    None,
+                    None,
+                    format!("expected a plane index, found `{}`", clip(tok)),
+                )
+            })?,
+            None => {
+                return Err(err(
+                    line,
+                    None,
+                    None,
+                    format!(
+                        "unexpected end of file: {} plane(s) declared, {} found",
+                        n_planes,
+                        raw.len()
+                    ),
+                ))
+            }
+        };
+        let p = Some(index);
+        let n_vertices = uint(&mut t, file_name, p, None, "the number of vertices")?;
+        let n_components = uint(&mut t, file_name, p, None, "the number of components")?;
+        let mut eq = [0.0; 4];
+        for (k, x) in eq.iter_mut().enumerate() {
+            *x = float(&mut t, file_name, p, ["a", "b", "c", "d"][k])?;
+        }
+        let plane = if eq[..3] == [0.0; 3] {
+            return Err(err(line, p, None, "plane normal (a, b, c) is zero".into()));
+        } else {
+            Plane::from_equation([eq[0], eq[1], eq[2]], eq[3]).ok_or_else(|| {
+                err(
+                    line,
+                    p,
+                    None,
+                    "plane equation cannot be normalised (too large or too small)".into(),
+                )
+            })?
+        };
+        let mut vertices = Vec::new();
+        let mut vertex_lines = Vec::new();
+        for _ in 0..n_vertices {
+            let mut v = [0.0; 3];
+            let mut vline = 0;
+            for (k, x) in v.iter_mut().enumerate() {
+                let (tok, l) = t.next();
+                vline = l;
+                *x = number(tok, l, file_name, p, ["x", "y", "z"][k])?;
+            }
+            vertices.push(v);
+            vertex_lines.push(vline);
+        }
+        let mut components = Vec::new();
+        for c in 0..n_components {
+            let pc = (p, Some(c));
+            let (tok, cline) = t.next();
+            let tok = tok.ok_or_else(|| {
+                err(
+                    cline,
+                    pc.0,
+                    pc.1,
+                    "unexpected end of file: expected a component".into(),
+                )
+            })?;
+            let (count, hole_of) = match tok.split_once(['h', 'H']) {
+                Some((n, parent)) => (parse_uint(n), parse_uint(parent).map(Some)),
+                None => (parse_uint(tok), Some(None)),
+            };
+            let (Some(count), Some(hole_of)) = (count, hole_of) else {
+                return Err(err(
+                    cline,
+                    pc.0,
+                    pc.1,
+                    format!(
+                        "expected a vertex count like `12` or `12h0`, found `{}`",
+                        clip(tok)
+                    ),
+                ));
+            };
+            if let Some(parent) = hole_of {
+                if parent >= n_components || parent == c {
+                    return Err(err(
+                        cline,
+                        pc.0,
+                        pc.1,
+                        format!(
+                            "hole parent {parent} is not another component of this plane (components 0..{})",
+                            n_components
+                        ),
+                    ));
+                }
+            }
+            let (ltok, lline) = t.next();
+            let label = match ltok {
+                Some(s) => s.parse::<i32>().map_err(|_| {
+                    err(
+                        lline,
+                        pc.0,
+                        pc.1,
+                        format!("expected an integer label, found `{}`", clip(s)),
+                    )
+                })?,
+                None => {
+                    return Err(err(
+                        lline,
+                        pc.0,
+                        pc.1,
+                        "unexpected end of file: expected a label".into(),
+                    ))
+                }
+            };
+            let mut indices = Vec::new();
+            for k in 0..count {
+                let (itok, iline) = t.next();
+                let Some(itok) = itok else {
+                    return Err(err(
+                        iline,
+                        pc.0,
+                        pc.1,
+                        format!("unexpected end of file: component declares {count} vertices, {k} found"),
+                    ));
+                };
+                let i = parse_uint(itok).ok_or_else(|| {
+                    err(
+                        iline,
+                        pc.0,
+                        pc.1,
+                        format!("expected a vertex index, found `{}`", clip(itok)),
+                    )
+                })?;
+                if i >= n_vertices {
+                    return Err(err(
+                        iline,
+                        pc.0,
+                        pc.1,
+                        format!("vertex index {i} out of range (the plane has {n_vertices} vertices, 0-based)"),
+                    ));
+                }
+                indices.push(i);
+            }
+            components.push(RawComponent {
+                line: cline,
+                hole_of,
+                label,
+                indices,
+            });
+        }
+        raw.push(RawPlane {
+            index,
+            line,
+            plane,
+            vertices,
+            vertex_lines,
+            components,
+        });
+    }
+    let mut warnings = Vec::new();
+    if let (Some(tok), l) = t.next() {
+        warnings.push(format!(
+            "{}: ignored data after the last declared plane, starting with `{}`",
+            at(file_name, l, None, None),
+            clip(tok)
+        ));
+    }
+
+    // Holes may only refer to outer components.
+    for rp in &raw {
+        for (c, comp) in rp.components.iter().enumerate() {
+            if let Some(parent) = comp.hole_of {
+                if rp.components[parent].hole_of.is_some() {
+                    return Err(err(
+                        comp.line,
+                        Some(rp.index),
+                        Some(c),
+                        format!("hole parent {parent} is itself a hole"),
+                    ));
+                }
+            }
+        }
+    }
+
+    // Snap to the plane; the tolerance is relative to the bounding box of every vertex.
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for v in raw.iter().flat_map(|r| &r.vertices) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(v[k]);
+            hi[k] = hi[k].max(v[k]);
+        }
+    }
+    let diag = if lo[0] <= hi[0] {
+        ((0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>()).sqrt()
+    } else {
+        0.0
+    };
+    let tol = OFF_PLANE_RELATIVE_TOLERANCE * diag;
+
+    let mut sections = Vec::new();
+    let mut loc = CslLocator {
+        file: file_name,
+        planes: Vec::new(),
+        regions: Vec::new(),
+        component_lines: Vec::new(),
+    };
+    for rp in raw {
+        let mut max_off: f64 = 0.0;
+        let mut points2 = Vec::with_capacity(rp.vertices.len());
+        for (i, v) in rp.vertices.iter().enumerate() {
+            let off = rp.plane.signed_distance(*v).abs();
+            if !(off <= tol) {
+                return Err(err(
+                    rp.vertex_lines[i],
+                    Some(rp.index),
+                    None,
+                    format!(
+                        "vertex {i} is {off:.3e} off its plane; tolerance {tol:.3e} ({OFF_PLANE_RELATIVE_TOLERANCE} x model bounding-box diagonal {diag:.3e})"
+                    ),
+                ));
+            }
+            max_off = max_off.max(off);
+            let q = rp.plane.to_2d(*v);
+            points2.push([
+                check_coordinate(q[0]).unwrap_or(q[0]),
+                check_coordinate(q[1]).unwrap_or(q[1]),
+            ]);
+        }
+        let contour = |comp: &RawComponent| {
+            Contour::from_2d(
+                &rp.plane,
+                comp.indices.iter().map(|&i| points2[i]).collect(),
+            )
+        };
+        let mut regions = Vec::new();
+        let mut region_components = Vec::new();
+        for (c, comp) in rp.components.iter().enumerate() {
+            if comp.hole_of.is_some() {
+                continue;
+            }
+            let holes: Vec<usize> = (0..rp.components.len())
+                .filter(|&h| rp.components[h].hole_of == Some(c))
+                .collect();
+            regions.push(Region {
+                label: comp.label,
+                outer: contour(comp),
+                holes: holes.iter().map(|&h| contour(&rp.components[h])).collect(),
+            });
+            region_components.push((c, holes));
+        }
+        loc.planes.push((rp.index, rp.line));
+        loc.regions.push(region_components);
+        loc.component_lines
+            .push(rp.components.iter().map(|c| c.line).collect());
+        sections.push(Section {
+            plane: rp.plane,
+            regions,
+            source_index: rp.index,
+            max_off_plane: max_off,
+        });
+    }
+    let sections = Sections {
+        sections,
+        n_labels,
+        warnings,
+    };
+    validate::validate_with(sections, &loc)
+}
+
+fn clip(s: &str) -> String {
+    s.chars().take(40).collect()
+}
+
+fn parse_uint(s: &str) -> Option<usize> {
+    if s.is_empty() || !s.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    s.parse().ok()
+}
+
+fn uint(
+    t: &mut Tokens,
+    file: &str,
+    plane: Option<usize>,
+    comp: Option<usize>,
+    what: &str,
+) -> Result<usize> {
+    let (tok, line) = t.next();
+    match tok {
+        Some(s) => parse_uint(s).ok_or_else(|| {
+            Error::input(
+                at(file, line, plane, comp),
+                format!(
+                    "expected {what} (a non-negative integer), found `{}`",
+                    clip(s)
+                ),
+            )
+        }),
+        None => Err(Error::input(
+            at(file, line, plane, comp),
+            format!("unexpected end of file: expected {what}"),
+        )),
+    }
+}
+
+fn float(t: &mut Tokens, file: &str, plane: Option<usize>, what: &str) -> Result<f64> {
+    let (tok, line) = t.next();
+    number(tok, line, file, plane, what)
+}
+
+fn number(
+    tok: Option<&str>,
+    line: usize,
+    file: &str,
+    plane: Option<usize>,
+    what: &str,
+) -> Result<f64> {
+    let loc = || at(file, line, plane, None);
+    let Some(s) = tok else {
+        return Err(Error::input(
+            loc(),
+            format!("unexpected end of file: expected {what}"),
+        ));
+    };
+    let x: f64 = s.parse().map_err(|_| {
+        Error::input(
+            loc(),
+            format!("expected a number for {what}, found `{}`", clip(s)),
+        )
+    })?;
+    check_coordinate(x).map_err(|e| Error::input(loc(), format!("{what}: {e}")))
+}
+
+/// CSL text of `sections`: planes numbered from 1, vertices as `origin + s u + t v` (the snapped
+/// 3D points), one component line per contour, holes as `count h P` after their outer component P.
+pub fn to_csl_string(sections: &Sections) -> String {
+    let max_label = sections
+        .sections
+        .iter()
+        .flat_map(|s| &s.regions)
+        .map(|r| r.label.max(0) as usize)
+        .max()
+        .unwrap_or(0);
+    let mut out = String::new();
+    writeln!(out, "CSLC").unwrap();
+    writeln!(
+        out,
+        "{} {}",
+        sections.sections.len(),
+        sections.n_labels.max(max_label)
+    )
+    .unwrap();
+    for (i, s) in sections.sections.iter().enumerate() {
+        let contours: usize = s.regions.iter().map(|r| 1 + r.holes.len()).sum();
+        let verts: usize = s
+            .regions
+            .iter()
+            .map(|r| r.outer.points2.len() + r.holes.iter().map(|h| h.points2.len()).sum::<usize>())
+            .sum();
+        let n = s.plane.normal;
+        writeln!(
+            out,
+            "\n{} {} {} {} {} {} {}\n",
+            i + 1,
+            verts,
+            contours,
+            n[0],
+            n[1],
+            n[2],
+            s.plane.offset
+        )
+        .unwrap();
+        let all = s
+            .regions
+            .iter()
+            .flat_map(|r| std::iter::once(&r.outer).chain(&r.holes));
+        for c in all {
+            for q in &c.points2 {
+                let p = s.plane.to_3d(*q);
+                writeln!(out, "{} {} {}", p[0], p[1], p[2]).unwrap();
+            }
+        }
+        let mut next_vertex = 0;
+        let mut component = 0;
+        let mut line = |out: &mut String, c: &Contour, head: String, label: i32| {
+            write!(out, "{head} {label}").unwrap();
+            for k in 0..c.points2.len() {
+                write!(out, " {}", next_vertex + k).unwrap();
+            }
+            out.push('\n');
+            next_vertex += c.points2.len();
+        };
+        for r in &s.regions {
+            let outer = component;
+            line(
+                &mut out,
+                &r.outer,
+                r.outer.points2.len().to_string(),
+                r.label,
+            );
+            component += 1;
+            for h in &r.holes {
+                line(
+                    &mut out,
+                    h,
+                    format!("{}h{}", h.points2.len(), outer),
+                    r.label,
+                );
+                component += 1;
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SQUARE_WITH_HOLE: &str = "CSLC\n1 1\n\n 1 8 2 0 0 1 -2\n\n0 0 2\n4 0 2\n4 4 2\n0 4 2\n1 1 2\n1 3 2\n3 3 2\n3 1 2\n4 1 0 1 2 3\n4h0 2 4 7 6 5\n";
+
+    #[test]
+    fn parses_square_with_hole() {
+        let s = parse_csl(SQUARE_WITH_HOLE, "t.csl").unwrap();
+        assert_eq!(s.sections.len(), 1);
+        let r = &s.sections[0].regions;
+        assert_eq!(r.len(), 1);
+        assert_eq!(r[0].holes.len(), 1);
+        assert_eq!(r[0].label, 1);
+        assert!((s.sections[0].area() - 12.0).abs() < 1e-12);
+        // The hole is given counter-clockwise: fixed with a warning naming its line.
+        assert!(
+            s.warnings
+                .iter()
+                .any(|w| w.contains("t.csl:15: plane 1, component 1")),
+            "{:?}",
+            s.warnings
+        );
+        let again = parse_csl(&to_csl_string(&s), "u.csl").unwrap();
+        assert_eq!(again.sections[0].regions, s.sections[0].regions);
+        assert!(again.warnings.is_empty());
+    }
+
+    #[test]
+    fn errors_name_line_and_reason() {
+        let bad = SQUARE_WITH_HOLE.replace("4 1 0 1 2 3", "4 1 0 1 2 9");
+        let e = parse_csl(&bad, "t.csl").unwrap_err().to_string();
+        assert!(
+            e.starts_with("t.csl:14: plane 1, component 0") && e.contains("out of range"),
+            "{e}"
+        );
+        let e = parse_csl("CSLC\n1 1\n1 3 1 0 0 1", "t.csl")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("t.csl:3") && e.contains("end of file"), "{e}");
+    }
+}

@@ -7,16 +7,34 @@ use crate::error::{Error, Result};
 use crate::sections::Sections;
 use std::path::Path;
 
-/// Read cross-sections, CSL or JSON by extension (`.csl`, `.json`).
-pub fn read_sections(_path: &Path) -> Result<Sections> {
-    Err(Error::Unavailable(
-        "section reading is not implemented yet".into(),
-    ))
+/// The section formats, chosen by file extension (case-insensitive).
+fn section_format(path: &Path) -> Result<&'static str> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("csl") => Ok("csl"),
+        Some("json") => Ok("json"),
+        _ => Err(Error::input(
+            path.display().to_string(),
+            "unknown cross-section format: expected a .csl or .json file",
+        )),
+    }
+}
+
+/// Read cross-sections, CSL or JSON by extension (`.csl`, `.json`), validated and repaired.
+pub fn read_sections(path: &Path) -> Result<Sections> {
+    match section_format(path)? {
+        "csl" => csl::read_csl(path),
+        _ => json::read_json(path),
+    }
 }
 
 /// Write cross-sections, CSL or JSON by extension.
-pub fn write_sections(_path: &Path, _sections: &Sections) -> Result<()> {
-    Err(Error::Unavailable(
-        "section writing is not implemented yet".into(),
-    ))
+pub fn write_sections(path: &Path, sections: &Sections) -> Result<()> {
+    match section_format(path)? {
+        "csl" => csl::write_csl(path, sections),
+        _ => json::write_json(path, sections),
+    }
 }

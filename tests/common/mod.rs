@@ -1,173 +1,29 @@
-//! Shared helpers for integration tests.
+//! Helpers shared by the integration tests.
 #![allow(dead_code)]
-use slice2solid::arrangement::{
-    ArrPlane, Arrangement, Cell, CellFace, Face, SectionPiece, VertexPool,
-};
-use slice2solid::{Contour, Plane, Region, Section, Sections};
-use smallvec::smallvec;
 use std::path::PathBuf;
 
-/// The shared directory: `$SLICE2SOLID_SHARED`, else `$CARGO_MANIFEST_DIR/../shared`, else `/work/shared`.
+/// The shared data directory: `$SLICE2SOLID_SHARED`, else `$CARGO_MANIFEST_DIR/../shared` if it
+/// exists, else `/work/shared`.
 pub fn shared_dir() -> PathBuf {
-    if let Ok(d) = std::env::var("SLICE2SOLID_SHARED") {
+    if let Some(d) = std::env::var_os("SLICE2SOLID_SHARED") {
         return PathBuf::from(d);
     }
-    let d = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
-    if d.exists() {
-        d
-    } else {
-        PathBuf::from("/work/shared")
+    let sibling = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
+    if sibling.exists() {
+        return sibling;
     }
+    PathBuf::from("/work/shared")
 }
 
-/// A polygon with holes in the xy plane: outer counter-clockwise, holes clockwise.
-pub type Poly = (Vec<[f64; 2]>, Vec<Vec<[f64; 2]>>);
-
-pub fn circle(cx: f64, cy: f64, r: f64, n: usize) -> Vec<[f64; 2]> {
-    (0..n)
-        .map(|i| {
-            let a = std::f64::consts::TAU * i as f64 / n as f64;
-            [cx + r * a.cos(), cy + r * a.sin()]
-        })
-        .collect()
-}
-
-pub fn reversed(mut p: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
-    p.reverse();
-    p
-}
-
-/// Sections on horizontal planes z = z_i, and the arrangement of those parallel planes built by hand
-/// (cells i = slab between plane i-1 and plane i; the box walls carry no section and are omitted).
-pub fn parallel_case(layers: &[(f64, Vec<Poly>)]) -> (Sections, Arrangement) {
-    let mut sections = Sections {
-        n_labels: 1,
-        ..Default::default()
-    };
-    let mut arr = Arrangement {
-        planes: Vec::new(),
-        n_input: layers.len(),
-        pool: VertexPool::default(),
-        faces: Vec::new(),
-        cells: Vec::new(),
-        bbox: ([-10.0; 3], [10.0; 3]),
-        max_disagreement: 0.0,
-        warnings: Vec::new(),
-    };
-    for (i, (z, polys)) in layers.iter().enumerate() {
-        let plane = Plane::from_equation([0.0, 0.0, 1.0], -z).unwrap();
-        let mut regions = Vec::new();
-        let mut pieces = Vec::new();
-        let pool = &mut arr.pool;
-        let mut add_loop = |xy: &Vec<[f64; 2]>, pool: &mut VertexPool| -> (Contour, Vec<u32>) {
-            let uv: Vec<[f64; 2]> = xy.iter().map(|p| plane.to_2d([p[0], p[1], *z])).collect();
-            let c = Contour::from_2d(&plane, uv);
-            let ids = (0..xy.len())
-                .map(|k| {
-                    pool.positions.push(c.points3[k]);
-                    pool.tags.push(smallvec![i as u32]);
-                    pool.uv.push(smallvec![c.points2[k]]);
-                    (pool.positions.len() - 1) as u32
-                })
-                .collect();
-            (c, ids)
-        };
-        for (outer, holes) in polys {
-            let (oc, oid) = add_loop(outer, pool);
-            let mut hcs = Vec::new();
-            let mut hids = Vec::new();
-            for h in holes {
-                let (hc, hid) = add_loop(h, pool);
-                hcs.push(hc);
-                hids.push(hid);
-            }
-            regions.push(Region {
-                label: 1,
-                outer: oc,
-                holes: hcs,
-            });
-            pieces.push(SectionPiece {
-                label: 1,
-                outer: oid,
-                holes: hids,
-            });
-        }
-        sections.sections.push(Section {
-            plane,
-            regions,
-            source_index: i,
-            max_off_plane: 0.0,
-        });
-        arr.planes.push(ArrPlane {
-            plane,
-            section: Some(i),
-        });
-        arr.faces.push(Face {
-            plane: i as u32,
-            positive_cell: Some(i as u32 + 1),
-            negative_cell: Some(i as u32),
-            polygon: Vec::new(),
-            pieces,
-        });
-    }
-    for c in 0..=layers.len() {
-        let mut faces = Vec::new();
-        if c > 0 {
-            faces.push(CellFace {
-                face: c as u32 - 1,
-                outward_is_plane_normal: false,
-            });
-        }
-        if c < layers.len() {
-            faces.push(CellFace {
-                face: c as u32,
-                outward_is_plane_normal: true,
-            });
-        }
-        arr.cells.push(Cell { faces, volume: 1.0 });
-    }
-    (sections, arr)
-}
-
-/// The same sections with every plane's normal reversed (frames recomputed, contours re-expressed).
-pub fn flipped(s: &Sections) -> Sections {
-    let mut out = s.clone();
-    for sec in &mut out.sections {
-        let p = Plane::from_equation(
-            [
-                -sec.plane.normal[0],
-                -sec.plane.normal[1],
-                -sec.plane.normal[2],
-            ],
-            -sec.plane.offset,
-        )
-        .unwrap();
-        let redo = |c: &Contour| {
-            let mut pts: Vec<[f64; 3]> = c.points3.clone();
-            pts.reverse();
-            Contour {
-                points2: pts.iter().map(|&q| p.to_2d(q)).collect(),
-                points3: pts,
-            }
-        };
-        for r in &mut sec.regions {
-            r.outer = redo(&r.outer);
-            r.holes = r.holes.iter().map(redo).collect();
-        }
-        sec.plane = p;
-    }
-    out
-}
-
-/// Largest per-plane relative symmetric difference between the mesh's section and the input, each
-/// plane measured from whichever side agrees better (the evaluator shifts the plane infinitesimally
-/// against its normal, so a solid lying on one side of its extreme plane is seen from that side only).
-pub fn worst_section(mesh: &slice2solid::TriMesh, s: &Sections) -> f64 {
-    use slice2solid::eval::section::section_agreement;
-    let a = section_agreement(mesh, s);
-    let b = section_agreement(mesh, &flipped(s));
-    a.iter()
-        .zip(b.iter())
-        .map(|(x, y)| x.relative.min(y.relative))
-        .fold(0.0, f64::max)
+/// Every `*.csl` file of the shared data, sorted.
+pub fn shared_csl_files() -> Vec<PathBuf> {
+    let dir = shared_dir().join("data/csl");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "csl"))
+        .collect();
+    files.sort();
+    assert!(!files.is_empty(), "no CSL files in {}", dir.display());
+    files
 }

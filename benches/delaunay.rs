@@ -1,0 +1,51 @@
+//! Kernel throughput: uniform points and points on 40 random planes, 10^4 and 10^5 points
+//! (10^6 with `S2S_BENCH_1M=1`).
+//!
+//! Also writes point files for comparisons with other tools:
+//! `S2S_WRITE_XYZ=out.xyz S2S_KIND=planes S2S_N=1000000 cargo bench --bench delaunay` writes the points
+//! and exits (kinds: uniform, planes).
+use criterion::{criterion_group, BenchmarkId, Criterion};
+use slice2solid::delaunay::{gen, xyz, Delaunay};
+
+fn points(kind: &str, n: usize) -> Vec<[f64; 3]> {
+    match kind {
+        "uniform" => gen::uniform(n, 1),
+        _ => gen::on_planes(n, 40, 1),
+    }
+}
+
+fn bench(c: &mut Criterion) {
+    let mut sizes = vec![10_000, 100_000];
+    if std::env::var_os("S2S_BENCH_1M").is_some() {
+        sizes.push(1_000_000);
+    }
+    let mut g = c.benchmark_group("delaunay");
+    g.sample_size(10);
+    for kind in ["uniform", "planes40"] {
+        for &n in &sizes {
+            let pts = points(kind, n);
+            g.bench_with_input(BenchmarkId::new(kind, n), &pts, |b, pts| {
+                b.iter(|| Delaunay::new(pts).num_finite_tets())
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+
+fn main() {
+    if let Some(path) = std::env::var_os("S2S_WRITE_XYZ") {
+        let kind = std::env::var("S2S_KIND").unwrap_or_else(|_| "planes".into());
+        let n = std::env::var("S2S_N")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(1_000_000);
+        xyz::write_xyz(std::path::Path::new(&path), &points(&kind, n)).expect("write points");
+        return;
+    }
+    benches();
+    criterion::Criterion::default()
+        .configure_from_args()
+        .final_summary();
+}

@@ -1,0 +1,976 @@
+//! Validation and repair of cross-sections, shared by the CSL and JSON readers and by anyone who
+//! builds a [`Sections`] in memory (the mesh slicer, tests).
+//!
+//! Repairs (reported in `Sections::warnings`): duplicate consecutive vertices are removed, contours
+//! are re-oriented (outer counter-clockwise, holes clockwise seen from the normal).
+//! Errors (`Error::Input`, located by a [`Locator`]): non-finite or out-of-range numbers, zero normal,
+//! a vertex off its plane beyond `OFF_PLANE_RELATIVE_TOLERANCE` × the model's bounding-box diagonal,
+//! fewer than 3 distinct vertices, a self-intersecting (or self-touching) contour, two contours of
+//! one plane crossing or touching, a hole not inside its parent, a region inside another region's
+//! material, and the same plane given twice.
+//!
+//! Every intersection and containment decision uses the exact `orient2d` predicate on the
+//! authoritative 2D coordinates (`points2`); floats are only used for bucketing and distances.
+use crate::error::{Error, Result};
+use crate::geom::predicates::orient2d;
+use crate::sections::{cross, dot, sub, Contour, Plane, Sections};
+
+/// A vertex may lie this far from its plane, relative to the diagonal of the model's bounding box.
+/// Measured on the shared CSL files: at most 4.9e-5 (Horsers, coordinates printed with 2 decimals,
+/// 1.2e-2 absolute); every other file is below 3e-10. 1e-3 is 20x above the worst real file and far
+/// below any real misplacement.
+pub const OFF_PLANE_RELATIVE_TOLERANCE: f64 = 1e-3;
+
+/// Two planes are the same plane when they are this close over the model's bounding box,
+/// relative to its diagonal.
+pub const DUPLICATE_PLANE_RELATIVE_TOLERANCE: f64 = 1e-9;
+
+/// Largest accepted coordinate magnitude: keeps products in the exact predicates (up to degree 4 in
+/// insphere) far from overflow.
+pub const MAX_COORDINATE: f64 = 1e30;
+
+/// Nonzero magnitudes below this are flushed to zero (they would underflow in the predicates).
+pub const TINY_COORDINATE: f64 = 1e-100;
+
+/// Which contour of a region.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    Outer,
+    Hole(usize),
+}
+
+/// A contour of a `Sections`: section index (position in `sections.sections`), region, role.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ContourId {
+    pub section: usize,
+    pub region: usize,
+    pub role: Role,
+}
+
+/// Turns indices into the text of `Error::Input::location` (file, line or JSON path, plane, component).
+pub trait Locator {
+    fn plane(&self, section: usize) -> String;
+    fn contour(&self, id: ContourId) -> String;
+}
+
+/// Locations for a `Sections` built in memory: `SOURCE: section S (plane P), region R, hole H`.
+struct MemoryLocator<'a> {
+    source: &'a str,
+    source_index: Vec<usize>,
+}
+
+impl Locator for MemoryLocator<'_> {
+    fn plane(&self, s: usize) -> String {
+        format!(
+            "{}: section {s} (plane {})",
+            self.source,
+            self.source_index.get(s).copied().unwrap_or(s)
+        )
+    }
+    fn contour(&self, id: ContourId) -> String {
+        let role = match id.role {
+            Role::Outer => "outer contour".to_string(),
+            Role::Hole(h) => format!("hole {h}"),
+        };
+        format!("{}, region {}, {role}", self.plane(id.section), id.region)
+    }
+}
+
+/// Validate and repair sections built in memory. `source` names them in messages.
+pub fn validate(sections: Sections, source: &str) -> Result<Sections> {
+    let loc = MemoryLocator {
+        source,
+        source_index: sections.sections.iter().map(|s| s.source_index).collect(),
+    };
+    validate_with(sections, &loc)
+}
+
+/// Collects repairs of one kind; reported as one warning with a count and the first locations.
+#[derive(Default)]
+struct RepairLog {
+    count: usize,
+    first: Vec<String>,
+}
+
+impl RepairLog {
+    fn add(&mut self, location: impl FnOnce() -> String) {
+        self.count += 1;
+        if self.first.len() < 3 {
+            self.first.push(location());
+        }
+    }
+    fn report(self, what: &str, out: &mut Vec<String>) {
+        if self.count == 0 {
+            return;
+        }
+        let more = if self.count > self.first.len() {
+            format!(" and {} more", self.count - self.first.len())
+        } else {
+            String::new()
+        };
+        out.push(format!(
+            "{what} on {} contour(s): {}{more}",
+            self.count,
+            self.first.join("; ")
+        ));
+    }
+}
+
+/// Validate and repair, naming places with `loc`. Readers call this after building the sections.
+pub fn validate_with(mut sections: Sections, loc: &dyn Locator) -> Result<Sections> {
+    for (s, sec) in sections.sections.iter().enumerate() {
+        check_plane(&sec.plane).map_err(|r| Error::input(loc.plane(s), r))?;
+    }
+    let mut duplicates = RepairLog::default();
+    let mut reoriented = RepairLog::default();
+
+    // Coordinates: consistent lengths, finite, in range; points3 filled in when missing.
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        let plane = sec.plane;
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let id = ContourId {
+                    section: s,
+                    region: r,
+                    role,
+                };
+                if c.points3.is_empty() {
+                    c.points3 = c.points2.iter().map(|&q| plane.to_3d(q)).collect();
+                }
+                if c.points3.len() != c.points2.len() {
+                    return Err(Error::input(
+                        loc.contour(id),
+                        format!(
+                            "{} 2D points but {} 3D points",
+                            c.points2.len(),
+                            c.points3.len()
+                        ),
+                    ));
+                }
+                for (i, q) in c.points2.iter_mut().enumerate() {
+                    for x in q.iter_mut() {
+                        *x = check_coordinate(*x).map_err(|e| {
+                            Error::input(loc.contour(id), format!("vertex {i}: {e}"))
+                        })?;
+                    }
+                }
+                for (i, p) in c.points3.iter().enumerate() {
+                    for &x in p {
+                        check_coordinate(x).map_err(|e| {
+                            Error::input(loc.contour(id), format!("vertex {i}: {e}"))
+                        })?;
+                    }
+                }
+            }
+        }
+    }
+
+    // Off-plane distances and snapping (points3 := the plane point of points2).
+    let tol = off_plane_tolerance(&sections);
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        let plane = sec.plane;
+        let mut max_off = sec.max_off_plane.max(0.0);
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let id = ContourId {
+                    section: s,
+                    region: r,
+                    role,
+                };
+                for (i, (p, q)) in c.points3.iter().zip(&c.points2).enumerate() {
+                    let off = plane.signed_distance(*p).abs();
+                    let on = plane.to_3d(*q);
+                    let gap = dot(sub(*p, on), sub(*p, on)).sqrt();
+                    if !(off <= tol && gap <= tol) {
+                        return Err(Error::input(
+                            loc.contour(id),
+                            format!(
+                                "vertex {i} is {:.3e} off its plane (3D point {:.3e} from its 2D point); tolerance {tol:.3e} ({OFF_PLANE_RELATIVE_TOLERANCE} x model diagonal)",
+                                off, gap
+                            ),
+                        ));
+                    }
+                    max_off = max_off.max(off);
+                }
+                c.points3 = c.points2.iter().map(|&q| plane.to_3d(q)).collect();
+            }
+        }
+        sec.max_off_plane = max_off;
+    }
+
+    // Duplicate consecutive vertices (closing edge included), then the vertex count.
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let id = ContourId {
+                    section: s,
+                    region: r,
+                    role,
+                };
+                if remove_consecutive_duplicates(c) {
+                    duplicates.add(|| loc.contour(id));
+                }
+                if c.points2.len() < 3 {
+                    return Err(Error::input(
+                        loc.contour(id),
+                        format!(
+                            "contour has {} distinct vertices, at least 3 are needed",
+                            c.points2.len()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+
+    check_duplicate_planes(&sections, loc)?;
+
+    for (s, sec) in sections.sections.iter().enumerate() {
+        let contours: Vec<(ContourId, &Contour)> = sec
+            .regions
+            .iter()
+            .enumerate()
+            .flat_map(|(r, region)| {
+                std::iter::once((Role::Outer, &region.outer))
+                    .chain(
+                        region
+                            .holes
+                            .iter()
+                            .enumerate()
+                            .map(|(h, c)| (Role::Hole(h), c)),
+                    )
+                    .map(move |(role, c)| {
+                        (
+                            ContourId {
+                                section: s,
+                                region: r,
+                                role,
+                            },
+                            c,
+                        )
+                    })
+            })
+            .collect();
+        check_intersections(&contours, loc)?;
+        check_nesting(&contours, loc)?;
+    }
+
+    // Orientation: outer counter-clockwise, holes clockwise (the contours are simple by now).
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let ccw = orientation(&c.points2) > 0.0;
+                if ccw != (role == Role::Outer) {
+                    c.points2.reverse();
+                    c.points3.reverse();
+                    reoriented.add(|| {
+                        loc.contour(ContourId {
+                            section: s,
+                            region: r,
+                            role,
+                        })
+                    });
+                }
+            }
+        }
+    }
+
+    let max_label = sections
+        .sections
+        .iter()
+        .flat_map(|s| &s.regions)
+        .map(|r| r.label)
+        .max()
+        .unwrap_or(0);
+    sections.n_labels = sections.n_labels.max(max_label.max(0) as usize);
+    duplicates.report(
+        "removed duplicate consecutive vertices",
+        &mut sections.warnings,
+    );
+    reoriented.report(
+        "reversed orientation (outer contours must be counter-clockwise and holes clockwise seen from the plane normal)",
+        &mut sections.warnings,
+    );
+    Ok(sections)
+}
+
+fn contours_mut(
+    region: &mut crate::sections::Region,
+) -> impl Iterator<Item = (Role, &mut Contour)> {
+    std::iter::once((Role::Outer, &mut region.outer)).chain(
+        region
+            .holes
+            .iter_mut()
+            .enumerate()
+            .map(|(h, c)| (Role::Hole(h), c)),
+    )
+}
+
+/// A coordinate as the predicates can take it: finite, at most `MAX_COORDINATE`, tiny values flushed.
+pub fn check_coordinate(x: f64) -> std::result::Result<f64, String> {
+    if !x.is_finite() {
+        return Err(format!("coordinate {x} is not a finite number"));
+    }
+    if x.abs() > MAX_COORDINATE {
+        return Err(format!(
+            "coordinate {x:e} exceeds the supported magnitude {MAX_COORDINATE:e}"
+        ));
+    }
+    Ok(if x.abs() < TINY_COORDINATE { 0.0 } else { x })
+}
+
+fn check_plane(p: &Plane) -> std::result::Result<(), String> {
+    let all = p
+        .normal
+        .iter()
+        .chain(&p.origin)
+        .chain(&p.u)
+        .chain(&p.v)
+        .chain(std::iter::once(&p.offset));
+    if all.clone().any(|x| !x.is_finite()) {
+        return Err("plane has a coordinate that is not a finite number".into());
+    }
+    if p.normal == [0.0; 3] {
+        return Err("plane normal is zero".into());
+    }
+    let eps = 1e-9;
+    let uxv = cross(p.u, p.v);
+    let frame_ok = (dot(p.normal, p.normal) - 1.0).abs() < eps
+        && (dot(p.u, p.u) - 1.0).abs() < eps
+        && (dot(p.v, p.v) - 1.0).abs() < eps
+        && dot(p.u, p.v).abs() < eps
+        && (0..3).all(|k| (uxv[k] - p.normal[k]).abs() < eps)
+        && p.signed_distance(p.origin).abs() <= eps * (1.0 + p.offset.abs());
+    if !frame_ok {
+        return Err(
+            "plane frame is not orthonormal with u x v = normal (build planes with Plane::from_equation or Plane::from_point_normal)"
+                .into(),
+        );
+    }
+    Ok(())
+}
+
+/// Diagonal of the bounding box of every 3D vertex (0 when there are none).
+pub fn model_diagonal(sections: &Sections) -> f64 {
+    match sections.bounding_box() {
+        Some((lo, hi)) => dot(sub(hi, lo), sub(hi, lo)).sqrt(),
+        None => 0.0,
+    }
+}
+
+/// Absolute off-plane tolerance for these sections.
+pub fn off_plane_tolerance(sections: &Sections) -> f64 {
+    OFF_PLANE_RELATIVE_TOLERANCE * model_diagonal(sections)
+}
+
+/// Remove consecutive equal vertices (in 2D, closing edge included). True if any were removed.
+fn remove_consecutive_duplicates(c: &mut Contour) -> bool {
+    let n = c.points2.len();
+    let mut keep = vec![true; n];
+    let mut any = false;
+    for i in 1..n {
+        if c.points2[i] == c.points2[i - 1] {
+            keep[i] = false;
+            any = true;
+        }
+    }
+    // Closing edge: drop trailing vertices equal to the first kept one.
+    let mut last = n;
+    while last > 1 && c.points2[last - 1] == c.points2[0] {
+        if keep[last - 1] {
+            keep[last - 1] = false;
+            any = true;
+        }
+        last -= 1;
+    }
+    if any {
+        let mut k = keep.iter();
+        c.points2.retain(|_| *k.next().unwrap());
+        let mut k = keep.iter();
+        c.points3.retain(|_| *k.next().unwrap());
+    }
+    any
+}
+
+/// Sign of the orientation of a simple polygon, exactly: the turn at its lexicographically smallest
+/// vertex (positive for counter-clockwise).
+pub fn orientation(p: &[[f64; 2]]) -> f64 {
+    let n = p.len();
+    if n < 3 {
+        return 0.0;
+    }
+    let mut m = 0;
+    for i in 1..n {
+        if (p[i][0], p[i][1]) < (p[m][0], p[m][1]) {
+            m = i;
+        }
+    }
+    orient2d(p[(m + n - 1) % n], p[m], p[(m + 1) % n])
+}
+
+/// Winding number of `poly` around `q`, exact (`q` must not be on the boundary for a meaningful answer).
+pub fn winding_number(q: [f64; 2], poly: &[[f64; 2]]) -> i32 {
+    let n = poly.len();
+    let mut w = 0;
+    for i in 0..n {
+        let a = poly[i];
+        let b = poly[(i + 1) % n];
+        if a[1] <= q[1] {
+            if b[1] > q[1] && orient2d(a, b, q) > 0.0 {
+                w += 1;
+            }
+        } else if b[1] <= q[1] && orient2d(a, b, q) < 0.0 {
+            w -= 1;
+        }
+    }
+    w
+}
+
+fn check_duplicate_planes(sections: &Sections, loc: &dyn Locator) -> Result<()> {
+    let corners: Vec<[f64; 3]> = match sections.bounding_box() {
+        Some((lo, hi)) => (0..8)
+            .map(|k| {
+                [
+                    if k & 1 == 0 { lo[0] } else { hi[0] },
+                    if k & 2 == 0 { lo[1] } else { hi[1] },
+                    if k & 4 == 0 { lo[2] } else { hi[2] },
+                ]
+            })
+            .collect(),
+        None => vec![[0.0; 3]],
+    };
+    let diag = model_diagonal(sections);
+    let eps = DUPLICATE_PLANE_RELATIVE_TOLERANCE * if diag > 0.0 { diag } else { 1.0 };
+    let planes: Vec<Plane> = sections.sections.iter().map(|s| s.plane).collect();
+    for j in 0..planes.len() {
+        for i in 0..j {
+            let (a, b) = (&planes[i], &planes[j]);
+            let c = dot(a.normal, b.normal);
+            if c.abs() < 1.0 - 1e-6 {
+                continue;
+            }
+            let s = c.signum();
+            let normals_equal = (0..3).all(|k| (a.normal[k] - s * b.normal[k]).abs() <= 1e-12);
+            let same = corners
+                .iter()
+                .all(|&x| (a.signed_distance(x) - s * b.signed_distance(x)).abs() <= eps)
+                && (normals_equal || sections.bounding_box().is_some());
+            if same {
+                return Err(Error::input(
+                    loc.plane(j),
+                    format!("duplicate plane: same plane as {}", loc.plane(i)),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One contour edge, for the intersection search.
+#[derive(Clone, Copy)]
+struct Edge {
+    contour: u32,
+    index: u32,
+    a: [f64; 2],
+    b: [f64; 2],
+}
+
+/// No contour of one plane may touch itself (except consecutive edges at their shared vertex) or
+/// another contour. Edges are bucketed in a uniform grid over the plane's bounding box; each pair
+/// sharing cells is tested once, in the lowest cell both cover, with exact predicates.
+fn check_intersections(contours: &[(ContourId, &Contour)], loc: &dyn Locator) -> Result<()> {
+    let mut edges = Vec::new();
+    let mut lens = Vec::new();
+    for (ci, (_, c)) in contours.iter().enumerate() {
+        let n = c.points2.len();
+        lens.push(n as u32);
+        for i in 0..n {
+            edges.push(Edge {
+                contour: ci as u32,
+                index: i as u32,
+                a: c.points2[i],
+                b: c.points2[(i + 1) % n],
+            });
+        }
+    }
+    if edges.len() < 2 {
+        return Ok(());
+    }
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for e in &edges {
+        for k in 0..2 {
+            lo[k] = lo[k].min(e.a[k]);
+            hi[k] = hi[k].max(e.a[k]);
+        }
+    }
+    let g = ((edges.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+    // Monotone in x, so intersecting edges (overlapping boxes) get overlapping cell ranges.
+    let cell = |x: f64, k: usize| -> usize {
+        let w = hi[k] - lo[k];
+        if w > 0.0 {
+            (((x - lo[k]) / w * g as f64) as usize).min(g - 1)
+        } else {
+            0
+        }
+    };
+    let ranges: Vec<[usize; 4]> = edges
+        .iter()
+        .map(|e| {
+            [
+                cell(e.a[0].min(e.b[0]), 0),
+                cell(e.a[0].max(e.b[0]), 0),
+                cell(e.a[1].min(e.b[1]), 1),
+                cell(e.a[1].max(e.b[1]), 1),
+            ]
+        })
+        .collect();
+    // Compressed buckets: count, prefix sums, fill.
+    let mut start = vec![0usize; g * g + 1];
+    for r in &ranges {
+        for y in r[2]..=r[3] {
+            for x in r[0]..=r[1] {
+                start[y * g + x + 1] += 1;
+            }
+        }
+    }
+    for i in 0..g * g {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut bucket = vec![0u32; start[g * g]];
+    for (ei, r) in ranges.iter().enumerate() {
+        for y in r[2]..=r[3] {
+            for x in r[0]..=r[1] {
+                bucket[fill[y * g + x]] = ei as u32;
+                fill[y * g + x] += 1;
+            }
+        }
+    }
+    for y in 0..g {
+        for x in 0..g {
+            let items = &bucket[start[y * g + x]..start[y * g + x + 1]];
+            for (k, &i) in items.iter().enumerate() {
+                for &j in &items[k + 1..] {
+                    let (ri, rj) = (&ranges[i as usize], &ranges[j as usize]);
+                    if ri[0].max(rj[0]) != x || ri[2].max(rj[2]) != y {
+                        continue; // tested in a lower cell
+                    }
+                    let (e, f) = (&edges[i as usize], &edges[j as usize]);
+                    if let Some(reason) = edge_conflict(e, f, &lens) {
+                        let (ce, cf) = (
+                            contours[e.contour as usize].0,
+                            contours[f.contour as usize].0,
+                        );
+                        let at = e.a;
+                        return Err(if e.contour == f.contour {
+                            Error::input(
+                                loc.contour(ce),
+                                format!(
+                                    "self-intersecting contour: edges {} and {} {reason} (near {:?})",
+                                    e.index.min(f.index),
+                                    e.index.max(f.index),
+                                    at
+                                ),
+                            )
+                        } else {
+                            Error::input(
+                                loc.contour(ce),
+                                format!(
+                                    "contours of one plane cross: edge {} {reason} edge {} of {}",
+                                    e.index,
+                                    f.index,
+                                    loc.contour(cf)
+                                ),
+                            )
+                        });
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Why two edges conflict (`None` if they don't): they cross or touch, except two consecutive edges
+/// of one contour, which may share their common vertex but must not overlap.
+fn edge_conflict(e: &Edge, f: &Edge, lens: &[u32]) -> Option<&'static str> {
+    if e.contour == f.contour {
+        let n = lens[e.contour as usize];
+        let (i, j) = (e.index, f.index);
+        let consecutive_ef = (i + 1) % n == j; // e.b == f.a
+        let consecutive_fe = (j + 1) % n == i; // f.b == e.a
+        if consecutive_ef || consecutive_fe {
+            if n == 3 {
+                // Every pair of a triangle is consecutive; it only fails when degenerate.
+                return (orient2d(e.a, e.b, if consecutive_ef { f.b } else { f.a }) == 0.0)
+                    .then_some("overlap (degenerate triangle)");
+            }
+            let (a, shared, c) = if consecutive_ef {
+                (e.a, e.b, f.b)
+            } else {
+                (f.a, f.b, e.b)
+            };
+            return (orient2d(a, shared, c) == 0.0 && same_direction(shared, a, c))
+                .then_some("overlap (the contour turns back on itself)");
+        }
+    }
+    segments_intersect(e.a, e.b, f.a, f.b).then_some("cross or touch")
+}
+
+/// For collinear a, b, c distinct from o: do a and c lie on the same side of o? Exact (comparisons).
+fn same_direction(o: [f64; 2], a: [f64; 2], c: [f64; 2]) -> bool {
+    let k = if a[0] != o[0] { 0 } else { 1 };
+    (a[k] > o[k]) == (c[k] > o[k])
+}
+
+/// Closed segments pq and rs share a point. Exact.
+pub fn segments_intersect(p: [f64; 2], q: [f64; 2], r: [f64; 2], s: [f64; 2]) -> bool {
+    let sign = |x: f64| (x > 0.0) as i8 - (x < 0.0) as i8;
+    let d1 = sign(orient2d(r, s, p));
+    let d2 = sign(orient2d(r, s, q));
+    let d3 = sign(orient2d(p, q, r));
+    let d4 = sign(orient2d(p, q, s));
+    if d1 * d2 < 0 && d3 * d4 < 0 {
+        return true;
+    }
+    (d1 == 0 && in_box(r, s, p))
+        || (d2 == 0 && in_box(r, s, q))
+        || (d3 == 0 && in_box(p, q, r))
+        || (d4 == 0 && in_box(p, q, s))
+}
+
+/// For x collinear with ab: x lies on the closed segment ab.
+fn in_box(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
+    (0..2).all(|k| a[k].min(b[k]) <= x[k] && x[k] <= a[k].max(b[k]))
+}
+
+/// Nesting (the contours are disjoint by now, so containment is a tree): a hole's innermost
+/// container must be its own outer contour; an outer contour lies outside every contour or
+/// directly inside a hole.
+fn check_nesting(contours: &[(ContourId, &Contour)], loc: &dyn Locator) -> Result<()> {
+    let n = contours.len();
+    if n < 2 {
+        return Ok(());
+    }
+    let boxes: Vec<([f64; 2], [f64; 2])> = contours
+        .iter()
+        .map(|(_, c)| {
+            let mut lo = c.points2[0];
+            let mut hi = lo;
+            for q in &c.points2 {
+                for k in 0..2 {
+                    lo[k] = lo[k].min(q[k]);
+                    hi[k] = hi[k].max(q[k]);
+                }
+            }
+            (lo, hi)
+        })
+        .collect();
+    let containers: Vec<Vec<usize>> = (0..n)
+        .map(|x| {
+            let q = contours[x].1.points2[0];
+            (0..n)
+                .filter(|&y| {
+                    let (lo, hi) = boxes[y];
+                    y != x
+                        && (0..2).all(|k| lo[k] <= q[k] && q[k] <= hi[k])
+                        && winding_number(q, &contours[y].1.points2) != 0
+                })
+                .collect()
+        })
+        .collect();
+    let parent = |x: usize| -> Option<usize> {
+        let depth = containers[x].len();
+        containers[x]
+            .iter()
+            .copied()
+            .find(|&y| containers[y].len() + 1 == depth)
+    };
+    for x in 0..n {
+        let (id, _) = contours[x];
+        match id.role {
+            Role::Hole(_) => {
+                let own_outer = (0..n)
+                    .find(|&y| {
+                        contours[y].0.region == id.region && contours[y].0.role == Role::Outer
+                    })
+                    .expect("every region has an outer contour");
+                if !containers[x].contains(&own_outer) {
+                    return Err(Error::input(
+                        loc.contour(id),
+                        format!(
+                            "hole is not inside its parent {}",
+                            loc.contour(contours[own_outer].0)
+                        ),
+                    ));
+                }
+                if let Some(p) = parent(x) {
+                    if p != own_outer {
+                        return Err(Error::input(
+                            loc.contour(id),
+                            format!(
+                                "hole lies inside {}, which is itself inside the hole's parent",
+                                loc.contour(contours[p].0)
+                            ),
+                        ));
+                    }
+                }
+            }
+            Role::Outer => {
+                if let Some(p) = parent(x) {
+                    if contours[p].0.role == Role::Outer {
+                        return Err(Error::input(
+                            loc.contour(id),
+                            format!(
+                                "region lies inside the material of {} (regions overlap; a contour inside another must be inside one of its holes)",
+                                loc.contour(contours[p].0)
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sections::{Region, Section};
+
+    fn square(plane: &Plane, x0: f64, y0: f64, s: f64) -> Contour {
+        Contour::from_2d(
+            plane,
+            vec![[x0, y0], [x0 + s, y0], [x0 + s, y0 + s], [x0, y0 + s]],
+        )
+    }
+
+    fn one_plane(regions: Vec<Region>) -> Sections {
+        let plane = Plane::from_equation([0.0, 0.0, 1.0], -1.0).unwrap();
+        Sections {
+            sections: vec![Section {
+                plane,
+                regions,
+                source_index: 0,
+                max_off_plane: 0.0,
+            }],
+            n_labels: 1,
+            warnings: vec![],
+        }
+    }
+
+    fn z1() -> Plane {
+        Plane::from_equation([0.0, 0.0, 1.0], -1.0).unwrap()
+    }
+
+    #[test]
+    fn square_with_hole_is_valid_and_reoriented() {
+        let p = z1();
+        let mut hole = square(&p, 1.0, 1.0, 1.0);
+        hole.points2.reverse();
+        hole.points3.reverse();
+        let mut outer = square(&p, 0.0, 0.0, 3.0);
+        outer.points2.reverse(); // clockwise outer: must be fixed
+        outer.points3.reverse();
+        let s = one_plane(vec![Region {
+            label: 1,
+            outer,
+            holes: vec![hole],
+        }]);
+        let v = validate(s, "mem").unwrap();
+        let r = &v.sections[0].regions[0];
+        assert!(r.outer.signed_area() > 0.0);
+        assert!(r.holes[0].signed_area() < 0.0);
+        assert_eq!(v.warnings.len(), 1, "{:?}", v.warnings);
+        assert!((r.area() - 8.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bow_tie_is_rejected() {
+        let p = z1();
+        let c = Contour::from_2d(&p, vec![[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]);
+        let e = validate(
+            one_plane(vec![Region {
+                label: 1,
+                outer: c,
+                holes: vec![],
+            }]),
+            "mem",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("self-intersecting") && e.contains("mem: section 0"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn spike_and_touching_vertex_are_rejected() {
+        let p = z1();
+        // Goes to (2,0) and back along the same line to (1,0).
+        let spike = Contour::from_2d(&p, vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
+        let e = validate(
+            one_plane(vec![Region {
+                label: 1,
+                outer: spike,
+                holes: vec![],
+            }]),
+            "m",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("self-intersecting"), "{e}");
+        // Two squares sharing one corner.
+        let e = validate(
+            one_plane(vec![
+                Region {
+                    label: 1,
+                    outer: square(&p, 0.0, 0.0, 1.0),
+                    holes: vec![],
+                },
+                Region {
+                    label: 1,
+                    outer: square(&p, 1.0, 1.0, 1.0),
+                    holes: vec![],
+                },
+            ]),
+            "m",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("cross"), "{e}");
+    }
+
+    #[test]
+    fn nesting_rules() {
+        let p = z1();
+        let hole_outside = one_plane(vec![Region {
+            label: 1,
+            outer: square(&p, 0.0, 0.0, 1.0),
+            holes: vec![square(&p, 5.0, 5.0, 1.0)],
+        }]);
+        let e = validate(hole_outside, "m").unwrap_err().to_string();
+        assert!(e.contains("hole is not inside its parent"), "{e}");
+        let overlapping = one_plane(vec![
+            Region {
+                label: 1,
+                outer: square(&p, 0.0, 0.0, 10.0),
+                holes: vec![],
+            },
+            Region {
+                label: 1,
+                outer: square(&p, 1.0, 1.0, 1.0),
+                holes: vec![],
+            },
+        ]);
+        let e = validate(overlapping, "m").unwrap_err().to_string();
+        assert!(e.contains("regions overlap"), "{e}");
+        // An island inside a hole is fine.
+        let island = one_plane(vec![
+            Region {
+                label: 1,
+                outer: square(&p, 0.0, 0.0, 10.0),
+                holes: vec![square(&p, 1.0, 1.0, 8.0)],
+            },
+            Region {
+                label: 2,
+                outer: square(&p, 2.0, 2.0, 1.0),
+                holes: vec![],
+            },
+        ]);
+        let v = validate(island, "m").unwrap();
+        assert_eq!(v.n_labels, 2);
+    }
+
+    #[test]
+    fn duplicates_removed_and_degenerate_rejected() {
+        let p = z1();
+        let c = Contour::from_2d(
+            &p,
+            vec![[0.0, 0.0], [0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 0.0]],
+        );
+        let v = validate(
+            one_plane(vec![Region {
+                label: 1,
+                outer: c,
+                holes: vec![],
+            }]),
+            "m",
+        )
+        .unwrap();
+        assert_eq!(v.sections[0].regions[0].outer.points2.len(), 3);
+        assert!(v.warnings[0].contains("duplicate"));
+        let c = Contour::from_2d(&p, vec![[0.0, 0.0], [1.0, 0.0], [1.0, 0.0]]);
+        let e = validate(
+            one_plane(vec![Region {
+                label: 1,
+                outer: c,
+                holes: vec![],
+            }]),
+            "m",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("at least 3"), "{e}");
+    }
+
+    #[test]
+    fn duplicate_planes_and_off_plane() {
+        let p = z1();
+        let mut s = one_plane(vec![Region {
+            label: 1,
+            outer: square(&p, 0.0, 0.0, 1.0),
+            holes: vec![],
+        }]);
+        let mut second = s.sections[0].clone();
+        second.plane = Plane::from_equation([0.0, 0.0, -2.0], 2.0).unwrap(); // same plane, flipped
+        second.regions[0].outer = square(&second.plane, 0.0, 0.0, 1.0);
+        second.source_index = 7;
+        s.sections.push(second);
+        let e = validate(s.clone(), "m").unwrap_err().to_string();
+        assert!(
+            e.contains("duplicate plane") && e.contains("plane 7") && e.contains("plane 0"),
+            "{e}"
+        );
+        s.sections.pop();
+        s.sections[0].regions[0].outer.points3[2][2] += 0.5;
+        let e = validate(s, "m").unwrap_err().to_string();
+        assert!(e.contains("vertex 2") && e.contains("off its plane"), "{e}");
+    }
+
+    #[test]
+    fn segment_predicate_cases() {
+        assert!(segments_intersect(
+            [0.0, 0.0],
+            [2.0, 2.0],
+            [0.0, 2.0],
+            [2.0, 0.0]
+        ));
+        assert!(segments_intersect(
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [1.0, 0.0],
+            [1.0, 5.0]
+        )); // T touch
+        assert!(!segments_intersect(
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [3.0, 0.0]
+        )); // collinear apart
+        assert!(segments_intersect(
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [1.0, 0.0],
+            [3.0, 0.0]
+        )); // overlap
+        assert!(!segments_intersect(
+            [0.0, 0.0],
+            [1.0, 1.0],
+            [1.0, 0.0],
+            [2.0, 0.5]
+        ));
+    }
+}

@@ -1,0 +1,82 @@
+//! The `check` and `compare` subcommands: JSON keys, exit status.
+use slice2solid::eval::shapes::{icosphere, translated, unit_cube};
+use slice2solid::io::mesh::write_trimesh;
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_slice2solid"))
+}
+
+#[test]
+fn check_json_and_exit_status() {
+    let dir = tempfile::tempdir().unwrap();
+    let good = dir.path().join("cube.obj");
+    write_trimesh(&good, &unit_cube()).unwrap();
+    let out = bin().args(["check", "--json"]).arg(&good).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in [
+        "closed",
+        "manifold",
+        "oriented",
+        "self_intersections",
+        "components",
+        "euler",
+        "genus",
+        "volume",
+        "area",
+    ] {
+        assert!(j.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(j["closed"], true);
+    assert_eq!(j["genus"], 0);
+    assert!((j["volume"].as_f64().unwrap() - 1.0).abs() < 1e-9);
+
+    // a hole: not closed, exit status 1 (table output)
+    let mut holed = icosphere([0.0; 3], 1.0, 2);
+    holed.triangles.pop();
+    let bad = dir.path().join("holed.obj");
+    write_trimesh(&bad, &holed).unwrap();
+    let out = bin().arg("check").arg(&bad).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("NOT a closed manifold"));
+
+    // a missing file: an error, exit status 2
+    let out = bin()
+        .arg("check")
+        .arg(dir.path().join("none.obj"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn compare_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let a = dir.path().join("a.obj");
+    let b = dir.path().join("b.stl");
+    write_trimesh(&a, &unit_cube()).unwrap();
+    write_trimesh(&b, &translated(&unit_cube(), [0.1, 0.0, 0.0])).unwrap();
+    let out = bin()
+        .args(["compare", "--json", "--samples", "2000", "--seed", "5"])
+        .arg(&a)
+        .arg(&b)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in ["iou", "chamfer_l1", "chamfer_l2", "hausdorff", "samples"] {
+        assert!(j.get(key).is_some(), "missing {key}");
+    }
+    assert_eq!(j["samples"], 2000);
+    // STL stores f32: the shift 0.1 is rounded, hence the tolerance
+    assert!((j["iou"].as_f64().unwrap() - 0.9 / 1.1).abs() < 1e-6);
+}
