@@ -37,13 +37,33 @@ fn run(name: &str, sections: &Sections) -> Option<(usize, i64, f64)> {
     };
     let c = check_mesh(&solid.surface, Some(sections));
     let worst = worst_section(&solid.surface, sections);
+    for (x, y) in slice2solid::eval::section::section_agreement(
+        &solid.surface,
+        &bm_common::shifted(sections, -1e-7),
+    )
+    .iter()
+    .zip(slice2solid::eval::section::section_agreement(
+        &solid.surface,
+        &bm_common::shifted(sections, 1e-7),
+    )) {
+        eprintln!(
+            "  plane {}: input {:.4} mesh {:.4}/{:.4} rel {:.4}/{:.4}",
+            x.plane, x.area_input, x.area_mesh, y.area_mesh, x.relative, y.relative
+        );
+    }
     eprintln!(
         "{name}: {} tris, closed {} manifold {} oriented {} comps {} genus {} vol {:.4} self-int {} worst section {:.4}\n  counts {:?}\n  warnings {:?}",
         c.triangles, c.closed, c.manifold, c.oriented, c.components, c.genus, c.volume,
         c.self_intersections_vertex_disjoint, worst, solid.report.counts, solid.report.warnings
     );
-    assert!(c.closed && c.manifold && c.oriented, "{name}: not a closed oriented manifold");
-    assert_eq!(c.self_intersections_vertex_disjoint, 0, "{name}: self-intersections");
+    assert!(
+        c.closed && c.manifold && c.oriented,
+        "{name}: not a closed oriented manifold"
+    );
+    assert_eq!(
+        c.self_intersections_vertex_disjoint, 0,
+        "{name}: self-intersections"
+    );
     assert!(worst < 0.02, "{name}: section disagreement {worst}");
     Some((c.components, c.genus, c.volume))
 }
@@ -52,7 +72,10 @@ fn run(name: &str, sections: &Sections) -> Option<(usize, i64, f64)> {
 fn sphere_cut_by_cube_faces_gives_the_hull_of_the_contours() {
     let (a, r_sphere) = (1.0, 1.3);
     let r = (r_sphere * r_sphere - a * a as f64).sqrt();
-    let mut sections = Sections { n_labels: 1, ..Default::default() };
+    let mut sections = Sections {
+        n_labels: 1,
+        ..Default::default()
+    };
     for (k, axis) in [0usize, 1, 2].iter().enumerate() {
         for (j, s) in [-1.0, 1.0].iter().enumerate() {
             let mut n = [0.0; 3];
@@ -60,14 +83,19 @@ fn sphere_cut_by_cube_faces_gives_the_hull_of_the_contours() {
             let plane = Plane::from_equation(n, -a).unwrap();
             let mut c = [0.0; 3];
             c[*axis] = s * a;
-            sections.sections.push(circle_section(plane, c, r, 32, 2 * k + j));
+            sections
+                .sections
+                .push(circle_section(plane, c, r, 32, 2 * k + j));
         }
     }
     if let Some((comps, genus, vol)) = run("sphere-cube", &sections) {
         assert_eq!((comps, genus), (1, 0));
         // the hull of six circles of radius r on the faces of the cube [-a,a]^3 lies strictly between
         // the octahedron-like hull of the circles' extreme points and the cube
-        assert!(vol > 4.0 / 3.0 * (a + r).powi(3) * 0.5 && vol < 8.0 * a * a * a, "{vol}");
+        assert!(
+            vol > 4.0 / 3.0 * (a + r).powi(3) * 0.5 && vol < 8.0 * a * a * a,
+            "{vol}"
+        );
     }
 }
 

@@ -143,6 +143,21 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
         });
     }
     let (alive, counts) = prune(&cx, &cl);
+    if std::env::var("BM_DEBUG").is_ok() {
+        let mut h: std::collections::BTreeMap<String, (u32, u32, u32)> = Default::default();
+        for t in 0..cx.len() {
+            let e = h.entry(format!("{:?}", cl.ty[t])).or_default();
+            e.0 += 1;
+            e.1 += cl.external[t] as u32;
+            e.2 += alive[t] as u32;
+        }
+        eprintln!(
+            "cell {}: {} pts, (count, external, kept) {:?}",
+            input.cell,
+            input.points.len(),
+            h
+        );
+    }
     let mut kept = Vec::new();
     let mut nonplanar = Vec::new();
     for (t, tv) in cx.tets.iter().enumerate() {

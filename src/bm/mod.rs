@@ -147,6 +147,7 @@ pub fn reconstruct(
         report.count("step2_removed", r.counts.step2_removed);
         report.count("step2_vf_groups_removed", r.counts.step2_vf_groups_removed);
         report.count("step3_added", r.counts.step3_added);
+        report.count("step3_cavities_filled", r.counts.step3_cavities_filled);
         report.count("tets_kept", r.kept.len() as u64);
         report.count("branching_samples", r.branching_samples);
     }

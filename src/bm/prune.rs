@@ -7,9 +7,12 @@
 //!   orientation of its other grounded edge); a tet receiving both orientations is eliminated and
 //!   pivots from it follow. Then face-connected groups of `Vf` tets sharing no face with a kept `Ee`
 //!   tet are eliminated.
-//! * Step 3: re-add `Evv`/`Vvvv` tets of step 1's result whose intersection with the current complex
-//!   is a disk or a sphere: 3 or 4 shared faces, or 2 shared faces whose free edge (the edge in neither
-//!   face) is in no kept tet and is not grounded; repeat until none can be added.
+//! * Step 3: re-add `Evv`/`Vvvv` tets of step 1's result with 2, 3 or 4 faces shared with the current
+//!   complex (the paper's rule; with 2 faces, the free edge — in neither face — must not be grounded,
+//!   so no new contact with a section is made); repeat until none can be added. The stricter disk
+//!   test (free edge in no kept tet) left tunnels in the convex-hull case (sphere in a cube): tets
+//!   closing a loop must be added too. Then groups of
+//!   remaining candidates enclosed by the complex (voids) are filled.
 use super::classify::{Classified, TetType};
 use super::complex::{Complex, NONE, TET_EDGES};
 
@@ -19,6 +22,7 @@ pub struct PruneCounts {
     pub step2_removed: u64,
     pub step2_vf_groups_removed: u64,
     pub step3_added: u64,
+    pub step3_cavities_filled: u64,
 }
 
 /// Returns the kept tets (`true`) and the counts.
@@ -124,7 +128,7 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
         if alive[t as usize] {
             continue;
         }
-        if can_add(cx, cl, &alive, t) {
+        if can_add(cx, cl, &alive, t, false) {
             alive[t as usize] = true;
             counts.step3_added += 1;
             for &nb in &cx.nbr[t as usize] {
@@ -132,6 +136,43 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
                     queued[nb as usize] = true;
                     queue.push(nb);
                 }
+            }
+        }
+    }
+    // Cavities: face-connected groups of remaining candidates enclosed by the complex (every face of
+    // the group is shared with a kept tet or with the group) are filled: the intersection of the group
+    // with the complex is its whole boundary, a union of spheres, so filling removes voids only.
+    let mut seen = vec![false; n];
+    for s in 0..n {
+        if seen[s] || alive[s] || !cand[s] {
+            continue;
+        }
+        let mut group = vec![s as u32];
+        seen[s] = true;
+        let mut enclosed = true;
+        let mut k = 0;
+        while k < group.len() {
+            let t = group[k] as usize;
+            k += 1;
+            for &nb in &cx.nbr[t] {
+                if nb == NONE {
+                    enclosed = false;
+                } else if alive[nb as usize] {
+                } else if cand[nb as usize] {
+                    if !seen[nb as usize] {
+                        seen[nb as usize] = true;
+                        group.push(nb);
+                    }
+                } else {
+                    enclosed = false;
+                }
+            }
+        }
+        if enclosed {
+            counts.step3_added += group.len() as u64;
+            counts.step3_cavities_filled += 1;
+            for t in group {
+                alive[t as usize] = true;
             }
         }
     }
@@ -188,7 +229,9 @@ fn pivot(
     }
 }
 
-fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32) -> bool {
+/// With `strict`, two shared faces also need their free edge absent from the complex (the exact
+/// disk condition); the paper's rule (used by `prune`) only counts faces.
+fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32, strict: bool) -> bool {
     let tu = t as usize;
     let shared: Vec<usize> = (0..4)
         .filter(|&i| {
@@ -207,6 +250,9 @@ fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32) -> bool {
                 .expect("edge of tet");
             if cl.grounded_edges[tu] >> k & 1 == 1 {
                 return false;
+            }
+            if !strict {
+                return true;
             }
             let tv = cx.tets[tu];
             !cx.has_edge(tv[x], tv[y], |s| alive[s as usize])
@@ -321,7 +367,7 @@ mod tests {
         cl.ty[0] = TetType::Vvvv;
         cl.grounded_edges[0] = 0;
         let alive = vec![false, true, true];
-        assert!(can_add(&cx, &cl, &alive, 0));
+        assert!(can_add(&cx, &cl, &alive, 0, true));
         let cx2 = Complex::new(7, {
             let mut t = tets;
             t.push([0, 1, 5, 6]);
@@ -333,6 +379,7 @@ mod tests {
         cl2.external.push(false);
         cl2.grounded_edges.push(0);
         cl2.pivot_edges.push(0);
-        assert!(!can_add(&cx2, &cl2, &alive2, 0));
+        assert!(!can_add(&cx2, &cl2, &alive2, 0, true));
+        assert!(can_add(&cx2, &cl2, &alive2, 0, false));
     }
 }

@@ -145,13 +145,34 @@ pub fn flipped(s: &Sections) -> Sections {
     out
 }
 
+/// The same sections moved by `eps` along each plane's normal (frames keep u, v; (u,v) unchanged).
+pub fn shifted(s: &Sections, eps: f64) -> Sections {
+    let mut out = s.clone();
+    for sec in &mut out.sections {
+        let n = sec.plane.normal;
+        let p = Plane::from_equation(n, sec.plane.offset - eps).unwrap();
+        for r in &mut sec.regions {
+            for c in std::iter::once(&mut r.outer).chain(r.holes.iter_mut()) {
+                c.points3 = c.points2.iter().map(|&q| p.to_3d(q)).collect();
+            }
+        }
+        sec.plane = p;
+    }
+    out
+}
+
 /// Largest per-plane relative symmetric difference between the mesh's section and the input, each
-/// plane measured from whichever side agrees better (the evaluator shifts the plane infinitesimally
-/// against its normal, so a solid lying on one side of its extreme plane is seen from that side only).
+/// plane measured on a parallel plane moved by ±1e-7 of the model size to whichever side agrees
+/// better: a solid's face lying in a section plane (rounded, not exactly coplanar) makes the section
+/// exactly at the plane ill-defined, and a solid lying on one side of its extreme plane is seen from
+/// that side only.
 pub fn worst_section(mesh: &slice2solid::TriMesh, s: &Sections) -> f64 {
     use slice2solid::eval::section::section_agreement;
-    let a = section_agreement(mesh, s);
-    let b = section_agreement(mesh, &flipped(s));
+    let (lo, hi) = s.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
+    let diag = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt();
+    let eps = 1e-7 * diag;
+    let a = section_agreement(mesh, &shifted(s, eps));
+    let b = section_agreement(mesh, &shifted(s, -eps));
     a.iter()
         .zip(b.iter())
         .map(|(x, y)| x.relative.min(y.relative))
