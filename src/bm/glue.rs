@@ -54,6 +54,8 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     let mut g = Glued::default();
     let mut positions = pool.positions.clone();
     // global id per cell-local vertex (branching samples get new ids)
+    // branching samples: (global id, unit direction into their cell)
+    let mut samples: Vec<(u32, [f64; 3])> = Vec::new();
     let maps: Vec<Vec<u32>> = results
         .iter()
         .map(|r| match r.as_ref().and_then(|r| r.input.as_ref()) {
@@ -64,7 +66,18 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                 .map(|(l, &gid)| {
                     if gid == u32::MAX {
                         positions.push(inp.points[l]);
-                        (positions.len() - 1) as u32
+                        let id = (positions.len() - 1) as u32;
+                        if let Some(s) = (0..inp.slots.len()).find(|&s| inp.mask[l] >> s & 1 == 1) {
+                            let slot = &inp.slots[s];
+                            let n = slot.geom.normal;
+                            let d = if slot.outward_is_plane_normal {
+                                -1.0
+                            } else {
+                                1.0
+                            };
+                            samples.push((id, [d * n[0], d * n[1], d * n[2]]));
+                        }
+                        id
                     } else {
                         gid
                     }
@@ -209,7 +222,38 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .filter(|(_, d)| !d)
         .map(|(t, _)| t)
         .unzip();
-    g.pinched_vertices = unpinch(arr, &mut positions, &mut tris, &kind);
+    let split = unpinch(arr, &mut positions, &mut tris, &kind);
+    g.pinched_vertices = split.len() as u64;
+    lift_samples(&mut positions, &tris, &samples, &split);
+    if std::env::var("BM_DEBUG").is_ok() {
+        let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+        for (i, t) in tris.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.entry((a.min(b), a.max(b))).or_default().push(i);
+            }
+        }
+        let mut hist: std::collections::BTreeMap<String, u32> = Default::default();
+        for (e, l) in &edges {
+            if l.len() != 2 {
+                let mut ks: Vec<String> = l.iter().map(|&i| format!("{:?}", kind[i])).collect();
+                ks.sort();
+                let tags = |v: u32| pool.tags.get(v as usize).map(|t| t.len()).unwrap_or(0);
+                *hist
+                    .entry(format!(
+                        "{} tris, tags {}/{}: {:?}",
+                        l.len(),
+                        tags(e.0),
+                        tags(e.1),
+                        ks
+                    ))
+                    .or_default() += 1;
+            }
+        }
+        for (k, v) in hist.iter().take(40) {
+            eprintln!("  nonmanifold {v} × {k}");
+        }
+    }
     if g.pinched_vertices > 0 {
         g.warnings.push(format!(
             "{} vertices where the solid touched a section from above only (branching on an unattached side) were lifted off the plane (paper Fig. 12b)",
@@ -313,7 +357,7 @@ fn unpinch(
     positions: &mut Vec<[f64; 3]>,
     tris: &mut [[u32; 3]],
     kind: &[Kind],
-) -> u64 {
+) -> std::collections::HashSet<u32> {
     let mut at: HashMap<u32, Vec<usize>> = HashMap::new();
     for (i, t) in tris.iter().enumerate() {
         for &v in t {
@@ -322,7 +366,7 @@ fn unpinch(
     }
     let mut vs: Vec<u32> = at.keys().copied().collect();
     vs.sort_unstable();
-    let mut split = 0;
+    let mut split = std::collections::HashSet::new();
     for v in vs {
         let list = &at[&v];
         let mut face = None;
@@ -355,7 +399,7 @@ fn unpinch(
         }
         let face = &arr.faces[f as usize];
         let n = arr.planes[face.plane as usize].plane.normal;
-        let delta = 1e-3 * min_len;
+        let delta = 1e-6 * min_len;
         let mut copies: HashMap<u32, u32> = HashMap::new();
         for &i in list {
             let Kind::Cell(c) = kind[i] else { continue };
@@ -375,7 +419,42 @@ fn unpinch(
                 }
             }
         }
-        split += 1;
+        split.insert(v);
     }
     split
+}
+
+/// The paper's remedy for singular points where the branching diagrams of the two cells of a face
+/// cross (Fig. 12a-b): every branching sample (a vertex of one cell only) is displaced into its cell
+/// by a millionth of its shortest incident edge, so the two cells' crotch ridges no longer meet on the
+/// plane. Vertices already split by `unpinch` stay.
+fn lift_samples(
+    positions: &mut [[f64; 3]],
+    tris: &[[u32; 3]],
+    samples: &[(u32, [f64; 3])],
+    split: &std::collections::HashSet<u32>,
+) {
+    let mut shortest: HashMap<u32, f64> = HashMap::new();
+    for t in tris {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let d = crate::sections::sub(positions[a as usize], positions[b as usize]);
+            let l = crate::sections::dot(d, d).sqrt();
+            for v in [a, b] {
+                let e = shortest.entry(v).or_insert(f64::INFINITY);
+                *e = e.min(l);
+            }
+        }
+    }
+    for &(v, d) in samples {
+        if split.contains(&v) {
+            continue;
+        }
+        let Some(&l) = shortest.get(&v) else { continue };
+        let delta = 1e-6 * l;
+        let p = &mut positions[v as usize];
+        for k in 0..3 {
+            p[k] += delta * d[k];
+        }
+    }
 }
