@@ -345,13 +345,14 @@ fn count_double_sheet(tris: &[[u32; 3]]) -> u64 {
         .count() as u64
 }
 
-/// Where the solid touches a section plane from one side only along the branching diagram (two
-/// wedges meeting at an edge of a section that the other side does not attach to), the surface is
-/// pinched: a vertex interior to a face's planar output (its planar triangles close a fan around it)
-/// also carries non-planar triangles. Following the paper's remedy (displace the branching points
-/// slightly into the cell), the vertex is split: the non-planar triangles of each cell get a copy
-/// lifted by a tiny distance into that cell, the planar fan keeps the original. Returns the number of
-/// split vertices.
+/// Where the solid touches a section plane from one side only (branching on a side the other cell
+/// does not attach to, paper Fig. 12), the surface is pinched at vertices: the triangles around a
+/// vertex form several fans. Fans are found by walking triangles around the vertex through their
+/// shared edges (at an edge with more than two triangles, only triangles of the same kind — planar on
+/// the same face, or non-planar of the same cell — continue each other). Every fan but the one with
+/// the most planar triangles gets its own copy of the vertex, lifted by a millionth of the shortest
+/// incident edge into its cell when the fan is non-planar (the paper's remedy: displace slightly into
+/// the cell). Returns the split vertices.
 fn unpinch(
     arr: &Arrangement,
     positions: &mut Vec<[f64; 3]>,
@@ -368,54 +369,103 @@ fn unpinch(
     vs.sort_unstable();
     let mut split = std::collections::HashSet::new();
     for v in vs {
-        let list = &at[&v];
-        let mut face = None;
-        let mut ok = true;
-        let mut has_cell = false;
-        let mut edge_count: HashMap<u32, i32> = HashMap::new();
-        let mut min_len = f64::INFINITY;
-        for &i in list {
-            match kind[i] {
-                Kind::Face(f) => {
-                    if face.is_some_and(|g| g != f) {
-                        ok = false;
-                    }
-                    face = Some(f);
-                    for &w in &tris[i] {
-                        if w != v {
-                            *edge_count.entry(w).or_default() += 1;
-                            let d =
-                                crate::sections::sub(positions[w as usize], positions[v as usize]);
-                            min_len = min_len.min(crate::sections::dot(d, d).sqrt());
+        let list = at[&v].clone();
+        // edges (v,w) → incident triangles (indices into list)
+        let mut by_w: HashMap<u32, Vec<usize>> = HashMap::new();
+        for (k, &i) in list.iter().enumerate() {
+            for &w in &tris[i] {
+                if w != v {
+                    by_w.entry(w).or_default().push(k);
+                }
+            }
+        }
+        // union-find over the triangles of the star
+        let mut parent: Vec<usize> = (0..list.len()).collect();
+        fn find(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        for ks in by_w.values() {
+            if ks.len() == 2 {
+                let (a, b) = (find(&mut parent, ks[0]), find(&mut parent, ks[1]));
+                parent[a] = b;
+            } else {
+                for x in 0..ks.len() {
+                    for y in x + 1..ks.len() {
+                        if kind[list[ks[x]]] == kind[list[ks[y]]] {
+                            let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
+                            parent[a] = b;
                         }
                     }
                 }
-                Kind::Cell(_) => has_cell = true,
             }
         }
-        let Some(f) = face else { continue };
-        if !ok || !has_cell || edge_count.values().any(|&c| c != 2) {
+        let mut fans: HashMap<usize, Vec<usize>> = HashMap::new();
+        for k in 0..list.len() {
+            let r = find(&mut parent, k);
+            fans.entry(r).or_default().push(list[k]);
+        }
+        if fans.len() < 2 {
             continue;
         }
-        let face = &arr.faces[f as usize];
-        let n = arr.planes[face.plane as usize].plane.normal;
+        let mut fans: Vec<Vec<usize>> = fans.into_values().collect();
+        let planar = |f: &Vec<usize>| {
+            f.iter()
+                .filter(|&&i| matches!(kind[i], Kind::Face(_)))
+                .count()
+        };
+        fans.sort_by_key(|f| (std::cmp::Reverse(planar(f)), f[0]));
+        let p = positions[v as usize];
+        let mut min_len = f64::INFINITY;
+        for &i in &list {
+            for &w in &tris[i] {
+                if w != v {
+                    let d = crate::sections::sub(positions[w as usize], p);
+                    min_len = min_len.min(crate::sections::dot(d, d).sqrt());
+                }
+            }
+        }
         let delta = 1e-6 * min_len;
-        let mut copies: HashMap<u32, u32> = HashMap::new();
-        for &i in list {
-            let Kind::Cell(c) = kind[i] else { continue };
-            let id = *copies.entry(c).or_insert_with(|| {
-                let s = if face.positive_cell == Some(c) {
-                    delta
-                } else {
-                    -delta
-                };
-                let p = positions[v as usize];
-                positions.push([p[0] + s * n[0], p[1] + s * n[1], p[2] + s * n[2]]);
-                (positions.len() - 1) as u32
-            });
-            for w in tris[i].iter_mut() {
-                if *w == v {
-                    *w = id;
+        for fan in &fans[1..] {
+            // lift direction: into the cell of a purely non-planar fan, when the vertex lies on a
+            // face of that cell with planar output here; otherwise the copy stays in place
+            let mut dir = [0.0; 3];
+            let cells: Vec<u32> = fan
+                .iter()
+                .filter_map(|&i| match kind[i] {
+                    Kind::Cell(c) => Some(c),
+                    _ => None,
+                })
+                .collect();
+            if planar(fan) == 0 && cells.iter().all(|&c| c == cells[0]) {
+                let c = cells[0];
+                if let Some(f) = list.iter().find_map(|&i| match kind[i] {
+                    Kind::Face(f) => Some(f),
+                    _ => None,
+                }) {
+                    let face = &arr.faces[f as usize];
+                    let n = arr.planes[face.plane as usize].plane.normal;
+                    if face.positive_cell == Some(c) {
+                        dir = n;
+                    } else if face.negative_cell == Some(c) {
+                        dir = [-n[0], -n[1], -n[2]];
+                    }
+                }
+            }
+            positions.push([
+                p[0] + delta * dir[0],
+                p[1] + delta * dir[1],
+                p[2] + delta * dir[2],
+            ]);
+            let id = (positions.len() - 1) as u32;
+            for &i in fan {
+                for w in tris[i].iter_mut() {
+                    if *w == v {
+                        *w = id;
+                    }
                 }
             }
         }
