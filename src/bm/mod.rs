@@ -1,9 +1,22 @@
 //! Boissonnat–Memari reconstruction: per arrangement cell, Delaunay of contour vertices and branching samples,
 //! pruned in three steps; the cells glued into one solid.
 //!
-//! Flow: face boundary loops (global pool ids) → rounds of { every dirty cell in parallel: Delaunay,
-//! conformity check } with global Steiner splits until every contour edge is a Delaunay edge in every
-//! cell → per cell classify + prune (`classify`, `prune`) → `glue`.
+//! Flow: face boundary loops (global pool ids) → rounds of { every dirty cell in parallel (rayon):
+//! Delaunay (our kernel), branching samples (`branching`), conformity check } with global Steiner
+//! splits (`conform`) until every contour edge is an edge of every cell's section triangulation → per
+//! cell classify (`classify`, by plane tags) + prune (`prune`, steps 1–3) → `glue`.
+//!
+//! Decisions (see each module's doc): flat tets (four vertices on one plane, from rounding) are removed
+//! in step 1; tet types by the tag rule in `classify`; step 3 uses the paper's face-count rule plus
+//! filling of enclosed voids; branching samples are cell-local vertices placed on the Moebius diagram
+//! where the Delaunay apex map is discontinuous; gluing never matches section triangles across cells
+//! (`glue`), flat zones are reported, pinched vertices are split and singular crossings of the two
+//! cells' branching diagrams avoided by displacing samples 1e-6 of an edge into their cell (Fig. 12b).
+//!
+//! Known limits: cutting-diagram samples are not computed; where both cells attach part of a face and
+//! leave a common part unattached, the two flat-zone sheets can remain (counted in warnings); the
+//! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
+//! Set `SLICE2SOLID_NO_BRANCHING` to skip branching samples, `BM_DEBUG` for per-cell diagnostics.
 pub mod branching;
 pub mod cell;
 pub mod cell_input;
