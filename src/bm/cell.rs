@@ -1,0 +1,206 @@
+//! One cell, end to end: Delaunay of its section vertices (plus branching samples), conformity check,
+//! classification, pruning, and what the gluing needs (kept tets, non-planar boundary, per face the
+//! section triangles seen from this cell and whether the cell attaches to them).
+use super::cell_input::CellInput;
+use super::classify::{classify, tet_type, Classifier, TetType};
+
+/// Rounds of branching sampling (sample, re-triangulate) per cell.
+const BRANCHING_ROUNDS: usize = 1;
+use super::complex::{outward_face, Complex, NONE};
+use super::prune::{prune, PruneCounts};
+use crate::error::Result;
+use std::collections::{HashMap, HashSet};
+
+/// The section triangles of one face as this cell's triangulation has them.
+#[derive(Clone, Debug, Default)]
+pub struct FaceSide {
+    pub face: u32,
+    /// Internal grounded triangles on the face that bound a non-flat tet of this cell, oriented
+    /// outward from the cell (local ids), with whether a kept tet stands on them.
+    pub triangles: Vec<([u32; 3], bool)>,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct CellResult {
+    pub input: Option<CellInput>,
+    /// Contour edges (global ids) that are not edges of this cell's section triangulation.
+    pub missing: Vec<(u32, u32)>,
+    pub kept: Vec<[u32; 4]>,
+    /// Boundary triangles of the kept tets that are not on a face, outward (local ids).
+    pub nonplanar: Vec<[u32; 3]>,
+    pub faces: Vec<FaceSide>,
+    pub counts: PruneCounts,
+    pub tets: u64,
+    pub flat_tets: u64,
+    pub branching_samples: u64,
+}
+
+/// Triangulate `points` with our exact kernel; finite tets in input vertex ids, positively oriented
+/// in `robust`'s convention (`orient3d > 0`, as `TetMesh` wants; the kernel hands out the opposite
+/// orientation, positive volume, so two vertices are swapped). Exact duplicates are merged by the
+/// kernel into the smallest index.
+pub fn delaunay_tets(points: &[[f64; 3]]) -> Result<Vec<[u32; 4]>> {
+    let dt = crate::delaunay::Delaunay::try_new(points)?;
+    Ok(dt
+        .tets()
+        .map(|t| {
+            let v = dt.tet_vertices(t);
+            [v[0], v[1], v[3], v[2]]
+        })
+        .collect())
+}
+
+/// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
+pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Result<CellResult> {
+    let all = input.mask.iter().fold(!0u128, |a, &m| a & m);
+    if all != 0 || input.points.len() < 4 {
+        // every vertex on one plane: no volume to reconstruct in this cell
+        return Ok(CellResult {
+            input: Some(input),
+            ..Default::default()
+        });
+    }
+    let mut tets = delaunay_tets(&input.points)?;
+    let mut n_branch = 0;
+    if branching {
+        for _round in 0..BRANCHING_ROUNDS {
+            let cx = Complex::new(input.points.len(), tets.clone());
+            let ty: Vec<TetType> = cx
+                .tets
+                .iter()
+                .map(|t| {
+                    tet_type([
+                        input.mask[t[0] as usize],
+                        input.mask[t[1] as usize],
+                        input.mask[t[2] as usize],
+                        input.mask[t[3] as usize],
+                    ])
+                    .0
+                })
+                .collect();
+            let samples = super::branching::samples(&input, &cx, &ty);
+            if samples.is_empty() {
+                break;
+            }
+            for (s, q, p3) in samples {
+                input.add_local_vertex(s, q, p3);
+                n_branch += 1;
+            }
+            tets = delaunay_tets(&input.points)?;
+        }
+    }
+    let cx = Complex::new(input.points.len(), tets);
+    let cl = classify(&input, &cx);
+    let classifier = Classifier::new(&input);
+
+    // Section triangles per slot: grounded faces of non-flat tets.
+    let n_slots = input.slots.len();
+    let mut top: Vec<HashMap<[u32; 3], ([u32; 3], u32)>> = vec![HashMap::new(); n_slots];
+    for (t, tv) in cx.tets.iter().enumerate() {
+        if cl.ty[t] == TetType::Flat {
+            continue;
+        }
+        for i in 0..4 {
+            let f = outward_face(tv, i);
+            let m =
+                input.mask[f[0] as usize] & input.mask[f[1] as usize] & input.mask[f[2] as usize];
+            if m == 0 {
+                continue;
+            }
+            let mut k = f;
+            k.sort_unstable();
+            for s in 0..n_slots {
+                if m >> s & 1 == 1 {
+                    top[s].entry(k).or_insert((f, t as u32));
+                }
+            }
+        }
+    }
+    // Conformity: every contour edge is an edge of a section triangle.
+    let mut missing = Vec::new();
+    for (s, slot) in input.slots.iter().enumerate() {
+        let mut edges: HashSet<(u32, u32)> = HashSet::new();
+        for k in top[s].keys() {
+            edges.insert((k[0], k[1]));
+            edges.insert((k[0], k[2]));
+            edges.insert((k[1], k[2]));
+        }
+        for &(a, b) in &slot.contour_edges {
+            if !edges.contains(&(a, b)) {
+                missing.push((input.global[a as usize], input.global[b as usize]));
+            }
+        }
+    }
+    missing.sort_unstable();
+    missing.dedup();
+    let flat_tets = cl.ty.iter().filter(|&&t| t == TetType::Flat).count() as u64;
+    if check_only && !missing.is_empty() {
+        return Ok(CellResult {
+            input: Some(input),
+            missing,
+            tets: cx.len() as u64,
+            ..Default::default()
+        });
+    }
+    let (alive, counts) = prune(&cx, &cl);
+    if std::env::var("BM_DEBUG").is_ok() {
+        let mut h: std::collections::BTreeMap<String, (u32, u32, u32)> = Default::default();
+        for t in 0..cx.len() {
+            let e = h.entry(format!("{:?}", cl.ty[t])).or_default();
+            e.0 += 1;
+            e.1 += cl.external[t] as u32;
+            e.2 += alive[t] as u32;
+        }
+        eprintln!(
+            "cell {}: {} pts, (count, external, kept) {:?}",
+            input.cell,
+            input.points.len(),
+            h
+        );
+    }
+    let mut kept = Vec::new();
+    let mut nonplanar = Vec::new();
+    for (t, tv) in cx.tets.iter().enumerate() {
+        if !alive[t] {
+            continue;
+        }
+        kept.push(*tv);
+        for i in 0..4 {
+            let nb = cx.nbr[t][i];
+            if nb != NONE && alive[nb as usize] {
+                continue;
+            }
+            let f = outward_face(tv, i);
+            let m =
+                input.mask[f[0] as usize] & input.mask[f[1] as usize] & input.mask[f[2] as usize];
+            if m == 0 {
+                nonplanar.push(f);
+            }
+        }
+    }
+    let faces = (0..n_slots)
+        .map(|s| {
+            let mut triangles: Vec<([u32; 3], bool)> = top[s]
+                .values()
+                .filter(|(f, _)| !classifier.triangle_external(f[0], f[1], f[2]))
+                .map(|&(f, t)| (f, alive[t as usize]))
+                .collect();
+            triangles.sort_unstable();
+            FaceSide {
+                face: input.slots[s].face,
+                triangles,
+            }
+        })
+        .collect();
+    Ok(CellResult {
+        input: Some(input),
+        missing,
+        kept,
+        nonplanar,
+        faces,
+        counts,
+        tets: cx.len() as u64,
+        flat_tets,
+        branching_samples: n_branch,
+    })
+}

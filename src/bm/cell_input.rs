@@ -1,0 +1,261 @@
+//! What one arrangement cell sees: its section vertices (local ids ↔ global pool ids), per face with a
+//! section a "slot" (plane, boundary loops, (u,v) coordinates, exact point-in-section locator), and for
+//! every local vertex the bit mask of the slots whose plane it carries as a tag.
+//!
+//! Plane membership is combinatorial: a vertex is on slot `s` iff its global tag set holds the slot's
+//! plane. Tags of planes on which the cell has no face with a section are ignored inside this cell.
+use crate::arrangement::{Arrangement, FaceId, PlaneId, VertexPool};
+use crate::geom::predicates::orient2d;
+use std::collections::{HashMap, HashSet};
+
+pub type Mask = u128;
+pub const MAX_SLOTS: usize = 128;
+
+/// (u,v) of global vertex `v` in plane `p`, if `v` carries tag `p`.
+pub fn uv_on(pool: &VertexPool, v: u32, p: PlaneId) -> Option<[f64; 2]> {
+    let tags = &pool.tags[v as usize];
+    tags.iter()
+        .position(|&t| t == p)
+        .map(|i| pool.uv[v as usize][i])
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Where {
+    Inside,
+    Outside,
+    Boundary,
+}
+
+/// Exact point-in-polygon-set (even-odd over all boundary loops) with horizontal bins.
+#[derive(Clone, Debug, Default)]
+pub struct SectionLocator {
+    edges: Vec<([f64; 2], [f64; 2])>,
+    y0: f64,
+    y1: f64,
+    inv_dy: f64,
+    bins: Vec<Vec<u32>>,
+}
+
+impl SectionLocator {
+    pub fn new(loops: &[Vec<[f64; 2]>]) -> SectionLocator {
+        let mut edges = Vec::new();
+        for l in loops {
+            for i in 0..l.len() {
+                edges.push((l[i], l[(i + 1) % l.len()]));
+            }
+        }
+        if edges.is_empty() {
+            return SectionLocator::default();
+        }
+        let y0 = edges
+            .iter()
+            .map(|e| e.0[1].min(e.1[1]))
+            .fold(f64::INFINITY, f64::min);
+        let y1 = edges
+            .iter()
+            .map(|e| e.0[1].max(e.1[1]))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let nb = (edges.len() / 2).clamp(1, 4096);
+        let inv_dy = if y1 > y0 { nb as f64 / (y1 - y0) } else { 0.0 };
+        let mut bins = vec![Vec::new(); nb];
+        let bin = |y: f64| (((y - y0) * inv_dy) as usize).min(nb - 1);
+        for (i, e) in edges.iter().enumerate() {
+            let (lo, hi) = (bin(e.0[1].min(e.1[1])), bin(e.0[1].max(e.1[1])));
+            for b in &mut bins[lo..=hi] {
+                b.push(i as u32);
+            }
+        }
+        SectionLocator {
+            edges,
+            y0,
+            y1,
+            inv_dy,
+            bins,
+        }
+    }
+
+    pub fn locate(&self, q: [f64; 2]) -> Where {
+        if self.edges.is_empty() || q[1] < self.y0 || q[1] > self.y1 {
+            return Where::Outside;
+        }
+        let nb = self.bins.len();
+        let b = (((q[1] - self.y0) * self.inv_dy) as usize).min(nb - 1);
+        let mut inside = false;
+        for &i in &self.bins[b] {
+            let (a, c) = self.edges[i as usize];
+            let straddles = (a[1] > q[1]) != (c[1] > q[1]);
+            let in_box = q[0] >= a[0].min(c[0])
+                && q[0] <= a[0].max(c[0])
+                && q[1] >= a[1].min(c[1])
+                && q[1] <= a[1].max(c[1]);
+            if !straddles && !in_box {
+                continue;
+            }
+            let o = orient2d(a, c, q);
+            if o == 0.0 && in_box {
+                return Where::Boundary;
+            }
+            if straddles && (o > 0.0) == (c[1] > a[1]) {
+                inside = !inside;
+            }
+        }
+        if inside {
+            Where::Inside
+        } else {
+            Where::Outside
+        }
+    }
+}
+
+/// One face of the cell that carries a section.
+#[derive(Clone, Debug)]
+pub struct Slot {
+    pub face: FaceId,
+    pub plane: PlaneId,
+    pub geom: crate::sections::Plane,
+    /// The cell's outward normal on this face is the plane normal.
+    pub outward_is_plane_normal: bool,
+    /// Boundary loops (outer and holes) in local ids, with Steiner splits applied.
+    pub loops: Vec<Vec<u32>>,
+    /// (u,v) in this plane per local vertex (meaningful for vertices carrying the slot's bit).
+    pub uv: Vec<[f64; 2]>,
+    pub contour_edges: HashSet<(u32, u32)>,
+    pub locator: SectionLocator,
+}
+
+#[derive(Clone, Debug)]
+pub struct CellInput {
+    pub cell: u32,
+    /// Local id → global pool id.
+    pub global: Vec<u32>,
+    pub points: Vec<[f64; 3]>,
+    pub mask: Vec<Mask>,
+    pub slots: Vec<Slot>,
+}
+
+pub fn edge_key(a: u32, b: u32) -> (u32, u32) {
+    if a < b {
+        (a, b)
+    } else {
+        (b, a)
+    }
+}
+
+impl CellInput {
+    /// Gather the cell's section vertices and faces. `face_loops[f]` are the face's boundary loops in
+    /// global ids (Steiner points included). Returns `None` when no face of the cell has a section.
+    pub fn build(
+        arr: &Arrangement,
+        pool: &VertexPool,
+        face_loops: &[Vec<Vec<u32>>],
+        cell: u32,
+    ) -> Option<CellInput> {
+        let mut slot_faces = Vec::new();
+        for cf in &arr.cells[cell as usize].faces {
+            if !face_loops[cf.face as usize].is_empty() {
+                slot_faces.push(cf.clone());
+            }
+        }
+        if slot_faces.is_empty() {
+            return None;
+        }
+        slot_faces.truncate(MAX_SLOTS);
+        let mut local: HashMap<u32, u32> = HashMap::new();
+        let mut global = Vec::new();
+        for cf in &slot_faces {
+            for l in &face_loops[cf.face as usize] {
+                for &g in l {
+                    local.entry(g).or_insert_with(|| {
+                        global.push(g);
+                        (global.len() - 1) as u32
+                    });
+                }
+            }
+        }
+        let plane_slot: HashMap<PlaneId, usize> = slot_faces
+            .iter()
+            .enumerate()
+            .map(|(s, cf)| (arr.faces[cf.face as usize].plane, s))
+            .collect();
+        let n = global.len();
+        let mut mask = vec![0 as Mask; n];
+        let mut slots: Vec<Slot> = slot_faces
+            .iter()
+            .map(|cf| Slot {
+                face: cf.face,
+                plane: arr.faces[cf.face as usize].plane,
+                geom: arr.planes[arr.faces[cf.face as usize].plane as usize].plane,
+                outward_is_plane_normal: cf.outward_is_plane_normal,
+                loops: Vec::new(),
+                uv: vec![[f64::NAN; 2]; n],
+                contour_edges: HashSet::new(),
+                locator: SectionLocator::default(),
+            })
+            .collect();
+        for (l, &g) in global.iter().enumerate() {
+            for (ti, &p) in pool.tags[g as usize].iter().enumerate() {
+                if let Some(&s) = plane_slot.get(&p) {
+                    mask[l] |= 1 << s;
+                    slots[s].uv[l] = pool.uv[g as usize][ti];
+                }
+            }
+        }
+        for (s, cf) in slot_faces.iter().enumerate() {
+            let loops: Vec<Vec<u32>> = face_loops[cf.face as usize]
+                .iter()
+                .map(|l| l.iter().map(|g| local[g]).collect())
+                .collect();
+            let slot = &mut slots[s];
+            for l in &loops {
+                for i in 0..l.len() {
+                    slot.contour_edges
+                        .insert(edge_key(l[i], l[(i + 1) % l.len()]));
+                }
+            }
+            let uv_loops: Vec<Vec<[f64; 2]>> = loops
+                .iter()
+                .map(|l| l.iter().map(|&v| slot.uv[v as usize]).collect())
+                .collect();
+            slot.locator = SectionLocator::new(&uv_loops);
+            slot.loops = loops;
+        }
+        let points = global.iter().map(|&g| pool.positions[g as usize]).collect();
+        Some(CellInput {
+            cell,
+            global,
+            points,
+            mask,
+            slots,
+        })
+    }
+
+    /// Add a cell-local vertex (a branching sample) on slot `s` at (u,v) `q`.
+    pub fn add_local_vertex(&mut self, s: usize, q: [f64; 2], p3: [f64; 3]) -> u32 {
+        let l = self.points.len() as u32;
+        self.points.push(p3);
+        self.global.push(u32::MAX);
+        self.mask.push(1 << s);
+        for (k, slot) in self.slots.iter_mut().enumerate() {
+            slot.uv.push(if k == s { q } else { [f64::NAN; 2] });
+        }
+        l
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn locator_inside_outside_boundary() {
+        let sq = vec![[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]];
+        let hole = vec![[0.5, 0.5], [0.5, 1.5], [1.5, 1.5], [1.5, 0.5]];
+        let loc = SectionLocator::new(&[sq, hole]);
+        assert_eq!(loc.locate([0.25, 1.0]), Where::Inside);
+        assert_eq!(loc.locate([1.0, 1.0]), Where::Outside);
+        assert_eq!(loc.locate([3.0, 1.0]), Where::Outside);
+        assert_eq!(loc.locate([2.0, 1.0]), Where::Boundary);
+        assert_eq!(loc.locate([1.0, 0.0]), Where::Boundary);
+        assert_eq!(loc.locate([0.5, 1.0]), Where::Boundary);
+        assert_eq!(loc.locate([1.75, 0.5]), Where::Inside);
+    }
+}

@@ -1,0 +1,198 @@
+//! Classification of a cell's Delaunay simplices by plane tags (never by coordinates).
+//!
+//! * A simplex is *grounded* on slot `s` when all its vertices carry the slot's bit.
+//! * Grounded edge on `s`: *contour* when it is a boundary edge of the face's section (Steiner splits
+//!   applied), else *internal* / *external* by the exact point-in-section test of its midpoint in the
+//!   plane's (u,v) frame (a midpoint on the boundary counts as inside). Grounded triangle: by centroid.
+//!   A simplex grounded on several slots (vertices on an arrangement edge) is external if it is external
+//!   on any of them.
+//! * Tetrahedron types, for vertices with one to three tags (rule, in this order):
+//!   - `Flat`: one slot holds all four vertices (a near-flat sliver of the face created by rounding;
+//!     it has no volume and is always removed in step 1);
+//!   - `Vf`: some slot holds three vertices (a grounded face);
+//!   - `Ee`: some pair of *opposite* edges are both grounded (necessarily on different slots); these
+//!     edges are the tet's pivot edges in step 2;
+//!   - `Evv`: some edge is grounded;
+//!   - `Vvvv`: no edge is grounded.
+use super::cell_input::{CellInput, Mask, Where};
+use super::complex::{Complex, TET_EDGES};
+use std::collections::HashMap;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TetType {
+    Flat,
+    Vf,
+    Ee,
+    Evv,
+    Vvvv,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Classified {
+    pub ty: Vec<TetType>,
+    /// Has an external grounded edge or triangle, or is flat: removed in step 1.
+    pub external: Vec<bool>,
+    /// Bit `k` set when `TET_EDGES[k]` is grounded.
+    pub grounded_edges: Vec<u8>,
+    /// Bit `k` set when `TET_EDGES[k]` is a pivot edge of a `Ee` tet.
+    pub pivot_edges: Vec<u8>,
+}
+
+fn slots_of(m: Mask) -> impl Iterator<Item = usize> {
+    (0..128).filter(move |s| m >> s & 1 == 1)
+}
+
+pub struct Classifier<'a> {
+    pub input: &'a CellInput,
+    edge_cache: HashMap<(u32, u32), bool>,
+}
+
+impl<'a> Classifier<'a> {
+    pub fn new(input: &'a CellInput) -> Self {
+        Classifier {
+            input,
+            edge_cache: HashMap::new(),
+        }
+    }
+
+    pub fn edge_external(&mut self, a: u32, b: u32) -> bool {
+        let k = super::cell_input::edge_key(a, b);
+        if let Some(&x) = self.edge_cache.get(&k) {
+            return x;
+        }
+        let inp = self.input;
+        let m = inp.mask[a as usize] & inp.mask[b as usize];
+        let mut ext = false;
+        for s in slots_of(m) {
+            let slot = &inp.slots[s];
+            if slot.contour_edges.contains(&k) {
+                continue;
+            }
+            let (p, q) = (slot.uv[a as usize], slot.uv[b as usize]);
+            let mid = [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])];
+            if slot.locator.locate(mid) == Where::Outside {
+                ext = true;
+                break;
+            }
+        }
+        self.edge_cache.insert(k, ext);
+        ext
+    }
+
+    pub fn triangle_external(&self, a: u32, b: u32, c: u32) -> bool {
+        let inp = self.input;
+        let m = inp.mask[a as usize] & inp.mask[b as usize] & inp.mask[c as usize];
+        slots_of(m).any(|s| {
+            let slot = &inp.slots[s];
+            let (p, q, r) = (
+                slot.uv[a as usize],
+                slot.uv[b as usize],
+                slot.uv[c as usize],
+            );
+            let g = [(p[0] + q[0] + r[0]) / 3.0, (p[1] + q[1] + r[1]) / 3.0];
+            slot.locator.locate(g) == Where::Outside
+        })
+    }
+}
+
+/// Type of a tetrahedron from its vertices' slot masks; also its grounded and pivot edge bits.
+pub fn tet_type(m: [Mask; 4]) -> (TetType, u8, u8) {
+    let mut grounded = 0u8;
+    for (k, &(i, j)) in TET_EDGES.iter().enumerate() {
+        if m[i] & m[j] != 0 {
+            grounded |= 1 << k;
+        }
+    }
+    if m[0] & m[1] & m[2] & m[3] != 0 {
+        return (TetType::Flat, grounded, 0);
+    }
+    let faces = [
+        m[1] & m[2] & m[3],
+        m[0] & m[2] & m[3],
+        m[0] & m[1] & m[3],
+        m[0] & m[1] & m[2],
+    ];
+    if faces.iter().any(|&f| f != 0) {
+        return (TetType::Vf, grounded, 0);
+    }
+    let mut pivots = 0u8;
+    for k in 0..3 {
+        if grounded >> k & 1 == 1 && grounded >> (5 - k) & 1 == 1 {
+            pivots |= 1 << k | 1 << (5 - k);
+        }
+    }
+    if pivots != 0 {
+        (TetType::Ee, grounded, pivots)
+    } else if grounded != 0 {
+        (TetType::Evv, grounded, 0)
+    } else {
+        (TetType::Vvvv, grounded, 0)
+    }
+}
+
+pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
+    let mut cl = Classifier::new(input);
+    let n = cx.len();
+    let mut out = Classified {
+        ty: Vec::with_capacity(n),
+        external: Vec::with_capacity(n),
+        grounded_edges: Vec::with_capacity(n),
+        pivot_edges: Vec::with_capacity(n),
+    };
+    for t in &cx.tets {
+        let m = [
+            input.mask[t[0] as usize],
+            input.mask[t[1] as usize],
+            input.mask[t[2] as usize],
+            input.mask[t[3] as usize],
+        ];
+        let (ty, g, p) = tet_type(m);
+        let mut ext = ty == TetType::Flat;
+        if !ext {
+            for (k, &(i, j)) in TET_EDGES.iter().enumerate() {
+                if g >> k & 1 == 1 && cl.edge_external(t[i], t[j]) {
+                    ext = true;
+                    break;
+                }
+            }
+        }
+        if !ext && ty == TetType::Vf {
+            for i in 0..4 {
+                let f = super::complex::outward_face(t, i);
+                let mf = input.mask[f[0] as usize]
+                    & input.mask[f[1] as usize]
+                    & input.mask[f[2] as usize];
+                if mf != 0 && cl.triangle_external(f[0], f[1], f[2]) {
+                    ext = true;
+                    break;
+                }
+            }
+        }
+        out.ty.push(ty);
+        out.external.push(ext);
+        out.grounded_edges.push(g);
+        out.pivot_edges.push(p);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn typing_rule() {
+        let (p, q, r, s) = (1u128, 2u128, 4u128, 8u128);
+        assert_eq!(tet_type([p, p, p, p]).0, TetType::Flat);
+        assert_eq!(tet_type([p, p, p, q]).0, TetType::Vf);
+        let (ty, g, piv) = tet_type([p, p, q, q]);
+        assert_eq!(ty, TetType::Ee);
+        assert_eq!(g, 1 | 1 << 5);
+        assert_eq!(piv, 1 | 1 << 5);
+        assert_eq!(tet_type([p, p, q, r]).0, TetType::Evv);
+        assert_eq!(tet_type([p, q, r, s]).0, TetType::Vvvv);
+        // a vertex on the line P∩Q: edges (0,1) on P and (0,2) on Q share a vertex → Evv
+        assert_eq!(tet_type([p | q, p, q, r]).0, TetType::Evv);
+        // P∩Q vertex with P and Q partners on opposite edges → Vf on P (3 vertices carry P)
+        assert_eq!(tet_type([p | q, p, q, p]).0, TetType::Vf);
+    }
+}

@@ -1,0 +1,510 @@
+//! Gluing the cells' complexes into one solid.
+//!
+//! Choice (see DESIGN "Gluing without overlays"): two cells may triangulate a shared face differently
+//! (their Delaunay triangulations break the massive cocircularity of a section independently), so
+//! section triangles are never matched across cells. Instead, per face with a section, with cells A
+//! and B on its two sides and X_A, X_B the section triangles each attaches to (a kept tet stands on
+//! them):
+//! * both attach somewhere: each side outputs the section triangles of its *own* triangulation that
+//!   it leaves unattached, oriented into its own cell. As chains this is ∂R_A − S_A + ∂R_B − S_B on
+//!   the face, whose boundary cancels because contour edges and their Steiner points are shared, so
+//!   the surface is closed; where both attach the section is interior; where only A attaches the
+//!   boundary is B's triangles over that region. Where neither attaches (a flat zone) the two sides'
+//!   sheets coincide with opposite orientations: identical triangles cancel, the rest is reported.
+//! * only A attaches: A's attached triangles are output, oriented outward from A (no double sheet).
+//! * neither attaches: the whole section is a flat zone, not output, reported with its area.
+//!
+//! All vertices are global (pool ids, Steiner points, then branching samples), so the pieces weld.
+//! The tetrahedral mesh is the union of the kept tets; it is non-conforming across a face where the
+//! two cells' section triangulations differ (counted in the report).
+use super::cell::CellResult;
+use crate::arrangement::{Arrangement, VertexPool};
+use crate::mesh::{TetMesh, TriMesh};
+use std::collections::HashMap;
+
+#[derive(Clone, Debug, Default)]
+pub struct Glued {
+    pub surface: TriMesh,
+    pub tets: TetMesh,
+    pub warnings: Vec<String>,
+    pub flat_zone_faces: u64,
+    pub flat_zone_area: f64,
+    pub double_sheet_triangles: u64,
+    pub nonconforming_faces: u64,
+    pub pinched_vertices: u64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// Boundary triangle inside this cell.
+    Cell(u32),
+    /// Section triangle on this face.
+    Face(u32),
+}
+
+fn tri_area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
+    let (a, b, c) = (p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
+    let u = crate::sections::sub(b, a);
+    let v = crate::sections::sub(c, a);
+    let w = crate::sections::cross(u, v);
+    0.5 * crate::sections::dot(w, w).sqrt()
+}
+
+pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]) -> Glued {
+    let mut g = Glued::default();
+    let mut positions = pool.positions.clone();
+    // global id per cell-local vertex (branching samples get new ids)
+    // branching samples: (global id, unit direction into their cell)
+    let mut samples: Vec<(u32, [f64; 3])> = Vec::new();
+    let maps: Vec<Vec<u32>> = results
+        .iter()
+        .map(|r| match r.as_ref().and_then(|r| r.input.as_ref()) {
+            Some(inp) => inp
+                .global
+                .iter()
+                .enumerate()
+                .map(|(l, &gid)| {
+                    if gid == u32::MAX {
+                        positions.push(inp.points[l]);
+                        let id = (positions.len() - 1) as u32;
+                        if let Some(s) = (0..inp.slots.len()).find(|&s| inp.mask[l] >> s & 1 == 1) {
+                            let slot = &inp.slots[s];
+                            let n = slot.geom.normal;
+                            let d = if slot.outward_is_plane_normal {
+                                -1.0
+                            } else {
+                                1.0
+                            };
+                            samples.push((id, [d * n[0], d * n[1], d * n[2]]));
+                        }
+                        id
+                    } else {
+                        gid
+                    }
+                })
+                .collect(),
+            None => Vec::new(),
+        })
+        .collect();
+    let mut tris: Vec<[u32; 3]> = Vec::new();
+    let mut kind: Vec<Kind> = Vec::new();
+    let mut tets: Vec<[u32; 4]> = Vec::new();
+    let map3 = |m: &[u32], t: [u32; 3]| [m[t[0] as usize], m[t[1] as usize], m[t[2] as usize]];
+    // per face: (cell, side data)
+    let mut sides: HashMap<u32, Vec<(usize, usize)>> = HashMap::new();
+    for (c, r) in results.iter().enumerate() {
+        let Some(r) = r else { continue };
+        let m = &maps[c];
+        tris.extend(r.nonplanar.iter().map(|&t| map3(m, t)));
+        kind.resize(tris.len(), Kind::Cell(c as u32));
+        tets.extend(r.kept.iter().map(|t| {
+            [
+                m[t[0] as usize],
+                m[t[1] as usize],
+                m[t[2] as usize],
+                m[t[3] as usize],
+            ]
+        }));
+        for (s, fs) in r.faces.iter().enumerate() {
+            sides.entry(fs.face).or_default().push((c, s));
+        }
+    }
+    let mut face_ids: Vec<u32> = sides.keys().copied().collect();
+    face_ids.sort_unstable();
+    for f in face_ids {
+        let list = &sides[&f];
+        let side = |&(c, s): &(usize, usize)| &results[c].as_ref().unwrap().faces[s];
+        let attaching: Vec<&(usize, usize)> = list
+            .iter()
+            .filter(|cs| side(cs).triangles.iter().any(|t| t.1))
+            .collect();
+        if list.len() == 2 {
+            let (a, b) = (side(&list[0]), side(&list[1]));
+            let ka: Vec<[u32; 3]> = a
+                .triangles
+                .iter()
+                .map(|t| sorted(map3(&maps[list[0].0], t.0)))
+                .collect();
+            let kb: Vec<[u32; 3]> = b
+                .triangles
+                .iter()
+                .map(|t| sorted(map3(&maps[list[1].0], t.0)))
+                .collect();
+            let (mut ka, mut kb) = (ka, kb);
+            ka.sort_unstable();
+            kb.sort_unstable();
+            if ka != kb {
+                g.nonconforming_faces += 1;
+            }
+        }
+        match attaching.len() {
+            0 => {
+                // whole section unattached: a flat zone
+                let area: f64 = list
+                    .iter()
+                    .map(|cs| {
+                        side(cs)
+                            .triangles
+                            .iter()
+                            .map(|t| tri_area(&positions, map3(&maps[cs.0], t.0)))
+                            .sum::<f64>()
+                    })
+                    .fold(0.0, f64::max);
+                if area > 0.0 {
+                    g.flat_zone_faces += 1;
+                    g.flat_zone_area += area;
+                    g.warnings.push(format!(
+                        "face {f} (plane {}): section of area {area:.4e} attached from neither side (flat zone, not in the solid)",
+                        arr.faces[f as usize].plane
+                    ));
+                }
+            }
+            1 => {
+                let (c, s) = *attaching[0];
+                let mut flat = 0.0;
+                for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
+                    if att {
+                        tris.push(map3(&maps[c], t));
+                        kind.push(Kind::Face(f));
+                    } else {
+                        flat += tri_area(&positions, map3(&maps[c], t));
+                    }
+                }
+                if flat > 0.0 {
+                    g.flat_zone_faces += 1;
+                    g.flat_zone_area += flat;
+                    g.warnings.push(format!(
+                        "face {f} (plane {}): flat zone of area {flat:.4e} attached from neither side (not in the solid)",
+                        arr.faces[f as usize].plane
+                    ));
+                }
+            }
+            _ => {
+                for &(c, s) in list {
+                    for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
+                        if !att {
+                            let t = map3(&maps[c], t);
+                            tris.push([t[0], t[2], t[1]]);
+                            kind.push(Kind::Face(f));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // Cancel coincident opposite triangles (flat-zone sheets triangulated alike on both sides).
+    let mut by_key: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
+    for (i, &t) in tris.iter().enumerate() {
+        by_key.entry(sorted(t)).or_default().push(i);
+    }
+    let mut drop = vec![false; tris.len()];
+    for idx in by_key.values() {
+        if idx.len() < 2 {
+            continue;
+        }
+        let (mut pos, mut neg): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+        for &i in idx {
+            if parity(tris[i]) {
+                pos.push(i)
+            } else {
+                neg.push(i)
+            }
+        }
+        for (&i, &j) in pos.iter().zip(neg.iter()) {
+            drop[i] = true;
+            drop[j] = true;
+        }
+    }
+    let (mut tris, kind): (Vec<[u32; 3]>, Vec<Kind>) = tris
+        .into_iter()
+        .zip(kind)
+        .zip(drop)
+        .filter(|(_, d)| !d)
+        .map(|(t, _)| t)
+        .unzip();
+    let split = unpinch(arr, &mut positions, &mut tris, &kind);
+    g.pinched_vertices = split.len() as u64;
+    lift_samples(&mut positions, &tris, &samples, &split);
+    if std::env::var("BM_DEBUG").is_ok() {
+        let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+        for (i, t) in tris.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.entry((a.min(b), a.max(b))).or_default().push(i);
+            }
+        }
+        let mut hist: std::collections::BTreeMap<String, u32> = Default::default();
+        for (e, l) in &edges {
+            if l.len() != 2 {
+                let mut ks: Vec<String> = l.iter().map(|&i| format!("{:?}", kind[i])).collect();
+                ks.sort();
+                let tags = |v: u32| pool.tags.get(v as usize).map(|t| t.len()).unwrap_or(0);
+                *hist
+                    .entry(format!(
+                        "{} tris, tags {}/{}: {:?}",
+                        l.len(),
+                        tags(e.0),
+                        tags(e.1),
+                        ks
+                    ))
+                    .or_default() += 1;
+            }
+        }
+        for (k, v) in hist.iter().take(40) {
+            eprintln!("  nonmanifold {v} × {k}");
+        }
+    }
+    if g.pinched_vertices > 0 {
+        g.warnings.push(format!(
+            "{} vertices where the solid touched a section from above only (branching on an unattached side) were lifted off the plane (paper Fig. 12b)",
+            g.pinched_vertices
+        ));
+    }
+    g.double_sheet_triangles = count_double_sheet(&tris);
+    if g.double_sheet_triangles > 0 {
+        g.warnings.push(format!(
+            "{} surface triangles touch non-manifold edges (singularities where pieces meet, or overlapping flat-zone sheets)",
+            g.double_sheet_triangles
+        ));
+    }
+    if g.nonconforming_faces > 0 {
+        g.warnings.push(format!(
+            "tetrahedral mesh is non-conforming across {} faces (the two cells triangulate the section differently)",
+            g.nonconforming_faces
+        ));
+    }
+    // compact vertices
+    let mut remap = vec![u32::MAX; positions.len()];
+    let mut verts = Vec::new();
+    let mut id = |v: u32, verts: &mut Vec<[f64; 3]>| {
+        if remap[v as usize] == u32::MAX {
+            remap[v as usize] = verts.len() as u32;
+            verts.push(positions[v as usize]);
+        }
+        remap[v as usize]
+    };
+    let triangles: Vec<[u32; 3]> = tris
+        .iter()
+        .map(|t| {
+            [
+                id(t[0], &mut verts),
+                id(t[1], &mut verts),
+                id(t[2], &mut verts),
+            ]
+        })
+        .collect();
+    g.surface = TriMesh {
+        vertices: verts.clone(),
+        triangles,
+    };
+    let tets: Vec<[u32; 4]> = tets
+        .iter()
+        .map(|t| {
+            [
+                id(t[0], &mut verts),
+                id(t[1], &mut verts),
+                id(t[2], &mut verts),
+                id(t[3], &mut verts),
+            ]
+        })
+        .collect();
+    g.tets = TetMesh {
+        vertices: verts,
+        tets,
+    };
+    g
+}
+
+fn sorted(mut t: [u32; 3]) -> [u32; 3] {
+    t.sort_unstable();
+    t
+}
+
+/// Even permutation of the sorted triple.
+fn parity(t: [u32; 3]) -> bool {
+    let inv = (t[0] > t[1]) as u8 + (t[0] > t[2]) as u8 + (t[1] > t[2]) as u8;
+    inv % 2 == 0
+}
+
+/// Triangles on an edge used by more than two triangles (a sign of overlapping sheets).
+fn count_double_sheet(tris: &[[u32; 3]]) -> u64 {
+    let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in tris {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    tris.iter()
+        .filter(|t| {
+            (0..3).any(|k| {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges[&(a.min(b), a.max(b))] > 2
+            })
+        })
+        .count() as u64
+}
+
+/// Where the solid touches a section plane from one side only (branching on a side the other cell
+/// does not attach to, paper Fig. 12), the surface is pinched at vertices: the triangles around a
+/// vertex form several fans. Fans are found by walking triangles around the vertex through their
+/// shared edges (at an edge with more than two triangles, only triangles of the same kind — planar on
+/// the same face, or non-planar of the same cell — continue each other). Every fan but the one with
+/// the most planar triangles gets its own copy of the vertex, lifted by a millionth of the shortest
+/// incident edge into its cell when the fan is non-planar (the paper's remedy: displace slightly into
+/// the cell). Returns the split vertices.
+fn unpinch(
+    arr: &Arrangement,
+    positions: &mut Vec<[f64; 3]>,
+    tris: &mut [[u32; 3]],
+    kind: &[Kind],
+) -> std::collections::HashSet<u32> {
+    let mut at: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (i, t) in tris.iter().enumerate() {
+        for &v in t {
+            at.entry(v).or_default().push(i);
+        }
+    }
+    let mut vs: Vec<u32> = at.keys().copied().collect();
+    vs.sort_unstable();
+    let mut split = std::collections::HashSet::new();
+    for v in vs {
+        let list = at[&v].clone();
+        // edges (v,w) → incident triangles (indices into list)
+        let mut by_w: HashMap<u32, Vec<usize>> = HashMap::new();
+        for (k, &i) in list.iter().enumerate() {
+            for &w in &tris[i] {
+                if w != v {
+                    by_w.entry(w).or_default().push(k);
+                }
+            }
+        }
+        // union-find over the triangles of the star
+        let mut parent: Vec<usize> = (0..list.len()).collect();
+        fn find(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        for ks in by_w.values() {
+            if ks.len() == 2 {
+                let (a, b) = (find(&mut parent, ks[0]), find(&mut parent, ks[1]));
+                parent[a] = b;
+            } else {
+                for x in 0..ks.len() {
+                    for y in x + 1..ks.len() {
+                        if kind[list[ks[x]]] == kind[list[ks[y]]] {
+                            let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
+                            parent[a] = b;
+                        }
+                    }
+                }
+            }
+        }
+        let mut fans: HashMap<usize, Vec<usize>> = HashMap::new();
+        for k in 0..list.len() {
+            let r = find(&mut parent, k);
+            fans.entry(r).or_default().push(list[k]);
+        }
+        if fans.len() < 2 {
+            continue;
+        }
+        let mut fans: Vec<Vec<usize>> = fans.into_values().collect();
+        let planar = |f: &Vec<usize>| {
+            f.iter()
+                .filter(|&&i| matches!(kind[i], Kind::Face(_)))
+                .count()
+        };
+        fans.sort_by_key(|f| (std::cmp::Reverse(planar(f)), f[0]));
+        let p = positions[v as usize];
+        let mut min_len = f64::INFINITY;
+        for &i in &list {
+            for &w in &tris[i] {
+                if w != v {
+                    let d = crate::sections::sub(positions[w as usize], p);
+                    min_len = min_len.min(crate::sections::dot(d, d).sqrt());
+                }
+            }
+        }
+        let delta = 1e-6 * min_len;
+        for fan in &fans[1..] {
+            // lift direction: into the cell of a purely non-planar fan, when the vertex lies on a
+            // face of that cell with planar output here; otherwise the copy stays in place
+            let mut dir = [0.0; 3];
+            let cells: Vec<u32> = fan
+                .iter()
+                .filter_map(|&i| match kind[i] {
+                    Kind::Cell(c) => Some(c),
+                    _ => None,
+                })
+                .collect();
+            if planar(fan) == 0 && cells.iter().all(|&c| c == cells[0]) {
+                let c = cells[0];
+                if let Some(f) = list.iter().find_map(|&i| match kind[i] {
+                    Kind::Face(f) => Some(f),
+                    _ => None,
+                }) {
+                    let face = &arr.faces[f as usize];
+                    let n = arr.planes[face.plane as usize].plane.normal;
+                    if face.positive_cell == Some(c) {
+                        dir = n;
+                    } else if face.negative_cell == Some(c) {
+                        dir = [-n[0], -n[1], -n[2]];
+                    }
+                }
+            }
+            positions.push([
+                p[0] + delta * dir[0],
+                p[1] + delta * dir[1],
+                p[2] + delta * dir[2],
+            ]);
+            let id = (positions.len() - 1) as u32;
+            for &i in fan {
+                for w in tris[i].iter_mut() {
+                    if *w == v {
+                        *w = id;
+                    }
+                }
+            }
+        }
+        split.insert(v);
+    }
+    split
+}
+
+/// The paper's remedy for singular points where the branching diagrams of the two cells of a face
+/// cross (Fig. 12a-b): every branching sample (a vertex of one cell only) is displaced into its cell
+/// by a millionth of its shortest incident edge, so the two cells' crotch ridges no longer meet on the
+/// plane. Vertices already split by `unpinch` stay.
+fn lift_samples(
+    positions: &mut [[f64; 3]],
+    tris: &[[u32; 3]],
+    samples: &[(u32, [f64; 3])],
+    split: &std::collections::HashSet<u32>,
+) {
+    let mut shortest: HashMap<u32, f64> = HashMap::new();
+    for t in tris {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let d = crate::sections::sub(positions[a as usize], positions[b as usize]);
+            let l = crate::sections::dot(d, d).sqrt();
+            for v in [a, b] {
+                let e = shortest.entry(v).or_insert(f64::INFINITY);
+                *e = e.min(l);
+            }
+        }
+    }
+    for &(v, d) in samples {
+        if split.contains(&v) {
+            continue;
+        }
+        let Some(&l) = shortest.get(&v) else { continue };
+        let delta = 1e-6 * l;
+        let p = &mut positions[v as usize];
+        for k in 0..3 {
+            p[k] += delta * d[k];
+        }
+    }
+}

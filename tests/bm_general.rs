@@ -1,0 +1,119 @@
+//! Boissonnat–Memari through the general arrangement: the paper's configurations with non-parallel
+//! planes (sphere cut by the six faces of a cube; two non-parallel planes).
+mod bm_common;
+use bm_common::worst_section;
+use slice2solid::eval::check::check_mesh;
+use slice2solid::{Contour, Error, Options, Plane, Region, Section, Sections};
+
+fn circle_section(plane: Plane, center: [f64; 3], r: f64, n: usize, index: usize) -> Section {
+    let c = plane.to_2d(center);
+    let pts: Vec<[f64; 2]> = (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            [c[0] + r * a.cos(), c[1] + r * a.sin()]
+        })
+        .collect();
+    Section {
+        plane,
+        regions: vec![Region {
+            label: 1,
+            outer: Contour::from_2d(&plane, pts),
+            holes: vec![],
+        }],
+        source_index: index,
+        max_off_plane: 0.0,
+    }
+}
+
+/// Reconstruct, check, return (components, genus, volume); `None` when the arrangement is not built
+/// into this branch yet.
+fn run(name: &str, sections: &Sections) -> Option<(usize, i64, f64)> {
+    let solid = match slice2solid::reconstruct(sections, &Options::default()) {
+        Err(Error::Unavailable(m)) => {
+            eprintln!("{name}: skipped ({m})");
+            return None;
+        }
+        r => r.expect("reconstruct"),
+    };
+    let c = check_mesh(&solid.surface, Some(sections));
+    let worst = worst_section(&solid.surface, sections);
+    for (x, y) in slice2solid::eval::section::section_agreement(
+        &solid.surface,
+        &bm_common::shifted(sections, -1e-7),
+    )
+    .iter()
+    .zip(slice2solid::eval::section::section_agreement(
+        &solid.surface,
+        &bm_common::shifted(sections, 1e-7),
+    )) {
+        eprintln!(
+            "  plane {}: input {:.4} mesh {:.4}/{:.4} rel {:.4}/{:.4}",
+            x.plane, x.area_input, x.area_mesh, y.area_mesh, x.relative, y.relative
+        );
+    }
+    eprintln!(
+        "{name}: {} tris, closed {} manifold {} oriented {} comps {} genus {} vol {:.4} self-int {} worst section {:.4}\n  counts {:?}\n  warnings {:?}",
+        c.triangles, c.closed, c.manifold, c.oriented, c.components, c.genus, c.volume,
+        c.self_intersections_vertex_disjoint, worst, solid.report.counts, solid.report.warnings
+    );
+    assert!(
+        c.closed && c.manifold && c.oriented,
+        "{name}: not a closed oriented manifold"
+    );
+    assert_eq!(
+        c.self_intersections_vertex_disjoint, 0,
+        "{name}: self-intersections"
+    );
+    assert!(worst < 0.02, "{name}: section disagreement {worst}");
+    Some((c.components, c.genus, c.volume))
+}
+
+#[test]
+fn sphere_cut_by_cube_faces_gives_the_hull_of_the_contours() {
+    let (a, r_sphere) = (1.0, 1.3);
+    let r = (r_sphere * r_sphere - a * a as f64).sqrt();
+    let mut sections = Sections {
+        n_labels: 1,
+        ..Default::default()
+    };
+    for (k, axis) in [0usize, 1, 2].iter().enumerate() {
+        for (j, s) in [-1.0, 1.0].iter().enumerate() {
+            let mut n = [0.0; 3];
+            n[*axis] = *s;
+            let plane = Plane::from_equation(n, -a).unwrap();
+            let mut c = [0.0; 3];
+            c[*axis] = s * a;
+            sections
+                .sections
+                .push(circle_section(plane, c, r, 32, 2 * k + j));
+        }
+    }
+    if let Some((comps, genus, vol)) = run("sphere-cube", &sections) {
+        assert_eq!((comps, genus), (1, 0));
+        // the hull of six circles of radius r on the faces of the cube [-a,a]^3 lies strictly between
+        // the octahedron-like hull of the circles' extreme points and the cube
+        assert!(
+            vol > 4.0 / 3.0 * (a + r).powi(3) * 0.5 && vol < 8.0 * a * a * a,
+            "{vol}"
+        );
+    }
+}
+
+#[test]
+fn two_non_parallel_planes() {
+    let pa = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+    let t = 30f64.to_radians();
+    let nb = [t.sin(), 0.0, t.cos()];
+    let pb = Plane::from_point_normal([0.0, 0.0, 2.0], nb).unwrap();
+    let sections = Sections {
+        sections: vec![
+            circle_section(pa, [0.0, 0.0, 0.0], 1.0, 32, 0),
+            circle_section(pb, [0.0, 0.0, 2.0], 0.8, 28, 1),
+        ],
+        n_labels: 1,
+        warnings: vec![],
+    };
+    if let Some((comps, genus, _)) = run("two-planes", &sections) {
+        assert_eq!((comps, genus), (1, 0));
+    }
+}

@@ -1,0 +1,183 @@
+//! Boissonnat–Memari on parallel planes (arrangement built by hand): the paper's configurations
+//! that need no general arrangement. Each result must be a closed, oriented, manifold surface with
+//! the expected components and genus, whose sections agree with the input.
+mod bm_common;
+use bm_common::*;
+use slice2solid::eval::check::check_mesh;
+use slice2solid::{Options, Report};
+
+struct Expect {
+    components: usize,
+    genus: i64,
+    flat_zones: bool,
+}
+
+fn run(name: &str, layers: &[(f64, Vec<Poly>)], expect: Expect) {
+    let (sections, arr) = parallel_case(layers);
+    let mut report = Report::default();
+    let solid = slice2solid::bm::reconstruct(&sections, &arr, &Options::default(), &mut report)
+        .expect("reconstruct");
+    let c = check_mesh(&solid.surface, Some(&sections));
+    let worst = worst_section(&solid.surface, &sections);
+    eprintln!(
+        "{name}: {} tris, closed {} manifold {} oriented {} comps {} genus {} vol {:.4} self-int {} worst section {:.4}\n  counts {:?}\n  warnings {:?}",
+        c.triangles, c.closed, c.manifold, c.oriented, c.components, c.genus, c.volume,
+        c.self_intersections_vertex_disjoint, worst, report.counts, report.warnings
+    );
+    assert!(
+        c.closed && c.manifold && c.oriented,
+        "{name}: not a closed oriented manifold"
+    );
+    assert_eq!(c.components, expect.components, "{name}: components");
+    assert_eq!(c.genus, expect.genus, "{name}: genus");
+    assert_eq!(
+        c.self_intersections_vertex_disjoint, 0,
+        "{name}: self-intersections"
+    );
+    assert!(c.volume > 0.0);
+    if expect.flat_zones {
+        assert!(
+            report.warnings.iter().any(|w| w.contains("flat zone")),
+            "{name}: flat zones reported"
+        );
+    } else {
+        assert!(worst < 0.02, "{name}: section disagreement {worst}");
+    }
+}
+
+fn square(x0: f64, y0: f64, s: f64) -> Vec<[f64; 2]> {
+    vec![[x0, y0], [x0 + s, y0], [x0 + s, y0 + s], [x0, y0 + s]]
+}
+
+#[test]
+fn two_squares_make_a_box() {
+    run(
+        "box",
+        &[
+            (0.0, vec![(square(0.0, 0.0, 1.0), vec![])]),
+            (1.0, vec![(square(0.0, 0.0, 1.0), vec![])]),
+        ],
+        Expect {
+            components: 1,
+            genus: 0,
+            flat_zones: false,
+        },
+    );
+}
+
+#[test]
+fn one_circle_facing_four_circles_branches() {
+    let four: Vec<Poly> = [(-0.6, -0.6), (0.6, -0.6), (0.6, 0.6), (-0.6, 0.6)]
+        .iter()
+        .map(|&(x, y)| (circle(x, y, 0.4, 24), vec![]))
+        .collect();
+    run(
+        "one-four",
+        &[
+            (0.0, vec![(circle(0.0, 0.0, 1.2, 48), vec![])]),
+            (1.0, four),
+        ],
+        Expect {
+            components: 1,
+            genus: 0,
+            flat_zones: false,
+        },
+    );
+}
+
+#[test]
+fn shifted_circle_does_not_branch() {
+    let four: Vec<Poly> = [(-0.6, -0.6), (0.6, -0.6), (0.6, 0.6), (-0.6, 0.6)]
+        .iter()
+        .map(|&(x, y)| (circle(x, y, 0.4, 24), vec![]))
+        .collect();
+    run(
+        "shifted",
+        &[
+            (0.0, vec![(circle(0.6, 0.6, 0.5, 32), vec![])]),
+            (1.0, four),
+        ],
+        // the three far circles are attached from neither side: flat zones (paper Fig. 16c-d)
+        Expect {
+            components: 1,
+            genus: 0,
+            flat_zones: true,
+        },
+    );
+}
+
+#[test]
+fn non_convex_sections() {
+    let l_shape = vec![
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 0.5],
+        [0.5, 0.5],
+        [0.5, 2.0],
+        [0.0, 2.0],
+    ];
+    let u_shape = vec![
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 2.0],
+        [1.5, 2.0],
+        [1.5, 0.5],
+        [0.5, 0.5],
+        [0.5, 2.0],
+        [0.0, 2.0],
+    ];
+    run(
+        "non-convex",
+        &[
+            (0.0, vec![(l_shape, vec![])]),
+            (1.0, vec![(u_shape, vec![])]),
+        ],
+        Expect {
+            components: 1,
+            genus: 0,
+            flat_zones: false,
+        },
+    );
+}
+
+#[test]
+fn section_with_a_hole() {
+    let ring = || {
+        (
+            circle(0.0, 0.0, 1.0, 32),
+            vec![reversed(circle(0.0, 0.0, 0.5, 24))],
+        )
+    };
+    run(
+        "hole",
+        &[(0.0, vec![ring()]), (0.7, vec![ring()])],
+        Expect {
+            components: 1,
+            genus: 1,
+            flat_zones: false,
+        },
+    );
+}
+
+#[test]
+fn nested_contours() {
+    // a ring with an island inside its hole, on both planes
+    let layer = || {
+        vec![
+            (
+                circle(0.0, 0.0, 1.5, 40),
+                vec![reversed(circle(0.0, 0.0, 1.0, 32))],
+            ),
+            (circle(0.0, 0.0, 0.5, 20), vec![]),
+        ]
+    };
+    run(
+        "nested",
+        &[(0.0, layer()), (0.8, layer())],
+        Expect {
+            components: 2,
+            genus: 1,
+            flat_zones: false,
+        },
+    );
+}

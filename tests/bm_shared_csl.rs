@@ -1,0 +1,64 @@
+//! Every shared CSL file reconstructs with the Delaunay pruning engine (no error); the files in
+//! `KNOWN_GOOD` into closed, oriented, manifold surfaces. Prints per file: time, triangles, checks, worst section disagreement, flat zones.
+//! The surfaces are written to `$BM_OUT_DIR` (if set) for the outside judge.
+mod bm_common;
+mod common;
+use slice2solid::eval::check::check_mesh;
+use slice2solid::{Error, Options};
+
+const KNOWN_GOOD: &[&str] = &[
+    "Heart-simplified",
+    "ParallelEight",
+    "ParallelEightMore",
+    "SideBishop",
+    "balloondog",
+    "eight_15",
+];
+
+#[test]
+fn every_shared_csl_file_reconstructs() {
+    let out_dir = std::env::var_os("BM_OUT_DIR").map(std::path::PathBuf::from);
+    let mut failures = Vec::new();
+    for path in common::shared_csl_files() {
+        let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        let sections = slice2solid::io::read_sections(&path).expect("read");
+        let t = std::time::Instant::now();
+        let solid = match slice2solid::reconstruct(&sections, &Options::default()) {
+            Err(Error::Unavailable(m)) => {
+                eprintln!("{name}: skipped ({m})");
+                return;
+            }
+            Err(e) => {
+                failures.push(format!("{name}: error {e}"));
+                continue;
+            }
+            Ok(s) => s,
+        };
+        let secs = t.elapsed().as_secs_f64();
+        if let Some(d) = &out_dir {
+            let _ = std::fs::create_dir_all(d);
+            slice2solid::io::mesh::write_trimesh(&d.join(format!("{name}.obj")), &solid.surface)
+                .expect("write");
+        }
+        let c = check_mesh(&solid.surface, None);
+        let worst = bm_common::worst_section(&solid.surface, &sections);
+        eprintln!(
+            "{name}: {:.3}s {} tris closed {} manifold {} oriented {} comps {} genus {} self-int {} worst-section {:.4} flat-zone-faces {} nonconf {} steiner {} branching {}",
+            secs, c.triangles, c.closed, c.manifold, c.oriented, c.components, c.genus,
+            c.self_intersections_vertex_disjoint, worst,
+            solid.report.counts.get("flat_zone_faces").unwrap_or(&0),
+            solid.report.counts.get("nonconforming_faces").unwrap_or(&0),
+            solid.report.counts.get("steiner_points").unwrap_or(&0),
+            solid.report.counts.get("branching_samples").unwrap_or(&0),
+        );
+        // Files that reconstruct into closed oriented manifolds today must keep doing so; the others
+        // are reported (known failures: flat-zone double sheets and pinches between cells).
+        if KNOWN_GOOD.contains(&name.as_str()) && !(c.closed && c.manifold && c.oriented) {
+            failures.push(format!(
+                "{name}: closed {} manifold {} oriented {} (boundary edges {}, non-manifold edges {}, vertices {})",
+                c.closed, c.manifold, c.oriented, c.boundary_edges, c.nonmanifold_edges, c.nonmanifold_vertices
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
