@@ -41,15 +41,22 @@ pub struct SectionAgreement {
 pub type Segment = ([f64; 2], [f64; 2]);
 
 /// Compare every input plane's section with the mesh's section by that plane.
+///
+/// The mesh's section is the union of its sections by the plane moved `SECTION_OFFSET` × (the mesh's
+/// bounding-box diagonal) to either side. For a closed solid R this is R ∩ P up to that offset,
+/// including flat parts of the boundary lying in P (which one-sided sections miss on one side), and it
+/// is stable when such flat parts lie in a tilted plane whose vertices were rounded to either side.
 pub fn section_agreement(mesh: &TriMesh, sections: &Sections) -> Vec<SectionAgreement> {
+    let delta = SECTION_OFFSET * bbox_diagonal(mesh);
     sections
         .sections
         .par_iter()
         .enumerate()
         .map(|(i, s)| {
-            let mesh_segs = mesh_section(mesh, s);
+            let below = mesh_section_offset(mesh, s, -delta);
+            let above = mesh_section_offset(mesh, s, delta);
             let input_segs = input_segments(s);
-            let a = symmetric_difference(&input_segs, &mesh_segs);
+            let a = symmetric_difference_with_union(&input_segs, &below, &above);
             let relative = if a.area_a > 0.0 {
                 a.sym_diff / a.area_a
             } else if a.sym_diff == 0.0 {
@@ -83,6 +90,40 @@ pub fn input_segments(s: &Section) -> Vec<Segment> {
     out
 }
 
+/// How far (relative to the mesh's bounding-box diagonal) the plane is moved to each side.
+pub const SECTION_OFFSET: f64 = 1e-6;
+
+fn bbox_diagonal(mesh: &TriMesh) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.vertices {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if lo[0] > hi[0] {
+        return 0.0;
+    }
+    ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
+}
+
+/// The mesh's section by the plane moved by `offset` along its normal, as directed segments in the
+/// plane's (u,v) frame (a vertex exactly at the offset plane counts as above it).
+pub fn mesh_section_offset(mesh: &TriMesh, s: &Section, offset: f64) -> Vec<Segment> {
+    if offset == 0.0 {
+        return mesh_section(mesh, s);
+    }
+    let pl = &s.plane;
+    let dist: Vec<f64> = mesh
+        .vertices
+        .iter()
+        .map(|&x| pl.signed_distance(x) - offset)
+        .collect();
+    let above: Vec<bool> = dist.iter().map(|&d| d >= 0.0).collect();
+    section_segments(mesh, s, &above, &dist)
+}
+
 /// The mesh's section by the section's plane, as directed segments in the plane's (u,v) frame.
 pub fn mesh_section(mesh: &TriMesh, s: &Section) -> Vec<Segment> {
     let pl = &s.plane;
@@ -95,12 +136,24 @@ pub fn mesh_section(mesh: &TriMesh, s: &Section) -> Vec<Segment> {
         .iter()
         .map(|&x| orient3d(o, ou, ov, x) <= 0.0)
         .collect();
+    let dist: Vec<f64> = mesh
+        .vertices
+        .iter()
+        .map(|&x| pl.signed_distance(x))
+        .collect();
+    section_segments(mesh, s, &above, &dist)
+}
+
+/// Directed segments where the triangles cross from `above` to below; `dist` places the crossing
+/// points (the crossing point of an edge is computed once, so loops close).
+fn section_segments(mesh: &TriMesh, s: &Section, above: &[bool], dist: &[f64]) -> Vec<Segment> {
+    let pl = &s.plane;
     let mut points: HashMap<(u32, u32), [f64; 2]> = HashMap::new();
     let mut crossing = |a: u32, b: u32| -> [f64; 2] {
         let key = (a.min(b), a.max(b));
         *points.entry(key).or_insert_with(|| {
             let (p, q) = (mesh.vertices[key.0 as usize], mesh.vertices[key.1 as usize]);
-            let (dp, dq) = (pl.signed_distance(p), pl.signed_distance(q));
+            let (dp, dq) = (dist[key.0 as usize], dist[key.1 as usize]);
             let t = if dp != dq {
                 (dp / (dp - dq)).clamp(0.0, 1.0)
             } else {
@@ -149,6 +202,15 @@ pub struct AreaComparison {
 /// Areas of the regions bounded by two sets of directed segments (nonzero winding) and of their
 /// symmetric difference, by exact slab integration.
 pub fn symmetric_difference(a: &[Segment], b: &[Segment]) -> AreaComparison {
+    symmetric_difference_with_union(a, b, &[])
+}
+
+/// As [`symmetric_difference`], with the second region the union of the regions bounded by `b` and `c`.
+pub fn symmetric_difference_with_union(
+    a: &[Segment],
+    b: &[Segment],
+    c: &[Segment],
+) -> AreaComparison {
     // (x-left point, x-right point, +1 when the segment runs towards +x, set 0/1)
     struct S {
         l: [f64; 2],
@@ -157,7 +219,7 @@ pub fn symmetric_difference(a: &[Segment], b: &[Segment]) -> AreaComparison {
         set: usize,
     }
     let mut segs: Vec<S> = Vec::new();
-    for (set, list) in [a, b].into_iter().enumerate() {
+    for (set, list) in [a, b, c].into_iter().enumerate() {
         for &(p, q) in list {
             if p[0] < q[0] {
                 segs.push(S {
@@ -250,24 +312,25 @@ pub fn symmetric_difference(a: &[Segment], b: &[Segment]) -> AreaComparison {
                     .map(|&i| (y_at(&segs[i], xm), segs[i].dir, segs[i].set)),
             );
             at_mid.sort_by(|p, q| p.0.total_cmp(&q.0));
-            let (mut wa, mut wb) = (0i32, 0i32);
+            let (mut wa, mut wb, mut wc) = (0i32, 0i32, 0i32);
             let (mut la, mut lb, mut ld) = (0.0, 0.0, 0.0);
             for k in 0..at_mid.len() {
                 let (y, dir, set) = at_mid[k];
-                if set == 0 {
-                    wa += dir;
-                } else {
-                    wb += dir;
+                match set {
+                    0 => wa += dir,
+                    1 => wb += dir,
+                    _ => wc += dir,
                 }
+                let in_b = wb != 0 || wc != 0;
                 if let Some(&(y1, _, _)) = at_mid.get(k + 1) {
                     let h = y1 - y;
                     if wa != 0 {
                         la += h;
                     }
-                    if wb != 0 {
+                    if in_b {
                         lb += h;
                     }
-                    if (wa != 0) != (wb != 0) {
+                    if (wa != 0) != in_b {
                         ld += h;
                     }
                 }
@@ -324,5 +387,52 @@ mod tests {
         let r = symmetric_difference(&holed, &a);
         assert!((r.area_a - 0.75).abs() < 1e-12);
         assert!((r.sym_diff - 0.25).abs() < 1e-12);
+    }
+}
+
+#[cfg(test)]
+mod flat_face_tests {
+    use super::*;
+    use crate::eval::shapes::cuboid;
+    use crate::sections::{Contour, Plane, Region};
+
+    fn square_section(z: f64) -> Sections {
+        let plane = Plane::from_equation([0.0, 0.0, 1.0], -z).unwrap();
+        let mut pts: Vec<[f64; 2]> = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+            .iter()
+            .map(|&[x, y]| plane.to_2d([x, y, z]))
+            .collect();
+        let probe = Contour::from_2d(&plane, pts.clone());
+        if probe.signed_area() < 0.0 {
+            pts.reverse();
+        }
+        Sections {
+            sections: vec![Section {
+                plane,
+                regions: vec![Region {
+                    label: 1,
+                    outer: Contour::from_2d(&plane, pts),
+                    holes: vec![],
+                }],
+                source_index: 0,
+                max_off_plane: 0.0,
+            }],
+            n_labels: 1,
+            warnings: vec![],
+        }
+    }
+
+    /// A solid whose bottom or top face lies in the plane has that face as its section (one-sided
+    /// sections see it from one side only).
+    #[test]
+    fn a_face_lying_in_the_plane_is_in_the_section() {
+        let cube = cuboid([0.0; 3], [1.0; 3]);
+        for z in [0.0, 0.5, 1.0] {
+            let a = &section_agreement(&cube, &square_section(z))[0];
+            assert!(a.relative < 1e-5, "z = {z}: {a:?}");
+        }
+        // And a plane beside the solid sees nothing of it.
+        let a = &section_agreement(&cube, &square_section(1.5))[0];
+        assert!(a.relative > 0.99, "{a:?}");
     }
 }
