@@ -53,6 +53,20 @@ pub struct Report {
     pub values: BTreeMap<String, f64>,
     pub warnings: Vec<String>,
     pub total_seconds: f64,
+    /// Topology of the output surface (combinatorial; self-intersections are left to `check`).
+    pub surface: Option<SurfaceTopology>,
+}
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct SurfaceTopology {
+    pub triangles: usize,
+    pub closed: bool,
+    pub manifold: bool,
+    pub oriented: bool,
+    pub components: usize,
+    pub euler: i64,
+    /// Sum of the genera of the closed, oriented manifold components.
+    pub genus: i64,
 }
 
 impl Report {
@@ -103,6 +117,16 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
         }
     };
     report.total_seconds = start.elapsed().as_secs_f64();
+    let topo = crate::eval::topology::analyze(&solid.surface);
+    report.surface = Some(SurfaceTopology {
+        triangles: solid.surface.triangles.len(),
+        closed: topo.closed,
+        manifold: topo.manifold,
+        oriented: topo.oriented,
+        components: topo.components.len(),
+        euler: topo.euler,
+        genus: topo.components.iter().filter_map(|c| c.genus).sum(),
+    });
     solid.report = report;
     Ok(solid)
 }
