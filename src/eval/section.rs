@@ -42,21 +42,30 @@ pub type Segment = ([f64; 2], [f64; 2]);
 
 /// Compare every input plane's section with the mesh's section by that plane.
 ///
-/// The mesh's section is the union of its sections by the plane moved `SECTION_OFFSET` × (the mesh's
-/// bounding-box diagonal) to either side. For a closed solid R this is R ∩ P up to that offset,
-/// including flat parts of the boundary lying in P (which one-sided sections miss on one side), and it
-/// is stable when such flat parts lie in a tilted plane whose vertices were rounded to either side.
+/// The mesh's section is the union of its sections by the plane moved an offset × (the mesh's
+/// bounding-box diagonal) below and above. For a closed solid R this is R ∩ P up to that offset,
+/// including flat parts of the boundary lying in P (a one-sided section misses them from one side).
+/// Each offset of [`SECTION_OFFSETS`] is tried and the best agreement reported: 1e-12 is far above the
+/// rounding of points constructed on P (~1e-16 relative, whose exact side of P is noise) and changes
+/// a generic section's area by ~1e-12; 1e-6 also absorbs vertices a reconstruction moved off P on
+/// purpose (the Delaunay engine lifts pinched vertices 1e-6 of an edge length into their cell).
 pub fn section_agreement(mesh: &TriMesh, sections: &Sections) -> Vec<SectionAgreement> {
-    let delta = SECTION_OFFSET * bbox_diagonal(mesh);
+    let diagonal = bbox_diagonal(mesh);
     sections
         .sections
         .par_iter()
         .enumerate()
         .map(|(i, s)| {
-            let below = mesh_section_offset(mesh, s, -delta);
-            let above = mesh_section_offset(mesh, s, delta);
             let input_segs = input_segments(s);
-            let a = symmetric_difference_with_union(&input_segs, &below, &above);
+            let a = SECTION_OFFSETS
+                .iter()
+                .map(|&off| {
+                    let below = mesh_section_offset(mesh, s, -off * diagonal);
+                    let above = mesh_section_offset(mesh, s, off * diagonal);
+                    symmetric_difference_with_union(&input_segs, &below, &above)
+                })
+                .min_by(|x, y| x.sym_diff.total_cmp(&y.sym_diff))
+                .expect("at least one offset");
             let relative = if a.area_a > 0.0 {
                 a.sym_diff / a.area_a
             } else if a.sym_diff == 0.0 {
@@ -90,24 +99,6 @@ pub fn input_segments(s: &Section) -> Vec<Segment> {
     out
 }
 
-/// How far (relative to the mesh's bounding-box diagonal) the plane is moved to each side.
-pub const SECTION_OFFSET: f64 = 1e-6;
-
-fn bbox_diagonal(mesh: &TriMesh) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &mesh.vertices {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    if lo[0] > hi[0] {
-        return 0.0;
-    }
-    ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
-}
-
 /// The mesh's section by the plane moved by `offset` along its normal, as directed segments in the
 /// plane's (u,v) frame (a vertex exactly at the offset plane counts as above it).
 pub fn mesh_section_offset(mesh: &TriMesh, s: &Section, offset: f64) -> Vec<Segment> {
@@ -124,17 +115,45 @@ pub fn mesh_section_offset(mesh: &TriMesh, s: &Section, offset: f64) -> Vec<Segm
     section_segments(mesh, s, &above, &dist)
 }
 
+/// How far (relative to the mesh's bounding-box diagonal) the plane is moved to each side.
+pub const SECTION_OFFSETS: [f64; 2] = [1e-12, 1e-6];
+
+fn bbox_diagonal(mesh: &TriMesh) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.vertices {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if lo[0] > hi[0] {
+        return 0.0;
+    }
+    ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
+}
+
 /// The mesh's section by the section's plane, as directed segments in the plane's (u,v) frame.
+/// A vertex exactly on the plane counts as above it: the limit of sections by planes just below.
 pub fn mesh_section(mesh: &TriMesh, s: &Section) -> Vec<Segment> {
+    mesh_section_limit(mesh, s, true)
+}
+
+/// The limit of the mesh's sections by planes moved infinitesimally below (`zero_above`: a vertex on
+/// the plane counts as above it) or above (it counts as below) the section's plane.
+pub fn mesh_section_limit(mesh: &TriMesh, s: &Section, zero_above: bool) -> Vec<Segment> {
     let pl = &s.plane;
     let o = pl.origin;
     let ou = [o[0] + pl.u[0], o[1] + pl.u[1], o[2] + pl.u[2]];
     let ov = [o[0] + pl.v[0], o[1] + pl.v[1], o[2] + pl.v[2]];
-    // orient3d > 0 means below (−normal side) in `robust`'s convention; zero counts as above.
+    // orient3d > 0 means below (−normal side) in `robust`'s convention; a zero goes to the side asked for.
     let above: Vec<bool> = mesh
         .vertices
         .iter()
-        .map(|&x| orient3d(o, ou, ov, x) <= 0.0)
+        .map(|&x| {
+            let side = orient3d(o, ou, ov, x);
+            side < 0.0 || (side == 0.0 && zero_above)
+        })
         .collect();
     let dist: Vec<f64> = mesh
         .vertices
