@@ -7,12 +7,15 @@ use slice2solid::eval::check::check_mesh;
 use slice2solid::{Error, Options};
 
 const KNOWN_GOOD: &[&str] = &[
+    "Armadillo-23-better",
     "Heart-simplified",
     "ParallelEight",
     "ParallelEightMore",
     "SideBishop",
     "balloondog",
+    "balloondog_box",
     "eight_15",
+    "eight_20",
 ];
 
 #[test]

@@ -367,6 +367,7 @@ fn unpinch(
     }
     let mut vs: Vec<u32> = at.keys().copied().collect();
     vs.sort_unstable();
+    let partners = pair_around_edges(positions, tris);
     let mut split = std::collections::HashSet::new();
     for v in vs {
         let list = at[&v].clone();
@@ -379,34 +380,57 @@ fn unpinch(
                 }
             }
         }
-        // union-find over the triangles of the star
-        let mut parent: Vec<usize> = (0..list.len()).collect();
-        fn find(p: &mut [usize], mut x: usize) -> usize {
-            while p[x] != x {
-                p[x] = p[p[x]];
-                x = p[x];
+        let mut fans: HashMap<usize, Vec<usize>> = HashMap::new();
+        for pass in 0..2 {
+            let mut singular = false;
+            // union-find over the triangles of the star
+            let mut parent: Vec<usize> = (0..list.len()).collect();
+            fn find(p: &mut [usize], mut x: usize) -> usize {
+                while p[x] != x {
+                    p[x] = p[p[x]];
+                    x = p[x];
+                }
+                x
             }
-            x
-        }
-        for ks in by_w.values() {
-            if ks.len() == 2 {
-                let (a, b) = (find(&mut parent, ks[0]), find(&mut parent, ks[1]));
-                parent[a] = b;
-            } else {
-                for x in 0..ks.len() {
-                    for y in x + 1..ks.len() {
-                        if kind[list[ks[x]]] == kind[list[ks[y]]] {
-                            let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
+            for (&w, ks) in &by_w {
+                if ks.len() == 2 {
+                    let (a, b) = (find(&mut parent, ks[0]), find(&mut parent, ks[1]));
+                    parent[a] = b;
+                } else if ks.iter().all(|&k| kind[list[k]] == kind[list[ks[0]]])
+                    && ks.iter().all(|&k| {
+                        partners[pass].contains_key(&(list[k], slot_of(&tris[list[k]], v, w)))
+                    })
+                {
+                    // a singular edge inside one piece (two tets of a cell meet along an edge only):
+                    // each triangle continues its angular neighbour across the solid's wedge (pass 0)
+                    // or, when that leaves the vertex's star in one piece, across the void's (pass 1)
+                    singular = true;
+                    for &k in ks {
+                        let j = partners[pass][&(list[k], slot_of(&tris[list[k]], v, w))];
+                        if let Some(kj) = list.iter().position(|&i| i == j) {
+                            let (a, b) = (find(&mut parent, k), find(&mut parent, kj));
                             parent[a] = b;
+                        }
+                    }
+                } else {
+                    for x in 0..ks.len() {
+                        for y in x + 1..ks.len() {
+                            if kind[list[ks[x]]] == kind[list[ks[y]]] {
+                                let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
+                                parent[a] = b;
+                            }
                         }
                     }
                 }
             }
-        }
-        let mut fans: HashMap<usize, Vec<usize>> = HashMap::new();
-        for k in 0..list.len() {
-            let r = find(&mut parent, k);
-            fans.entry(r).or_default().push(list[k]);
+            fans.clear();
+            for k in 0..list.len() {
+                let r = find(&mut parent, k);
+                fans.entry(r).or_default().push(list[k]);
+            }
+            if fans.len() >= 2 || !singular {
+                break;
+            }
         }
         if fans.len() < 2 {
             continue;
@@ -472,6 +496,83 @@ fn unpinch(
         split.insert(v);
     }
     split
+}
+
+/// Slot k of the edge {v, w} in a triangle (the edge t[k], t[k+1]).
+fn slot_of(t: &[u32; 3], v: u32, w: u32) -> u8 {
+    (0..3)
+        .find(|&k| {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            (a == v && b == w) || (a == w && b == v)
+        })
+        .unwrap_or(3) as u8
+}
+
+/// At every edge used by more than two triangles, pairs each triangle with its angular neighbour on
+/// the side of the solid (its inner side): sorted by angle around the edge, a triangle using the
+/// edge as a→b has its outward normal towards increasing angle, so the solid wedge lies between it
+/// and its predecessor, which must use the edge as b→a ([0]: pairs across the solid's wedges; [1]:
+/// across the voids', with the successor). Edges whose order does not alternate (flat sheets, ties)
+/// are left out. Key: (triangle, edge slot) → partner triangle.
+fn pair_around_edges(
+    positions: &[[f64; 3]],
+    tris: &[[u32; 3]],
+) -> [HashMap<(usize, u8), usize>; 2] {
+    use crate::sections::{cross, dot, sub};
+    let mut edges: HashMap<(u32, u32), Vec<(usize, u8)>> = HashMap::new();
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3u8 {
+            let (a, b) = (t[k as usize], t[(k as usize + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_default().push((i, k));
+        }
+    }
+    let mut out = [HashMap::new(), HashMap::new()];
+    for (&(a, b), l) in &edges {
+        if l.len() <= 2 || l.len() % 2 == 1 {
+            continue;
+        }
+        let pa = positions[a as usize];
+        let e = sub(positions[b as usize], pa);
+        let ee = dot(e, e);
+        if ee <= 0.0 {
+            continue;
+        }
+        let perp = |i: usize, k: u8| {
+            let c = tris[i][(k as usize + 2) % 3];
+            let d = sub(positions[c as usize], pa);
+            let s = dot(d, e) / ee;
+            [d[0] - s * e[0], d[1] - s * e[1], d[2] - s * e[2]]
+        };
+        let u = perp(l[0].0, l[0].1);
+        let w = cross(e, u);
+        let mut ang: Vec<(f64, usize, u8, bool)> = l
+            .iter()
+            .map(|&(i, k)| {
+                let p = perp(i, k);
+                let forward = tris[i][k as usize] == a; // uses the edge as a→b
+                (dot(p, w).atan2(dot(p, u)), i, k, forward)
+            })
+            .collect();
+        ang.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let n = ang.len();
+        let ties = (0..n).any(|j| ang[j].0 == ang[(j + 1) % n].0);
+        let alternates = (0..n).all(|j| ang[j].3 != ang[(j + 1) % n].3);
+        if ties || !alternates {
+            continue;
+        }
+        for j in 0..n {
+            if ang[j].3 {
+                for (pass, p) in [&ang[(j + n - 1) % n], &ang[(j + 1) % n]]
+                    .into_iter()
+                    .enumerate()
+                {
+                    out[pass].insert((ang[j].1, ang[j].2), p.1);
+                    out[pass].insert((p.1, p.2), ang[j].1);
+                }
+            }
+        }
+    }
+    out
 }
 
 /// The paper's remedy for singular points where the branching diagrams of the two cells of a face
