@@ -1,4 +1,6 @@
 //! The `check` and `compare` subcommands: JSON keys, exit status.
+mod common;
+use common::shared_dir;
 use slice2solid::eval::shapes::{icosphere, translated, unit_cube};
 use slice2solid::io::mesh::write_trimesh;
 use std::process::Command;
@@ -80,19 +82,6 @@ fn compare_json() {
     assert_eq!(j["samples"], 2000);
     // STL stores f32: the shift 0.1 is rounded, hence the tolerance
     assert!((j["iou"].as_f64().unwrap() - 0.9 / 1.1).abs() < 1e-6);
-}
-
-/// `$SLICE2SOLID_SHARED`, else `<crate>/../shared` when it exists, else `/work/shared`.
-fn shared_dir() -> std::path::PathBuf {
-    if let Ok(d) = std::env::var("SLICE2SOLID_SHARED") {
-        return d.into();
-    }
-    let local = std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
-    if local.exists() {
-        local
-    } else {
-        "/work/shared".into()
-    }
 }
 
 #[test]

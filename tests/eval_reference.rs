@@ -1,22 +1,10 @@
 //! `check --sections` and `compare` on the shared reference meshes and CSL files.
+mod common;
+use common::shared_dir;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::eval::compare::compare_meshes;
 use slice2solid::io::mesh::read_trimesh;
 use slice2solid::io::read_sections;
-use std::path::PathBuf;
-
-/// `$SLICE2SOLID_SHARED`, else `<crate>/../shared` when it exists, else `/work/shared`.
-fn shared_dir() -> PathBuf {
-    if let Ok(d) = std::env::var("SLICE2SOLID_SHARED") {
-        return PathBuf::from(d);
-    }
-    let local = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
-    if local.exists() {
-        local
-    } else {
-        PathBuf::from("/work/shared")
-    }
-}
 
 const NAMES: [&str; 6] = [
     "Elephant",

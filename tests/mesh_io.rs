@@ -1,4 +1,6 @@
 //! Mesh file I/O: exact round trips, every reference STL, and malformed files rejected without panics.
+mod common;
+use common::shared_dir;
 use slice2solid::io::mesh::{
     parse_obj, parse_off, parse_ply, parse_stl, read_tetmesh, read_trimesh, to_ply_bytes,
     to_stl_bytes, weld_exact, write_tetmesh, write_trimesh,
@@ -7,19 +9,6 @@ use slice2solid::slice::check_closed_manifold;
 use slice2solid::{Error, TetMesh, TriMesh};
 use std::collections::HashMap;
 use std::path::PathBuf;
-
-/// The shared data directory: $SLICE2SOLID_SHARED, else ../shared next to the crate, else /work/shared.
-fn shared_dir() -> PathBuf {
-    if let Ok(d) = std::env::var("SLICE2SOLID_SHARED") {
-        return PathBuf::from(d);
-    }
-    let sibling = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
-    if sibling.exists() {
-        sibling
-    } else {
-        PathBuf::from("/work/shared")
-    }
-}
 
 fn reference_stls() -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(shared_dir().join("data/reference"))

@@ -1,21 +1,9 @@
 //! The `slice` command end to end: errors name the file; written sections load back with the same areas.
+mod common;
+use common::shared_dir;
 use slice2solid::io::mesh::{read_trimesh, write_trimesh};
 use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
-use std::path::PathBuf;
 use std::process::Command;
-
-/// The shared data directory: $SLICE2SOLID_SHARED, else ../shared next to the crate, else /work/shared.
-fn shared_dir() -> PathBuf {
-    if let Ok(d) = std::env::var("SLICE2SOLID_SHARED") {
-        return PathBuf::from(d);
-    }
-    let sibling = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
-    if sibling.exists() {
-        sibling
-    } else {
-        PathBuf::from("/work/shared")
-    }
-}
 
 fn slice2solid() -> Command {
     Command::new(env!("CARGO_BIN_EXE_slice2solid"))

@@ -1,24 +1,13 @@
 //! Slicing the reference meshes: every section's area against an independent computation that builds no
 //! contours, plus the section conventions (outer CCW, holes CW and inside their outer contour).
+mod common;
+use common::shared_dir;
 use slice2solid::geom::predicates::orient2d;
 use slice2solid::io::mesh::read_trimesh;
 use slice2solid::sections::{cross, dot, sub};
 use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
 use slice2solid::{Plane, Sections, TriMesh};
 use std::path::PathBuf;
-
-/// The shared data directory: $SLICE2SOLID_SHARED, else ../shared next to the crate, else /work/shared.
-fn shared_dir() -> PathBuf {
-    if let Ok(d) = std::env::var("SLICE2SOLID_SHARED") {
-        return PathBuf::from(d);
-    }
-    let sibling = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
-    if sibling.exists() {
-        sibling
-    } else {
-        PathBuf::from("/work/shared")
-    }
-}
 
 fn reference_meshes() -> Vec<(String, TriMesh)> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(shared_dir().join("data/reference"))
