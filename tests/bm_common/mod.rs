@@ -45,7 +45,7 @@ pub fn parallel_case(layers: &[(f64, Vec<Poly>)]) -> (Sections, Arrangement) {
         let mut regions = Vec::new();
         let mut pieces = Vec::new();
         let pool = &mut arr.pool;
-        let mut add_loop = |xy: &Vec<[f64; 2]>, pool: &mut VertexPool| -> (Contour, Vec<u32>) {
+        let add_loop = |xy: &Vec<[f64; 2]>, pool: &mut VertexPool| -> (Contour, Vec<u32>) {
             let uv: Vec<[f64; 2]> = xy.iter().map(|p| plane.to_2d([p[0], p[1], *z])).collect();
             let c = Contour::from_2d(&plane, uv);
             let ids = (0..xy.len())
