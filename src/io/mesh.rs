@@ -775,35 +775,22 @@ fn drop_degenerate(mesh: &mut TriMesh) {
 }
 
 fn check_trimesh(mesh: &TriMesh, name: &str) -> Result<()> {
-    let n = mesh.vertices.len();
-    if let Some((i, _)) = mesh
-        .triangles
-        .iter()
-        .enumerate()
-        .find(|(_, t)| t.iter().any(|&v| v as usize >= n))
-    {
-        return Err(Error::input(
-            name,
-            format!("triangle {i} has a vertex index out of range ({n} vertices)"),
-        ));
-    }
-    Ok(())
+    check_indices(&mesh.triangles, mesh.vertices.len(), name, "triangle")
 }
 
 fn check_tets(mesh: &TetMesh, name: &str) -> Result<()> {
-    let n = mesh.vertices.len();
-    if let Some((i, _)) = mesh
-        .tets
-        .iter()
-        .enumerate()
-        .find(|(_, t)| t.iter().any(|&v| v as usize >= n))
-    {
-        return Err(Error::input(
+    check_indices(&mesh.tets, mesh.vertices.len(), name, "tetrahedron")
+}
+
+/// Writers refuse a cell that refers past the vertex array instead of writing a file that cannot be read back.
+fn check_indices<const K: usize>(cells: &[[u32; K]], n: usize, name: &str, what: &str) -> Result<()> {
+    match cells.iter().position(|c| c.iter().any(|&v| v as usize >= n)) {
+        Some(i) => Err(Error::input(
             name,
-            format!("tetrahedron {i} refers to a vertex out of range ({n} vertices)"),
-        ));
+            format!("{what} {i} has a vertex index out of range ({n} vertices)"),
+        )),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 #[cfg(test)]
