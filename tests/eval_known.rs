@@ -291,3 +291,86 @@ fn tilted_section_of_sphere_has_polygon_area() {
     let empty = slice2solid::eval::section::symmetric_difference(&[], &segs);
     assert!((empty.area_b - shoelace).abs() < 1e-9);
 }
+
+/// A box `thickness` thick in z over the unit square (closed, outward).
+fn slab(thickness: f64) -> TriMesh {
+    cuboid([0.0, 0.0, 0.0], [1.0, 1.0, thickness])
+}
+
+#[test]
+fn double_sheet_is_not_self_intersection_free() {
+    // top and bottom 1e-13 apart: exactly disjoint, but a double sheet within 1e-9 of the diagonal
+    let r = check_mesh(&slab(1e-13), None);
+    assert!(r.is_closed_manifold() && r.oriented, "{r:?}");
+    assert_eq!(r.self_intersections, 0);
+    // both faces are split along the same diagonal: each top triangle covers one bottom triangle
+    assert_eq!(r.overlapping_coplanar_pairs, 2, "{r:?}");
+    assert!(!r.self_intersection_free);
+    let [i, j] = r.overlapping_coplanar_example.unwrap();
+    assert!(i < j);
+    assert!((r.near_coplanar_tolerance - 1e-9 * 2f64.sqrt()).abs() < 1e-15);
+}
+
+#[test]
+fn thin_valid_box_passes() {
+    for t in [1e-6, 1e-3] {
+        let r = check_mesh(&slab(t), None);
+        assert!(r.is_closed_manifold() && r.oriented, "{r:?}");
+        assert_eq!(r.self_intersections, 0);
+        assert_eq!(r.overlapping_coplanar_pairs, 0, "thickness {t}: {r:?}");
+        assert!(r.self_intersection_free);
+    }
+}
+
+#[test]
+fn cubes_a_hair_apart_are_a_double_sheet() {
+    // exactly disjoint, but the facing faces overlap 1e-12 apart
+    let m = merged(
+        &unit_cube(),
+        &translated(&unit_cube(), [1.0 + 1e-12, 0.0, 0.0]),
+    );
+    let r = check_mesh(&m, None);
+    assert_eq!(r.self_intersections, 0);
+    assert!(r.overlapping_coplanar_pairs > 0);
+    let [i, j] = r.overlapping_coplanar_example.unwrap();
+    assert!(i < 12 && j >= 12);
+    assert!(!r.self_intersection_free);
+    // a visible gap is fine
+    let m = merged(
+        &unit_cube(),
+        &translated(&unit_cube(), [1.0 + 1e-6, 0.0, 0.0]),
+    );
+    let r = check_mesh(&m, None);
+    assert_eq!(r.overlapping_coplanar_pairs, 0);
+    assert!(r.self_intersection_free);
+}
+
+#[test]
+fn flat_fold_over_shared_edge_is_not_self_intersection_free() {
+    // two triangles on edge 1-2; the second's apex folded back over the first, 1e-12 off its plane
+    let fold = TriMesh {
+        vertices: vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.3, 0.3, 1e-12],
+        ],
+        triangles: vec![[0, 1, 2], [2, 1, 3]],
+    };
+    let r = check_mesh(&fold, None);
+    assert_eq!(r.self_intersections, 0, "not coplanar exactly");
+    assert_eq!(r.overlapping_coplanar_pairs, 1);
+    assert_eq!(r.overlapping_coplanar_example, Some([0, 1]));
+    assert!(!r.self_intersection_free);
+    // the same apex across the edge: a flat (slightly bent) square, fine
+    let mut flat = fold.clone();
+    flat.vertices[3] = [1.0, 1.0, 1e-12];
+    let r = check_mesh(&flat, None);
+    assert_eq!(r.self_intersections, 0);
+    assert_eq!(r.overlapping_coplanar_pairs, 0);
+    assert!(r.self_intersection_free);
+    // and exactly flat
+    flat.vertices[3] = [1.0, 1.0, 0.0];
+    let r = check_mesh(&flat, None);
+    assert_eq!(r.overlapping_coplanar_pairs + r.self_intersections, 0);
+}

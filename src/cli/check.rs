@@ -61,6 +61,13 @@ fn print_table(name: &str, r: &CheckReport) {
         ),
         None => println!("  self-intersections  0"),
     }
+    match r.overlapping_coplanar_example {
+        Some([i, j]) => println!(
+            "  overlapping coplanar {}  (double sheet within {:.1e}, e.g. triangles {i} and {j})",
+            r.overlapping_coplanar_pairs, r.near_coplanar_tolerance
+        ),
+        None => println!("  overlapping coplanar 0"),
+    }
     if r.degenerate_triangles > 0 {
         println!("  degenerate tris     {}", r.degenerate_triangles);
     }

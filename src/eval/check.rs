@@ -1,6 +1,9 @@
 //! `check`: is a triangle mesh a valid solid boundary, and (optionally) do its sections agree with
 //! the input cross-sections?
-use super::bvh::{triangle_boxes, Bvh};
+use super::bvh::{triangle_boxes, Aabb, Bvh};
+use super::near_coplanar::{
+    normal, overlapping_near_coplanar_with_normals, NEAR_COPLANAR_RELATIVE_TOLERANCE,
+};
 use super::section::{section_agreement, SectionAgreement};
 use super::topology::{analyze, ComponentReport};
 use super::tri_tri::{is_degenerate, mesh_triangles_intersect};
@@ -30,6 +33,17 @@ pub struct CheckReport {
     pub self_intersections_vertex_disjoint: usize,
     /// One intersecting pair (triangle indices), the smallest in lexicographic order.
     pub self_intersection_example: Option<[usize; 2]>,
+    /// Pairs the exact test calls disjoint that nevertheless lie within `near_coplanar_tolerance` of
+    /// each other's planes and overlap there with positive area (beyond any shared vertex or edge): a
+    /// double sheet or a flat fold that only rounding keeps apart. Float checkers see them cross.
+    pub overlapping_coplanar_pairs: usize,
+    /// The smallest such pair.
+    pub overlapping_coplanar_example: Option<[usize; 2]>,
+    /// The absolute distance used for "near-coplanar": `NEAR_COPLANAR_RELATIVE_TOLERANCE` (1e-9) of
+    /// the bounding-box diagonal.
+    pub near_coplanar_tolerance: f64,
+    /// No intersecting pair and no overlapping near-coplanar pair.
+    pub self_intersection_free: bool,
     pub components: usize,
     /// V − E + F over the used vertices.
     pub euler: i64,
@@ -96,6 +110,10 @@ pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
         self_intersections: si.count,
         self_intersections_vertex_disjoint: si.vertex_disjoint,
         self_intersection_example: si.example,
+        overlapping_coplanar_pairs: si.overlapping_coplanar,
+        overlapping_coplanar_example: si.overlapping_coplanar_example,
+        near_coplanar_tolerance: si.tolerance,
+        self_intersection_free: si.count == 0 && si.overlapping_coplanar == 0,
         components: topo.components.len(),
         euler: topo.euler,
         genus,
@@ -122,10 +140,16 @@ pub struct SelfIntersections {
     pub example: Option<[usize; 2]>,
     /// Triangles with three collinear (distinct-index) points, skipped.
     pub collinear: usize,
+    /// Pairs not intersecting exactly but overlapping near-coplanar (see [`super::near_coplanar`]).
+    pub overlapping_coplanar: usize,
+    pub overlapping_coplanar_example: Option<[usize; 2]>,
+    /// Absolute near-coplanar tolerance used.
+    pub tolerance: f64,
 }
 
 /// Count intersecting triangle pairs: BVH of triangle boxes, candidate pairs (i < j) with overlapping
-/// boxes, exact test (rayon over i).
+/// boxes (grown by the near-coplanar tolerance), exact test, then the near-coplanar overlap test on the
+/// pairs the exact test calls disjoint (rayon over i).
 pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
     let v = &mesh.vertices;
     let t = &mesh.triangles;
@@ -144,23 +168,43 @@ pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
         .filter(|(&s, tr)| s && tr[0] != tr[1] && tr[1] != tr[2] && tr[0] != tr[2])
         .count();
     let bvh = Bvh::build(triangle_boxes(v, t));
+    let tolerance = if bvh.is_empty() {
+        0.0
+    } else {
+        NEAR_COPLANAR_RELATIVE_TOLERANCE * bvh.bounds().diagonal()
+    };
+    let pts = |tr: [u32; 3]| tr.map(|k| v[k as usize]);
+    let normals: Vec<_> = t.par_iter().map(|&tr| normal(pts(tr))).collect();
+    let smaller = |a: Option<[usize; 2]>, b: Option<[usize; 2]>| match (a, b) {
+        (Some(x), Some(y)) => Some(x.min(y)),
+        (x, y) => x.or(y),
+    };
     let merge = |a: SelfIntersections, b: SelfIntersections| SelfIntersections {
         count: a.count + b.count,
         vertex_disjoint: a.vertex_disjoint + b.vertex_disjoint,
-        example: match (a.example, b.example) {
-            (Some(x), Some(y)) => Some(x.min(y)),
-            (x, y) => x.or(y),
-        },
+        example: smaller(a.example, b.example),
         collinear: 0,
+        overlapping_coplanar: a.overlapping_coplanar + b.overlapping_coplanar,
+        overlapping_coplanar_example: smaller(
+            a.overlapping_coplanar_example,
+            b.overlapping_coplanar_example,
+        ),
+        tolerance,
     };
     let mut out = (0..t.len())
         .into_par_iter()
         .filter(|&i| !skip[i])
         .map(|i| {
             let mut r = SelfIntersections::default();
-            bvh.for_each_overlap(bvh.item_box(i as u32), |j| {
+            // A point of the other triangle's projection lies within tolerance/|n_k| ≤ √3·tolerance of
+            // this triangle along the dropped axis: grow the query box by twice the tolerance.
+            let bb = grown(bvh.item_box(i as u32), 2.0 * tolerance);
+            bvh.for_each_overlap(&bb, |j| {
                 let j = j as usize;
-                if j > i && !skip[j] && mesh_triangles_intersect(t[i], t[j], v) {
+                if j <= i || skip[j] {
+                    return;
+                }
+                if mesh_triangles_intersect(t[i], t[j], v) {
                     r.count += 1;
                     if !t[i].iter().any(|x| t[j].contains(x)) {
                         r.vertex_disjoint += 1;
@@ -168,11 +212,30 @@ pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
                     if r.example.is_none_or(|f| j < f[1]) {
                         r.example = Some([i, j]);
                     }
+                } else if overlapping_near_coplanar_with_normals(
+                    pts(t[i]),
+                    normals[i],
+                    pts(t[j]),
+                    normals[j],
+                    tolerance,
+                ) {
+                    r.overlapping_coplanar += 1;
+                    if r.overlapping_coplanar_example.is_none_or(|f| j < f[1]) {
+                        r.overlapping_coplanar_example = Some([i, j]);
+                    }
                 }
             });
             r
         })
         .reduce(SelfIntersections::default, merge);
     out.collinear = collinear;
+    out.tolerance = tolerance;
     out
+}
+
+fn grown(b: &Aabb, d: f64) -> Aabb {
+    Aabb {
+        lo: b.lo.map(|x| x - d),
+        hi: b.hi.map(|x| x + d),
+    }
 }

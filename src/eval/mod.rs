@@ -7,6 +7,7 @@
 pub mod bvh;
 pub mod check;
 pub mod compare;
+pub mod near_coplanar;
 pub mod section;
 pub mod shapes;
 pub mod topology;
