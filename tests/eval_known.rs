@@ -374,3 +374,33 @@ fn flat_fold_over_shared_edge_is_not_self_intersection_free() {
     let r = check_mesh(&flat, None);
     assert_eq!(r.overlapping_coplanar_pairs + r.self_intersections, 0);
 }
+
+#[test]
+fn coplanar_triangles_apart_are_free_but_flagged_for_float_tests() {
+    // Like the Heart output's pairs the outside judge counts: two triangles on one tilted plane, far
+    // apart inside it but with overlapping bounding boxes. Exactly (and truly) disjoint.
+    let n = [1.0, 2.0, 3.0];
+    let on_plane = |x: f64, y: f64| [x, y, -(n[0] * x + n[1] * y) / n[2]];
+    let m = TriMesh {
+        vertices: vec![
+            on_plane(0.0, 0.0),
+            on_plane(4.0, 0.0),
+            on_plane(0.0, 4.0),
+            on_plane(2.5, 2.5),
+            on_plane(3.0, 2.5),
+            on_plane(2.5, 3.0),
+        ],
+        triangles: vec![[0, 1, 2], [3, 4, 5]],
+    };
+    let r = check_mesh(&m, None);
+    assert_eq!(r.self_intersections, 0);
+    assert_eq!(r.overlapping_coplanar_pairs, 0);
+    assert!(r.self_intersection_free);
+    assert_eq!(r.edge_in_plane_pairs, 1);
+    // lifted off the plane by 1e-3 of the diagonal: nothing to flag
+    let mut lifted = m.clone();
+    for k in 3..6 {
+        lifted.vertices[k][2] += 1e-3 * 6.0;
+    }
+    assert_eq!(check_mesh(&lifted, None).edge_in_plane_pairs, 0);
+}

@@ -68,6 +68,12 @@ fn print_table(name: &str, r: &CheckReport) {
         ),
         None => println!("  overlapping coplanar 0"),
     }
+    if r.edge_in_plane_pairs > 0 {
+        println!(
+            "    (info: {} disjoint pairs with an edge in the other's plane, where float tests may see crossings)",
+            r.edge_in_plane_pairs
+        );
+    }
     if r.degenerate_triangles > 0 {
         println!("  degenerate tris     {}", r.degenerate_triangles);
     }

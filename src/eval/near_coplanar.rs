@@ -22,6 +22,11 @@ type P2 = [f64; 2];
 /// constructed points (~1e-16 relative) and far below any feature a reconstruction means to make.
 pub const NEAR_COPLANAR_RELATIVE_TOLERANCE: f64 = 1e-9;
 
+/// Relative distance below which an edge counts as lying in another triangle's plane for
+/// [`edge_in_other_plane`]: there a float determinant of the edge against the plane is ~1e-16 of its
+/// magnitude, i.e. rounding noise (at 1e-12 barycentrics still carry ~1e-4 relative error).
+pub const EDGE_IN_PLANE_RELATIVE_TOLERANCE: f64 = 1e-12;
+
 /// Do triangles `a` and `b` lie within `tol` (absolute) of each other's planes and overlap in area?
 /// Degenerate (collinear) triangles never overlap in area.
 pub fn overlapping_near_coplanar(a: [P3; 3], b: [P3; 3], tol: f64) -> bool {
@@ -44,6 +49,29 @@ pub fn overlapping_near_coplanar_with_normals(
     }
     let k = dominant_axis(na.0);
     interiors_overlap_2d(a.map(|p| drop(p, k)), b.map(|p| drop(p, k)))
+}
+
+/// Does an edge of either triangle lie within `tol` of the other's plane (both endpoints)? For such
+/// pairs a float segment–triangle test (Möller–Trumbore, as in `shared/eval/evaluate.py`) divides by
+/// a determinant that is pure rounding noise and returns arbitrary barycentrics: it may report a
+/// crossing between triangles that are far apart. Informational only.
+pub fn edge_in_other_plane(
+    a: [P3; 3],
+    na: Option<(P3, f64)>,
+    b: [P3; 3],
+    nb: Option<(P3, f64)>,
+    tol: f64,
+) -> bool {
+    let near = |t: [P3; 3], n: Option<(P3, f64)>, q: [P3; 3]| {
+        let Some((n, len)) = n else { return false };
+        let o = t[0];
+        let close = q.map(|p| {
+            let d = n[0] * (p[0] - o[0]) + n[1] * (p[1] - o[1]) + n[2] * (p[2] - o[2]);
+            d.abs() <= tol * len
+        });
+        (0..3).any(|i| close[i] && close[(i + 1) % 3])
+    };
+    near(a, na, b) || near(b, nb, a)
 }
 
 /// Every point of `q` is within `tol` of the plane of `t` (float normal `n` of length `len`).
