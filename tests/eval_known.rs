@@ -404,3 +404,71 @@ fn coplanar_triangles_apart_are_free_but_flagged_for_float_tests() {
     }
     assert_eq!(check_mesh(&lifted, None).edge_in_plane_pairs, 0);
 }
+
+/// The outside judge's float segment–triangle test (Möller–Trumbore, strict barycentrics, 1e-12
+/// margin), transcribed from `shared/eval/evaluate.py`.
+fn judge_segment_hits(p0: [f64; 3], p1: [f64; 3], t: [[f64; 3]; 3]) -> bool {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (e1, e2, d) = (sub(t[1], t[0]), sub(t[2], t[0]), sub(p1, p0));
+    let h = cross(d, e2);
+    let a = dot(e1, h);
+    if a.abs() <= 1e-300 {
+        return false;
+    }
+    let f = 1.0 / a;
+    let s = sub(p0, t[0]);
+    let u = f * dot(s, h);
+    let q = cross(s, e1);
+    let v = f * dot(d, q);
+    let w = f * dot(e2, q);
+    let eps = 1e-12;
+    u > eps && v > eps && u + v < 1.0 - eps && w > eps && w < 1.0 - eps
+}
+
+#[test]
+fn judge_false_positive_from_implicit_output_is_not_an_intersection() {
+    // Triangles 1306763 and 1306786 of `reconstruct ParallelEightMore.csl --method implicit`: the
+    // edge a1-a2 lies within 3e-17 of b's plane (all on the grid plane z = 0.15062724699612140), the
+    // triangles are disjoint (exact; nearest vertices 3.75e-4 apart). The float determinant is 2.8e-16 of its scale, i.e. rounding noise,
+    // and the judge's barycentrics (0.667, 0.208, 0.667) are arbitrary.
+    let a = [
+        [-0.381530835411825, 0.18044915421511676, 0.14943380483212232],
+        [-0.3803207576311446, 0.18165923199579717, 0.1506272469961214],
+        [
+            -0.38144535595059303,
+            0.18646412602228746,
+            0.1506272469961214,
+        ],
+    ];
+    let b = [
+        [
+            -0.38754580721899556,
+            0.18646412602228746,
+            0.1450484483282878,
+        ],
+        [
+            -0.3824449930407293,
+            0.18646412602228746,
+            0.14971308936721706,
+        ],
+        [-0.381530835411825, 0.1868293406465298, 0.1506272469961214],
+    ];
+    assert!(judge_segment_hits(a[1], a[2], b), "the judge's test fires");
+    let m = TriMesh {
+        vertices: a.iter().chain(&b).copied().collect(),
+        triangles: vec![[0, 1, 2], [3, 4, 5]],
+    };
+    let r = check_mesh(&m, None);
+    assert_eq!(r.self_intersections, 0);
+    assert_eq!(r.overlapping_coplanar_pairs, 0);
+    assert!(r.self_intersection_free);
+    assert_eq!(r.edge_in_plane_pairs, 1, "flagged as float-ambiguous");
+}
