@@ -472,3 +472,19 @@ fn judge_false_positive_from_implicit_output_is_not_an_intersection() {
     assert!(r.self_intersection_free);
     assert_eq!(r.edge_in_plane_pairs, 1, "flagged as float-ambiguous");
 }
+
+#[test]
+fn cubes_touching_at_a_corner_have_a_coincident_vertex() {
+    // two closed manifold cubes with distinct vertices at the shared corner (1,1,1): a pinch point
+    let m = merged(&unit_cube(), &translated(&unit_cube(), [1.0, 1.0, 1.0]));
+    let r = check_mesh(&m, None);
+    assert!(r.is_closed_manifold());
+    assert_eq!(r.coincident_vertices, 1);
+    assert!(r.self_intersections > 0 && !r.self_intersection_free);
+    // apart: none; an unused duplicate does not count
+    let mut m = merged(&unit_cube(), &translated(&unit_cube(), [1.5, 1.0, 1.0]));
+    m.vertices.push([0.0, 0.0, 0.0]);
+    let r = check_mesh(&m, None);
+    assert_eq!(r.coincident_vertices, 0);
+    assert!(r.self_intersection_free);
+}

@@ -74,6 +74,12 @@ fn print_table(name: &str, r: &CheckReport) {
             r.edge_in_plane_pairs
         );
     }
+    if r.coincident_vertices > 0 {
+        println!(
+            "  coincident vertices {}  (distinct vertices at one position: pinch points)",
+            r.coincident_vertices
+        );
+    }
     if r.degenerate_triangles > 0 {
         println!("  degenerate tris     {}", r.degenerate_triangles);
     }

@@ -64,6 +64,11 @@ pub struct CheckReport {
     pub inconsistent_edges: usize,
     /// Triangles whose three points are collinear, or that repeat a vertex index.
     pub degenerate_triangles: usize,
+    /// Used vertices sharing their exact position with another used vertex (counted beyond the first
+    /// at each position): pinch points where the surface touches itself. The triangles around them
+    /// meet there, so they also count in `self_intersections`; tools that weld vertices (trimesh's
+    /// `process=True`, as in the outside judge) see a shared vertex instead and count nothing.
+    pub coincident_vertices: usize,
     pub component_details: Vec<ComponentReport>,
     /// Per input plane (only with sections; empty and absent from the JSON without): the mesh's
     /// section against the input section.
@@ -131,6 +136,7 @@ pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
         nonmanifold_vertices: topo.nonmanifold_vertices,
         inconsistent_edges: topo.inconsistent_edges,
         degenerate_triangles: si.collinear + topo.repeated_index_triangles,
+        coincident_vertices: coincident_vertices(mesh),
         component_details: topo.components,
         sections: agreements,
         worst_section,
@@ -248,6 +254,29 @@ pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
     out.collinear = collinear;
     out.tolerance = tolerance;
     out
+}
+
+/// Used vertices at exactly the position of another used vertex (beyond the first at each position).
+pub fn coincident_vertices(mesh: &TriMesh) -> usize {
+    let mut used = vec![false; mesh.vertices.len()];
+    for t in &mesh.triangles {
+        for &k in t {
+            if let Some(u) = used.get_mut(k as usize) {
+                *u = true;
+            }
+        }
+    }
+    // -0.0 and 0.0 are the same position: compare by value, not by bits
+    let key = |p: [f64; 3]| p.map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
+    let mut pts: Vec<[u64; 3]> = mesh
+        .vertices
+        .iter()
+        .zip(&used)
+        .filter(|(_, &u)| u)
+        .map(|(&p, _)| key(p))
+        .collect();
+    pts.par_sort_unstable();
+    pts.windows(2).filter(|w| w[0] == w[1]).count()
 }
 
 fn grown(b: &Aabb, d: f64) -> Aabb {
