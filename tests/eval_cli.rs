@@ -26,6 +26,9 @@ fn check_json_and_exit_status() {
         "manifold",
         "oriented",
         "self_intersections",
+        "overlapping_coplanar_pairs",
+        "near_coplanar_tolerance",
+        "self_intersection_free",
         "components",
         "euler",
         "genus",
@@ -35,6 +38,7 @@ fn check_json_and_exit_status() {
         assert!(j.get(key).is_some(), "missing {key}");
     }
     assert_eq!(j["closed"], true);
+    assert_eq!(j["self_intersection_free"], true);
     assert!(j.get("sections").is_none() && j.get("worst_section").is_none());
     assert_eq!(j["genus"], 0);
     assert!((j["volume"].as_f64().unwrap() - 1.0).abs() < 1e-9);

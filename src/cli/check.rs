@@ -61,6 +61,25 @@ fn print_table(name: &str, r: &CheckReport) {
         ),
         None => println!("  self-intersections  0"),
     }
+    match r.overlapping_coplanar_example {
+        Some([i, j]) => println!(
+            "  overlapping coplanar {}  (double sheet within {:.1e}, e.g. triangles {i} and {j})",
+            r.overlapping_coplanar_pairs, r.near_coplanar_tolerance
+        ),
+        None => println!("  overlapping coplanar 0"),
+    }
+    if r.edge_in_plane_pairs > 0 {
+        println!(
+            "    (info: {} disjoint pairs with an edge in the other's plane, where float tests may see crossings)",
+            r.edge_in_plane_pairs
+        );
+    }
+    if r.coincident_vertices > 0 {
+        println!(
+            "  coincident vertices {}  (distinct vertices at one position: pinch points)",
+            r.coincident_vertices
+        );
+    }
     if r.degenerate_triangles > 0 {
         println!("  degenerate tris     {}", r.degenerate_triangles);
     }

@@ -1,6 +1,10 @@
 //! `check`: is a triangle mesh a valid solid boundary, and (optionally) do its sections agree with
 //! the input cross-sections?
-use super::bvh::{triangle_boxes, Bvh};
+use super::bvh::{triangle_boxes, Aabb, Bvh};
+use super::near_coplanar::{
+    edge_in_other_plane, normal, overlapping_near_coplanar_with_normals,
+    EDGE_IN_PLANE_RELATIVE_TOLERANCE, NEAR_COPLANAR_RELATIVE_TOLERANCE,
+};
 use super::section::{section_agreement, SectionAgreement};
 use super::topology::{analyze, ComponentReport};
 use super::tri_tri::{is_degenerate, mesh_triangles_intersect};
@@ -30,6 +34,22 @@ pub struct CheckReport {
     pub self_intersections_vertex_disjoint: usize,
     /// One intersecting pair (triangle indices), the smallest in lexicographic order.
     pub self_intersection_example: Option<[usize; 2]>,
+    /// Pairs the exact test calls disjoint that nevertheless lie within `near_coplanar_tolerance` of
+    /// each other's planes and overlap there with positive area (beyond any shared vertex or edge): a
+    /// double sheet or a flat fold that only rounding keeps apart. Float checkers see them cross.
+    pub overlapping_coplanar_pairs: usize,
+    /// The smallest such pair.
+    pub overlapping_coplanar_example: Option<[usize; 2]>,
+    /// The absolute distance used for "near-coplanar": `NEAR_COPLANAR_RELATIVE_TOLERANCE` (1e-9) of
+    /// the bounding-box diagonal.
+    pub near_coplanar_tolerance: f64,
+    /// No intersecting pair and no overlapping near-coplanar pair.
+    pub self_intersection_free: bool,
+    /// Informational, not a defect: disjoint pairs sharing no vertex, with overlapping bounding boxes,
+    /// where an edge of one lies within 1e-12 of the diagonal of the other's plane. Float
+    /// segment–triangle tests (the outside judge's) divide by a rounding-noise determinant there and
+    /// may report crossings that exact arithmetic refutes; an upper bound on such false positives.
+    pub edge_in_plane_pairs: usize,
     pub components: usize,
     /// V − E + F over the used vertices.
     pub euler: i64,
@@ -44,6 +64,11 @@ pub struct CheckReport {
     pub inconsistent_edges: usize,
     /// Triangles whose three points are collinear, or that repeat a vertex index.
     pub degenerate_triangles: usize,
+    /// Used vertices sharing their exact position with another used vertex (counted beyond the first
+    /// at each position): pinch points where the surface touches itself. The triangles around them
+    /// meet there, so they also count in `self_intersections`; tools that weld vertices (trimesh's
+    /// `process=True`, as in the outside judge) see a shared vertex instead and count nothing.
+    pub coincident_vertices: usize,
     pub component_details: Vec<ComponentReport>,
     /// Per input plane (only with sections; empty and absent from the JSON without): the mesh's
     /// section against the input section.
@@ -96,6 +121,11 @@ pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
         self_intersections: si.count,
         self_intersections_vertex_disjoint: si.vertex_disjoint,
         self_intersection_example: si.example,
+        overlapping_coplanar_pairs: si.overlapping_coplanar,
+        overlapping_coplanar_example: si.overlapping_coplanar_example,
+        near_coplanar_tolerance: si.tolerance,
+        self_intersection_free: si.count == 0 && si.overlapping_coplanar == 0,
+        edge_in_plane_pairs: si.edge_in_plane,
         components: topo.components.len(),
         euler: topo.euler,
         genus,
@@ -106,6 +136,7 @@ pub fn check_mesh(mesh: &TriMesh, sections: Option<&Sections>) -> CheckReport {
         nonmanifold_vertices: topo.nonmanifold_vertices,
         inconsistent_edges: topo.inconsistent_edges,
         degenerate_triangles: si.collinear + topo.repeated_index_triangles,
+        coincident_vertices: coincident_vertices(mesh),
         component_details: topo.components,
         sections: agreements,
         worst_section,
@@ -122,10 +153,18 @@ pub struct SelfIntersections {
     pub example: Option<[usize; 2]>,
     /// Triangles with three collinear (distinct-index) points, skipped.
     pub collinear: usize,
+    /// Pairs not intersecting exactly but overlapping near-coplanar (see [`super::near_coplanar`]).
+    pub overlapping_coplanar: usize,
+    pub overlapping_coplanar_example: Option<[usize; 2]>,
+    /// Disjoint vertex-disjoint pairs with overlapping boxes and an edge of one in the other's plane.
+    pub edge_in_plane: usize,
+    /// Absolute near-coplanar tolerance used.
+    pub tolerance: f64,
 }
 
 /// Count intersecting triangle pairs: BVH of triangle boxes, candidate pairs (i < j) with overlapping
-/// boxes, exact test (rayon over i).
+/// boxes (grown by the near-coplanar tolerance), exact test, then the near-coplanar overlap test on the
+/// pairs the exact test calls disjoint (rayon over i).
 pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
     let v = &mesh.vertices;
     let t = &mesh.triangles;
@@ -144,23 +183,46 @@ pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
         .filter(|(&s, tr)| s && tr[0] != tr[1] && tr[1] != tr[2] && tr[0] != tr[2])
         .count();
     let bvh = Bvh::build(triangle_boxes(v, t));
+    let tolerance = if bvh.is_empty() {
+        0.0
+    } else {
+        NEAR_COPLANAR_RELATIVE_TOLERANCE * bvh.bounds().diagonal()
+    };
+    let in_plane =
+        tolerance * (EDGE_IN_PLANE_RELATIVE_TOLERANCE / NEAR_COPLANAR_RELATIVE_TOLERANCE);
+    let pts = |tr: [u32; 3]| tr.map(|k| v[k as usize]);
+    let normals: Vec<_> = t.par_iter().map(|&tr| normal(pts(tr))).collect();
+    let smaller = |a: Option<[usize; 2]>, b: Option<[usize; 2]>| match (a, b) {
+        (Some(x), Some(y)) => Some(x.min(y)),
+        (x, y) => x.or(y),
+    };
     let merge = |a: SelfIntersections, b: SelfIntersections| SelfIntersections {
         count: a.count + b.count,
         vertex_disjoint: a.vertex_disjoint + b.vertex_disjoint,
-        example: match (a.example, b.example) {
-            (Some(x), Some(y)) => Some(x.min(y)),
-            (x, y) => x.or(y),
-        },
+        example: smaller(a.example, b.example),
         collinear: 0,
+        overlapping_coplanar: a.overlapping_coplanar + b.overlapping_coplanar,
+        overlapping_coplanar_example: smaller(
+            a.overlapping_coplanar_example,
+            b.overlapping_coplanar_example,
+        ),
+        edge_in_plane: a.edge_in_plane + b.edge_in_plane,
+        tolerance,
     };
     let mut out = (0..t.len())
         .into_par_iter()
         .filter(|&i| !skip[i])
         .map(|i| {
             let mut r = SelfIntersections::default();
-            bvh.for_each_overlap(bvh.item_box(i as u32), |j| {
+            // A point of the other triangle's projection lies within tolerance/|n_k| ≤ √3·tolerance of
+            // this triangle along the dropped axis: grow the query box by twice the tolerance.
+            let bb = grown(bvh.item_box(i as u32), 2.0 * tolerance);
+            bvh.for_each_overlap(&bb, |j| {
                 let j = j as usize;
-                if j > i && !skip[j] && mesh_triangles_intersect(t[i], t[j], v) {
+                if j <= i || skip[j] {
+                    return;
+                }
+                if mesh_triangles_intersect(t[i], t[j], v) {
                     r.count += 1;
                     if !t[i].iter().any(|x| t[j].contains(x)) {
                         r.vertex_disjoint += 1;
@@ -168,11 +230,58 @@ pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
                     if r.example.is_none_or(|f| j < f[1]) {
                         r.example = Some([i, j]);
                     }
+                } else if overlapping_near_coplanar_with_normals(
+                    pts(t[i]),
+                    normals[i],
+                    pts(t[j]),
+                    normals[j],
+                    tolerance,
+                ) {
+                    r.overlapping_coplanar += 1;
+                    if r.overlapping_coplanar_example.is_none_or(|f| j < f[1]) {
+                        r.overlapping_coplanar_example = Some([i, j]);
+                    }
+                } else if !t[i].iter().any(|x| t[j].contains(x))
+                    && bvh.item_box(i as u32).overlaps(bvh.item_box(j as u32))
+                    && edge_in_other_plane(pts(t[i]), normals[i], pts(t[j]), normals[j], in_plane)
+                {
+                    r.edge_in_plane += 1;
                 }
             });
             r
         })
         .reduce(SelfIntersections::default, merge);
     out.collinear = collinear;
+    out.tolerance = tolerance;
     out
+}
+
+/// Used vertices at exactly the position of another used vertex (beyond the first at each position).
+pub fn coincident_vertices(mesh: &TriMesh) -> usize {
+    let mut used = vec![false; mesh.vertices.len()];
+    for t in &mesh.triangles {
+        for &k in t {
+            if let Some(u) = used.get_mut(k as usize) {
+                *u = true;
+            }
+        }
+    }
+    // -0.0 and 0.0 are the same position: compare by value, not by bits
+    let key = |p: [f64; 3]| p.map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
+    let mut pts: Vec<[u64; 3]> = mesh
+        .vertices
+        .iter()
+        .zip(&used)
+        .filter(|(_, &u)| u)
+        .map(|(&p, _)| key(p))
+        .collect();
+    pts.par_sort_unstable();
+    pts.windows(2).filter(|w| w[0] == w[1]).count()
+}
+
+fn grown(b: &Aabb, d: f64) -> Aabb {
+    Aabb {
+        lo: b.lo.map(|x| x - d),
+        hi: b.hi.map(|x| x + d),
+    }
 }

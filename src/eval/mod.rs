@@ -1,5 +1,6 @@
 //! Measuring instruments for any triangle mesh (ours or another tool's):
-//! * [`check::check_mesh`]: closed, manifold, oriented, exact self-intersections, components, Euler
+//! * [`check::check_mesh`]: closed, manifold, oriented, exact self-intersections, overlapping
+//!   near-coplanar pairs (double sheets, see [`near_coplanar`]), coincident vertices, components, Euler
 //!   characteristic and genus, volume and area; with input sections, per-plane agreement of the mesh's
 //!   exact section with the input section.
 //! * [`compare::compare_meshes`]: volumetric IoU, Chamfer L1/L2 and Hausdorff distances against a
@@ -7,6 +8,7 @@
 pub mod bvh;
 pub mod check;
 pub mod compare;
+pub mod near_coplanar;
 pub mod section;
 pub mod shapes;
 pub mod topology;
