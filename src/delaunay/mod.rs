@@ -94,7 +94,7 @@ pub struct Delaunay {
     // Scratch buffers reused by every insertion.
     stack: Vec<u32>,
     cavity: Vec<u32>,
-    boundary: Vec<(u32, u8)>,
+    boundary: Vec<insert::BoundaryFacet>,
     outside: Vec<u32>,
     newt: Vec<u32>,
     edge_table: Vec<(u64, u32, u8)>,
@@ -152,7 +152,6 @@ impl Delaunay {
         // (each regrowth copies the whole array and faults in fresh pages).
         let expect = dt.pts.len() * 7 + 64;
         dt.tds.tets.reserve(expect);
-        dt.tds.flags.reserve(expect);
         dt.track_vtet = false;
         for k in 0..dt.pts.len() as u32 {
             let w = if dt.dim < 3 {
