@@ -220,12 +220,10 @@ impl Delaunay {
         // Grow the conflict region (a ball, star-shaped from q under the perturbation). Marks live in
         // the records (IN_CAVITY on n[0], OUTSIDE on n[1]); every boundary facet is recorded with
         // everything pass 1 needs, so that the cavity slots can be overwritten by new tetrahedra.
-        let mut stack = std::mem::take(&mut self.stack);
         let mut cavity = std::mem::take(&mut self.cavity);
         let mut boundary = std::mem::take(&mut self.boundary);
         let mut outside = std::mem::take(&mut self.outside);
         let mut newt = std::mem::take(&mut self.newt);
-        stack.clear();
         cavity.clear();
         boundary.clear();
         outside.clear();
@@ -236,14 +234,18 @@ impl Delaunay {
             tets[t0 as usize].n[0] |= IN_CAVITY;
         }
         cavity_finite += !tt.is_infinite() as usize;
-        stack.push(t0);
+        for &n in &tt.n {
+            prefetch(&self.tds.tets, n & ID_MASK);
+        }
         cavity.push(t0);
-        while let Some(c) = stack.pop() {
+        // Breadth-first: the cavity list is the queue, and the neighbours of a cell are prefetched
+        // when it joins, so their records are on the way while earlier cells are processed.
+        let mut head = 0;
+        while head < cavity.len() {
+            let c = cavity[head];
+            head += 1;
             let ct = *tet(&self.tds.tets, c);
             let cn = ct.n.map(|n| n & ID_MASK);
-            for &n in &cn {
-                prefetch(&self.tds.tets, n);
-            }
             for (i, &n) in cn.iter().enumerate() {
                 let nt = tet(&self.tds.tets, n);
                 if nt.n[0] & IN_CAVITY != 0 {
@@ -251,9 +253,13 @@ impl Delaunay {
                 }
                 if nt.n[1] & OUTSIDE == 0 {
                     if self.conflict(n, q) {
-                        cavity_finite += !tet(&self.tds.tets, n).is_infinite() as usize;
-                        tet_mut(&mut self.tds.tets, n).n[0] |= IN_CAVITY;
-                        stack.push(n);
+                        let nt = tet_mut(&mut self.tds.tets, n);
+                        cavity_finite += !nt.is_infinite() as usize;
+                        nt.n[0] |= IN_CAVITY;
+                        let nn = nt.n;
+                        for m in nn {
+                            prefetch(&self.tds.tets, m & ID_MASK);
+                        }
                         cavity.push(n);
                         continue;
                     }
@@ -341,7 +347,6 @@ impl Delaunay {
             tet_mut(&mut self.tds.tets, n).n[1] &= ID_MASK;
         }
         self.hint = *newt.last().unwrap();
-        self.stack = stack;
         self.cavity = cavity;
         self.boundary = boundary;
         self.outside = outside;

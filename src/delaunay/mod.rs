@@ -92,7 +92,6 @@ pub struct Delaunay {
     hint: u32,
     rng: u32,
     // Scratch buffers reused by every insertion.
-    stack: Vec<u32>,
     cavity: Vec<u32>,
     boundary: Vec<insert::BoundaryFacet>,
     outside: Vec<u32>,
@@ -233,7 +232,6 @@ impl Delaunay {
             nfinite: 0,
             hint: 0,
             rng: 0x9E37_79B9,
-            stack: Vec::new(),
             cavity: Vec::new(),
             boundary: Vec::new(),
             outside: Vec::new(),
