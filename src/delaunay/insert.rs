@@ -2,7 +2,7 @@
 //! Bowyer–Watson insertion (conflict region grown from the located tetrahedron, then starred from
 //! the new vertex). All ids here are internal vertex ids (insertion order).
 use super::pred::{self, P};
-use super::tds::{facet_key, other_two, Tet, INFINITE, IN_CAVITY, NONE, OUTSIDE};
+use super::tds::{facet_key, other_two, Tet, ID_MASK, INFINITE, IN_CAVITY, NONE, OUTSIDE};
 use super::Delaunay;
 
 /// Empty slot of the edge table (no edge has both endpoints equal to u32::MAX).
@@ -31,6 +31,40 @@ fn tet(tets: &[Tet], t: u32) -> &Tet {
     debug_assert!((t as usize) < tets.len());
     // SAFETY: t is a neighbour or hint id of a valid triangulation, hence < tets.len().
     unsafe { tets.get_unchecked(t as usize) }
+}
+
+/// Mutable record `t` (same invariant as [`tet`]).
+#[inline(always)]
+fn tet_mut(tets: &mut [Tet], t: u32) -> &mut Tet {
+    debug_assert!((t as usize) < tets.len());
+    // SAFETY: as in `tet`.
+    unsafe { tets.get_unchecked_mut(t as usize) }
+}
+
+/// Position of neighbour `t` in `tt`, ignoring the scratch marks.
+#[inline(always)]
+fn index_of_neighbor(tt: &Tet, t: u32) -> usize {
+    let n = tt.n.map(|n| n & ID_MASK);
+    if n[0] == t {
+        0
+    } else if n[1] == t {
+        1
+    } else if n[2] == t {
+        2
+    } else {
+        debug_assert_eq!(n[3], t);
+        3
+    }
+}
+
+/// A facet of the conflict region: the new tetrahedron's vertices `v` (the cavity cell's with the
+/// new vertex at position `i`), and the outside neighbour `nb`, whose facet `j` it is.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct BoundaryFacet {
+    v: [u32; 4],
+    nb: u32,
+    i: u8,
+    j: u8,
 }
 
 /// Coordinates of finite internal vertex `v` (< pts.len() by construction).
@@ -132,8 +166,9 @@ impl Delaunay {
         self.hint = ids[0];
     }
 
-    /// Perturbed conflict of tetrahedron `t` with point `q`.
-    #[inline]
+    /// Perturbed conflict of tetrahedron `t` with point `q`. `t` itself carries no mark, its
+    /// neighbours may.
+    #[inline(always)]
     pub(super) fn conflict(&self, t: u32, q: P) -> bool {
         let tt = tet(&self.tds.tets, t);
         let v = tt.v;
@@ -141,6 +176,13 @@ impl Delaunay {
             let p = |k: usize| pt(&self.pts, v[k]);
             return pred::conflict_finite([p(0), p(1), p(2), p(3)], q);
         }
+        self.conflict_infinite(t, q)
+    }
+
+    #[inline(never)]
+    fn conflict_infinite(&self, t: u32, q: P) -> bool {
+        let tt = &self.tds.tets[t as usize];
+        let v = tt.v;
         let k = tt.index_of_vertex(INFINITE);
         let mut pts = [[0.0; 3]; 4];
         for m in 0..4 {
@@ -148,8 +190,8 @@ impl Delaunay {
                 pts[m] = self.pts[v[m] as usize];
             }
         }
-        let n = &self.tds.tets[tt.n[k] as usize];
-        let d = self.pts[n.v[n.index_of_neighbor(t)] as usize];
+        let n = &self.tds.tets[(tt.n[k] & ID_MASK) as usize];
+        let d = self.pts[n.v[index_of_neighbor(n, t)] as usize];
         pred::conflict_infinite(pts, k, d, q)
     }
 
@@ -175,68 +217,96 @@ impl Delaunay {
                 }
             }
         }
-        // Grow the conflict region (a ball, star-shaped from q under the perturbation).
-        let mut stack = std::mem::take(&mut self.stack);
+        // Grow the conflict region (a ball, star-shaped from q under the perturbation). Marks live in
+        // the records (IN_CAVITY on n[0], OUTSIDE on n[1]); every boundary facet is recorded with
+        // everything pass 1 needs, so that the cavity slots can be overwritten by new tetrahedra.
         let mut cavity = std::mem::take(&mut self.cavity);
         let mut boundary = std::mem::take(&mut self.boundary);
         let mut outside = std::mem::take(&mut self.outside);
         let mut newt = std::mem::take(&mut self.newt);
-        stack.clear();
         cavity.clear();
         boundary.clear();
         outside.clear();
         newt.clear();
-        self.tds.flags[t0 as usize] = IN_CAVITY;
-        stack.push(t0);
+        let mut cavity_finite = 0usize;
+        {
+            let tets = &mut self.tds.tets;
+            tets[t0 as usize].n[0] |= IN_CAVITY;
+        }
+        cavity_finite += !tt.is_infinite() as usize;
+        for &n in &tt.n {
+            prefetch(&self.tds.tets, n & ID_MASK);
+        }
         cavity.push(t0);
-        while let Some(c) = stack.pop() {
-            let cn = tet(&self.tds.tets, c).n;
-            for &n in &cn {
-                prefetch(&self.tds.tets, n);
-            }
+        // Breadth-first: the cavity list is the queue, and the neighbours of a cell are prefetched
+        // when it joins, so their records are on the way while earlier cells are processed.
+        let mut head = 0;
+        while head < cavity.len() {
+            let c = cavity[head];
+            head += 1;
+            let ct = *tet(&self.tds.tets, c);
+            let cn = ct.n.map(|n| n & ID_MASK);
             for (i, &n) in cn.iter().enumerate() {
-                let f = self.tds.flags[n as usize];
-                if f & IN_CAVITY != 0 {
+                let nt = tet(&self.tds.tets, n);
+                if nt.n[0] & IN_CAVITY != 0 {
                     continue;
                 }
-                if f & OUTSIDE == 0 {
+                if nt.n[1] & OUTSIDE == 0 {
                     if self.conflict(n, q) {
-                        self.tds.flags[n as usize] = IN_CAVITY;
-                        stack.push(n);
+                        let nt = tet_mut(&mut self.tds.tets, n);
+                        cavity_finite += !nt.is_infinite() as usize;
+                        nt.n[0] |= IN_CAVITY;
+                        let nn = nt.n;
+                        for m in nn {
+                            prefetch(&self.tds.tets, m & ID_MASK);
+                        }
                         cavity.push(n);
                         continue;
                     }
-                    self.tds.flags[n as usize] = OUTSIDE;
+                    tet_mut(&mut self.tds.tets, n).n[1] |= OUTSIDE;
                     outside.push(n);
                 }
-                boundary.push((c, i as u8));
+                let nt = tet(&self.tds.tets, n);
+                let mut vs = ct.v;
+                vs[i] = v;
+                boundary.push(BoundaryFacet {
+                    v: vs,
+                    nb: n,
+                    i: i as u8,
+                    j: index_of_neighbor(nt, c) as u8,
+                });
             }
         }
-        // Pass 1: one new tetrahedron per boundary facet, glued to the outside; the dead cavity cell
-        // remembers it in its neighbour slot.
-        for &(c, i) in &boundary {
-            let i = i as usize;
-            let ct = &self.tds.tets[c as usize];
-            let mut vs = ct.v;
-            vs[i] = v;
-            let nb = ct.n[i];
-            let nt = self.tds.alloc(vs);
+        // Pass 1: one new tetrahedron per boundary facet (in the cavity's own slots first, they are
+        // in cache), glued to the outside.
+        let mut new_finite = 0usize;
+        for (m, b) in boundary.iter().enumerate() {
+            let nt = if m < cavity.len() {
+                cavity[m]
+            } else {
+                self.tds.alloc(b.v)
+            };
             newt.push(nt);
-            self.tds.tets[nt as usize].n[i] = nb;
-            let nbt = &mut self.tds.tets[nb as usize];
-            let j = nbt.index_of_neighbor(c);
-            nbt.n[j] = nt;
-            self.tds.tets[c as usize].n[i] = nt;
-            let finite = !self.tds.tets[nt as usize].is_infinite();
+            let mut n = [NONE; 4];
+            n[b.i as usize] = b.nb;
+            *tet_mut(&mut self.tds.tets, nt) = Tet { v: b.v, n };
+            tet_mut(&mut self.tds.tets, b.nb).n[b.j as usize] = nt;
+            let rec = Tet { v: b.v, n };
+            new_finite += !rec.is_infinite() as usize;
             if self.track_vtet {
-                for &w in &vs {
+                for &w in &b.v {
                     if w != INFINITE {
                         self.vtet[w as usize] = nt;
                     }
                 }
             }
-            self.nfinite += finite as usize;
         }
+        // A cavity always has fewer cells than boundary facets; keep the general case correct.
+        for &c in cavity.iter().skip(boundary.len()) {
+            self.tds.tets[c as usize].n[0] &= ID_MASK;
+            self.tds.kill(c);
+        }
+        self.nfinite = self.nfinite + new_finite - cavity_finite;
         // Pass 2: glue the new tetrahedra to each other. Each edge {a,b} of the cavity boundary is
         // shared by exactly two boundary facets, whose new tetrahedra meet across the face {v,a,b}:
         // match them through a small open-addressing table keyed by the edge (stays in L1).
@@ -245,10 +315,10 @@ impl Delaunay {
         let mut table = std::mem::take(&mut self.edge_table);
         table.clear();
         table.resize(size, (EMPTY_EDGE, 0, 0));
-        for (k, &(_, i)) in boundary.iter().enumerate() {
+        for (k, b) in boundary.iter().enumerate() {
             let nt = newt[k];
-            let i = i as usize;
-            let vs = self.tds.tets[nt as usize].v;
+            let i = b.i as usize;
+            let vs = b.v;
             for j in 0..4 {
                 if j == i {
                     continue;
@@ -264,8 +334,8 @@ impl Delaunay {
                         break;
                     }
                     if e.0 == key {
-                        self.tds.tets[nt as usize].n[j] = e.1;
-                        self.tds.tets[e.1 as usize].n[e.2 as usize] = nt;
+                        tet_mut(&mut self.tds.tets, nt).n[j] = e.1;
+                        tet_mut(&mut self.tds.tets, e.1).n[e.2 as usize] = nt;
                         break;
                     }
                     h = (h + 1) & (size - 1);
@@ -273,18 +343,10 @@ impl Delaunay {
             }
         }
         self.edge_table = table;
-        for &c in &cavity {
-            self.tds.flags[c as usize] = 0;
-            if !self.tds.tets[c as usize].is_infinite() {
-                self.nfinite -= 1;
-            }
-            self.tds.kill(c);
-        }
         for &n in &outside {
-            self.tds.flags[n as usize] = 0;
+            tet_mut(&mut self.tds.tets, n).n[1] &= ID_MASK;
         }
         self.hint = *newt.last().unwrap();
-        self.stack = stack;
         self.cavity = cavity;
         self.boundary = boundary;
         self.outside = outside;

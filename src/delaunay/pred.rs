@@ -12,7 +12,7 @@ pub type P = [f64; 3];
 
 /// Positive when (a,b,c,d) has positive volume, negative when negative, 0 when coplanar. Exact sign
 /// (the magnitude approximates 6 × volume).
-#[inline]
+#[inline(always)]
 pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
     let (det, bound) = orient3d_filter(a, b, c, d);
     if det > bound || -det > bound {
@@ -23,7 +23,7 @@ pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
 
 /// Positive when e is strictly inside the circumsphere of the positive tetrahedron (a,b,c,d),
 /// negative outside, 0 on it. Exact sign.
-#[inline]
+#[inline(always)]
 pub fn insphere(a: P, b: P, c: P, d: P, e: P) -> f64 {
     let (det, bound) = insphere_filter(a, b, c, d, e);
     if det > bound || -det > bound {
@@ -128,7 +128,7 @@ pub fn collinear(a: P, b: P, c: P) -> bool {
 
 /// Perturbed conflict test of a positive finite tetrahedron `t` with `q`: true when `q` is inside the
 /// perturbed circumsphere. Never ties.
-#[inline]
+#[inline(always)]
 pub fn conflict_finite(t: [P; 4], q: P) -> bool {
     let s = insphere(t[0], t[1], t[2], t[3], q);
     if s != 0.0 {

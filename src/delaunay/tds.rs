@@ -1,5 +1,7 @@
 //! Triangulation data structure: tetrahedra in one flat array (4 vertices + 4 neighbours, 32 bytes,
-//! neighbour i opposite vertex i), a free list of dead slots, one byte of scratch flags per slot.
+//! neighbour i opposite vertex i), a free list of dead slots. The two scratch marks of an insertion
+//! live in the top bits of `n[0]` and `n[1]` (no side array: testing a mark reads the record the
+//! conflict test needs anyway, one cache miss instead of two).
 //! Purely combinatorial; geometry lives in `pred` and `insert`.
 
 /// Vertex id of the point at infinity (internal and external).
@@ -60,12 +62,14 @@ impl Tet {
 pub struct Tds {
     pub tets: Vec<Tet>,
     pub free: Vec<u32>,
-    /// Scratch flags per slot (`IN_CAVITY`, `OUTSIDE`), always cleared after an insertion.
-    pub flags: Vec<u8>,
 }
 
-pub const IN_CAVITY: u8 = 1;
-pub const OUTSIDE: u8 = 2;
+/// Scratch mark on `n[0]`: the slot is in the conflict region of the current insertion.
+pub const IN_CAVITY: u32 = 1 << 31;
+/// Scratch mark on `n[1]`: the slot was tested and is not in conflict.
+pub const OUTSIDE: u32 = 1 << 31;
+/// Mask of a neighbour id without marks (tetrahedron ids stay below 2^31, see `alloc`).
+pub const ID_MASK: u32 = !(1 << 31);
 
 impl Tds {
     #[inline]
@@ -74,10 +78,18 @@ impl Tds {
             self.tets[t as usize] = Tet { v, n: [NONE; 4] };
             t
         } else {
-            self.tets.push(Tet { v, n: [NONE; 4] });
-            self.flags.push(0);
-            (self.tets.len() - 1) as u32
+            self.push(v)
         }
+    }
+
+    /// A fresh slot at the end of the array.
+    #[inline]
+    pub fn push(&mut self, v: [u32; 4]) -> u32 {
+        let t = self.tets.len() as u32;
+        // Ids must leave the top bit free for the scratch marks (2^31 tets would be 64 GiB).
+        assert!(t < ID_MASK, "more than 2^31 tetrahedra");
+        self.tets.push(Tet { v, n: [NONE; 4] });
+        t
     }
 
     #[inline]
@@ -87,9 +99,7 @@ impl Tds {
     }
 
     pub fn bytes(&self) -> usize {
-        self.tets.capacity() * std::mem::size_of::<Tet>()
-            + self.free.capacity() * 4
-            + self.flags.capacity()
+        self.tets.capacity() * std::mem::size_of::<Tet>() + self.free.capacity() * 4
     }
 }
 
