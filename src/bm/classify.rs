@@ -36,6 +36,19 @@ pub struct Classified {
     pub grounded_edges: Vec<u8>,
     /// Bit `k` set when `TET_EDGES[k]` is a pivot edge of a `Ee` tet.
     pub pivot_edges: Vec<u8>,
+    /// Bit `i` set when the face opposite local vertex `i` is grounded (lies on a section plane).
+    pub grounded_faces: Vec<u8>,
+}
+
+/// Bit `i` set when the face opposite vertex `i` has its three vertices on a common slot.
+pub fn grounded_faces(m: [Mask; 4]) -> u8 {
+    let faces = [
+        m[1] & m[2] & m[3],
+        m[0] & m[2] & m[3],
+        m[0] & m[1] & m[3],
+        m[0] & m[1] & m[2],
+    ];
+    (0..4).filter(|&i| faces[i] != 0).fold(0, |b, i| b | 1 << i)
 }
 
 fn slots_of(m: Mask) -> impl Iterator<Item = usize> {
@@ -138,6 +151,7 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
         external: Vec::with_capacity(n),
         grounded_edges: Vec::with_capacity(n),
         pivot_edges: Vec::with_capacity(n),
+        grounded_faces: Vec::with_capacity(n),
     };
     for t in &cx.tets {
         let m = [
@@ -172,6 +186,7 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
         out.external.push(ext);
         out.grounded_edges.push(g);
         out.pivot_edges.push(p);
+        out.grounded_faces.push(grounded_faces(m));
     }
     out
 }

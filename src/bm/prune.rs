@@ -27,6 +27,18 @@ pub struct PruneCounts {
 
 /// Returns the kept tets (`true`) and the counts.
 pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
+    let (a, c, why) = prune_why(cx, cl);
+    if std::env::var_os("BM_DEBUG").is_some() {
+        for l in debug_voids(cx, cl, &a, &why) {
+            eprintln!("prune: {l}");
+        }
+    }
+    (a, c)
+}
+
+/// `prune`, plus per tet why it is not kept: 1 external (step 1), 2 eliminated by the pivots,
+/// 3 in a Vf group without Ee, 4 Evv/Vvvv not re-added; 0 kept.
+pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<u8>) {
     let n = cx.len();
     let mut counts = PruneCounts::default();
     // Step 1
@@ -82,6 +94,9 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
             }
         }
     }
+    let pivoted: Vec<bool> = (0..n)
+        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Vf | TetType::Ee) && !alive[t])
+        .collect();
     // Vf groups sharing no face with a kept Ee tet
     let mut seen = vec![false; n];
     for s in 0..n {
@@ -139,12 +154,45 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
             }
         }
     }
-    // Cavities: face-connected groups of remaining candidates enclosed by the complex (every face of
-    // the group is shared with a kept tet or with the group) are filled: the intersection of the group
-    // with the complex is its whole boundary, a union of spheres, so filling removes voids only.
+    // Cavities: face-connected groups of removed (non-external, non-flat) tets enclosed by the
+    // complex and the section: every face of the group is shared with a kept tet, with the group, or
+    // is a grounded triangle (on the hull or against a flat sliver; grounded triangles of tets that
+    // survived step 1 are internal, inside the section). Such a group is a void of the solid: its
+    // intersection with the complex and the section is its whole boundary. Step 2 may leave these
+    // behind — an `Ee` tet between two `Evv` tets is disconnected from the ground in R2, and step 3
+    // then re-adds the `Evv` tets around it — and they surface as inverted closed components, so
+    // they are filled whatever their type.
+    let (groups, tets) = fill_cavities(cx, cl, &r1, &mut alive);
+    counts.step3_cavities_filled = groups;
+    counts.step3_added += tets;
+    let why = (0..n)
+        .map(|t| {
+            if alive[t] {
+                0
+            } else if !r1[t] {
+                1
+            } else if pivoted[t] {
+                2
+            } else if cl.ty[t] == TetType::Vf || cl.ty[t] == TetType::Ee {
+                3
+            } else {
+                4
+            }
+        })
+        .collect();
+    (alive, counts, why)
+}
+
+/// Fills the voids of the complex `alive`: face-connected groups of tets of `r1` (step 1's result)
+/// that are not kept, not flat, and whose every face is shared with a kept tet, with the group, or is
+/// a grounded triangle. Returns (groups filled, tets added).
+pub fn fill_cavities(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> (u64, u64) {
+    let n = cx.len();
     let mut seen = vec![false; n];
+    let fillable = |t: usize| r1[t] && cl.ty[t] != TetType::Flat;
+    let (mut groups, mut tets) = (0, 0);
     for s in 0..n {
-        if seen[s] || alive[s] || !cand[s] {
+        if seen[s] || alive[s] || !fillable(s) {
             continue;
         }
         let mut group = vec![s as u32];
@@ -154,29 +202,29 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
         while k < group.len() {
             let t = group[k] as usize;
             k += 1;
-            for &nb in &cx.nbr[t] {
-                if nb == NONE {
-                    enclosed = false;
-                } else if alive[nb as usize] {
-                } else if cand[nb as usize] {
+            for (i, &nb) in cx.nbr[t].iter().enumerate() {
+                if nb != NONE && alive[nb as usize] {
+                    continue;
+                }
+                if nb != NONE && fillable(nb as usize) {
                     if !seen[nb as usize] {
                         seen[nb as usize] = true;
                         group.push(nb);
                     }
-                } else {
+                } else if cl.grounded_faces[t] >> i & 1 == 0 {
                     enclosed = false;
                 }
             }
         }
         if enclosed {
-            counts.step3_added += group.len() as u64;
-            counts.step3_cavities_filled += 1;
+            tets += group.len() as u64;
+            groups += 1;
             for t in group {
                 alive[t as usize] = true;
             }
         }
     }
-    (alive, counts)
+    (groups, tets)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -261,9 +309,62 @@ fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32, strict: bool) 
     }
 }
 
+/// Debug (`BM_DEBUG`): face-connected groups of removed tets that the complex and grounded
+/// triangles close off (voids of the solid), with each tet's type, removal reason (see
+/// `prune_why`), masks and neighbours. Should be empty after `fill_cavities`.
+pub fn debug_voids(cx: &Complex, cl: &Classified, alive: &[bool], why: &[u8]) -> Vec<String> {
+    let n = cx.len();
+    let mut seen = vec![false; n];
+    let mut out = Vec::new();
+    for s in 0..n {
+        if seen[s] || alive[s] || cl.ty[s] == TetType::Flat || why[s] == 1 {
+            continue;
+        }
+        let mut group = vec![s as u32];
+        seen[s] = true;
+        let mut closed = true;
+        let mut k = 0;
+        while k < group.len() {
+            let t = group[k] as usize;
+            k += 1;
+            for (i, &nb) in cx.nbr[t].iter().enumerate() {
+                if nb != NONE && alive[nb as usize] {
+                    continue;
+                }
+                if nb != NONE && cl.ty[nb as usize] != TetType::Flat && why[nb as usize] != 1 {
+                    if !seen[nb as usize] {
+                        seen[nb as usize] = true;
+                        group.push(nb);
+                    }
+                } else if cl.grounded_faces[t] >> i & 1 == 0 {
+                    closed = false;
+                }
+            }
+        }
+        if closed {
+            out.push(format!("void of {} tets", group.len()));
+            for &t in &group {
+                out.push(format!(
+                    "   tet {t} {:?}/{} piv {:06b} nbr {:?}",
+                    cl.ty[t as usize],
+                    why[t as usize],
+                    cl.pivot_edges[t as usize],
+                    cx.nbr[t as usize].map(|nb| if nb == NONE {
+                        "hull".to_string()
+                    } else {
+                        format!("{}:{:?}/{}", nb, cl.ty[nb as usize], why[nb as usize])
+                    })
+                ));
+            }
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::classify::tet_type;
+    use super::super::complex::outward_face;
     use super::*;
 
     fn classified(cx: &Complex, masks: &[u128], external: &[bool]) -> Classified {
@@ -279,6 +380,13 @@ mod tests {
             cl.external.push(external[ti] || ty == TetType::Flat);
             cl.grounded_edges.push(g);
             cl.pivot_edges.push(p);
+            cl.grounded_faces
+                .push(super::super::classify::grounded_faces([
+                    masks[t[0] as usize],
+                    masks[t[1] as usize],
+                    masks[t[2] as usize],
+                    masks[t[3] as usize],
+                ]));
         }
         cl
     }
@@ -379,7 +487,82 @@ mod tests {
         cl2.external.push(false);
         cl2.grounded_edges.push(0);
         cl2.pivot_edges.push(0);
+        cl2.grounded_faces.push(0);
         assert!(!can_add(&cx2, &cl2, &alive2, 0, true));
         assert!(can_add(&cx2, &cl2, &alive2, 0, false));
+    }
+
+    /// An `Ee` tet T=(0,1,2,3) (edge 01 on P, edge 23 on Q) with a tet across each face (apexes 4..7
+    /// on a third plane R). Returns the complex and masks; T is tet 0.
+    fn enclosed_ee() -> (Complex, Vec<u128>) {
+        let t = [0u32, 1, 2, 3];
+        let mut tets = vec![t];
+        for i in 0..4 {
+            let f = outward_face(&t, i);
+            // the neighbour across face f: f reversed plus a new apex
+            tets.push([f[0], f[2], f[1], 4 + i as u32]);
+        }
+        let (p, q, r) = (1u128, 2u128, 4u128);
+        (Complex::new(8, tets), vec![p, p, q, q, r, r, r, r])
+    }
+
+    #[test]
+    fn void_left_by_step2_is_filled() {
+        // eight_20: step 2 eliminates an Ee tet lying between two eliminated (Evv) tets around its
+        // grounded edge, step 3 then re-adds the Evv tets around it and a one-tet void remained (an
+        // inverted closed component of the output surface).
+        let (cx, masks) = enclosed_ee();
+        for i in 0..4 {
+            assert_ne!(cx.nbr[0][i], NONE);
+        }
+        let cl = classified(&cx, &masks, &[false; 5]);
+        assert_eq!(cl.ty[0], TetType::Ee);
+        assert!((1..5).all(|t| cl.ty[t] == TetType::Evv));
+        let r1 = vec![true; 5];
+        let mut alive = vec![false, true, true, true, true];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (1, 1));
+        assert!(alive[0]);
+    }
+
+    #[test]
+    fn group_open_to_the_outside_is_not_filled() {
+        // T and its neighbour across the face opposite 0 are both removed; that neighbour has
+        // non-grounded hull faces: the group reaches the outside and stays empty.
+        let (cx, masks) = enclosed_ee();
+        let cl = classified(&cx, &masks, &[false; 5]);
+        let r1 = vec![true; 5];
+        let mut alive = vec![false, false, true, true, true];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (0, 0));
+        assert_eq!(alive, vec![false, false, true, true, true]);
+        // an external (step 1) neighbour also opens it
+        let r1 = vec![true, false, true, true, true];
+        let mut alive = vec![false, false, true, true, true];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (0, 0));
+    }
+
+    #[test]
+    fn void_closed_by_the_section_is_filled() {
+        // Put apex 4 (of tet 1, the neighbour (1,2,3)+4 across the face opposite 0) on Q: tet 1 is a
+        // Vf tet standing on (2,3,4) on Q, that grounded face on the hull; its two other free faces
+        // get kept neighbours (tets 5, 6). Removing T and tet 1 leaves a group closed by kept tets
+        // and a section triangle: filled.
+        let (cx, mut masks) = enclosed_ee();
+        let mut tets = cx.tets.clone();
+        assert_eq!(tets[1], [1, 2, 3, 4]);
+        tets.push([1, 4, 3, 8]);
+        tets.push([1, 2, 4, 9]);
+        let cx = Complex::new(10, tets);
+        masks[4] = 2;
+        masks.extend([4u128, 4]);
+        let cl = classified(&cx, &masks, &[false; 7]);
+        assert_eq!(cl.ty[1], TetType::Vf);
+        assert_eq!(cx.nbr[1].iter().filter(|&&nb| nb == NONE).count(), 1);
+        let r1 = vec![true; 7];
+        let mut alive = vec![false, false, true, true, true, true, true];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (1, 2));
+        assert!(alive.iter().all(|&a| a));
+        // without tet 6 the Vf tet has a free non-grounded face: open, not filled
+        let mut alive = vec![false, false, true, true, true, true, false];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (0, 0));
     }
 }
