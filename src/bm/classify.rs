@@ -38,6 +38,9 @@ pub struct Classified {
     pub pivot_edges: Vec<u8>,
     /// Bit `i` set when the face opposite local vertex `i` is grounded (lies on a section plane).
     pub grounded_faces: Vec<u8>,
+    /// Bit `i` set when the face opposite vertex `i` is grounded and inside the section (an internal
+    /// section triangle).
+    pub section_faces: Vec<u8>,
 }
 
 /// Bit `i` set when the face opposite vertex `i` has its three vertices on a common slot.
@@ -152,6 +155,7 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
         grounded_edges: Vec::with_capacity(n),
         pivot_edges: Vec::with_capacity(n),
         grounded_faces: Vec::with_capacity(n),
+        section_faces: Vec::with_capacity(n),
     };
     for t in &cx.tets {
         let m = [
@@ -186,7 +190,18 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
         out.external.push(ext);
         out.grounded_edges.push(g);
         out.pivot_edges.push(p);
-        out.grounded_faces.push(grounded_faces(m));
+        let gf = grounded_faces(m);
+        let mut sf = gf;
+        if ext && ty != TetType::Flat {
+            for i in 0..4 {
+                let f = super::complex::outward_face(t, i);
+                if gf >> i & 1 == 1 && cl.triangle_external(f[0], f[1], f[2]) {
+                    sf &= !(1 << i);
+                }
+            }
+        }
+        out.grounded_faces.push(gf);
+        out.section_faces.push(sf);
     }
     out
 }

@@ -23,6 +23,7 @@ pub struct PruneCounts {
     pub step2_vf_groups_removed: u64,
     pub step3_added: u64,
     pub step3_cavities_filled: u64,
+    pub pinches_filled: u64,
 }
 
 /// Returns the kept tets (`true`) and the counts.
@@ -162,9 +163,18 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
     // behind — an `Ee` tet between two `Evv` tets is disconnected from the ground in R2, and step 3
     // then re-adds the `Evv` tets around it — and they surface as inverted closed components, so
     // they are filled whatever their type.
-    let (groups, tets) = fill_cavities(cx, cl, &r1, &mut alive);
-    counts.step3_cavities_filled = groups;
-    counts.step3_added += tets;
+    // Filling a notch at a pinch can close a void and the reverse: alternate until neither acts.
+    for _ in 0..4 {
+        let (groups, tets) = fill_cavities(cx, cl, &r1, &mut alive);
+        counts.step3_cavities_filled += groups;
+        counts.step3_added += tets;
+        let (pinches, tets2) = fill_pinches(cx, cl, &r1, &mut alive);
+        counts.pinches_filled += pinches;
+        counts.step3_added += tets2;
+        if tets + tets2 == 0 {
+            break;
+        }
+    }
     let why = (0..n)
         .map(|t| {
             if alive[t] {
@@ -225,6 +235,157 @@ pub fn fill_cavities(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bo
         }
     }
     (groups, tets)
+}
+
+/// The cell's surface around vertex `v`, as the gluing makes it when the other side of every face
+/// attaches: boundary faces of kept tets that are not grounded, plus internal section triangles
+/// containing `v` that no kept tet stands on. Returns the number of fans (edge-connected groups
+/// of those triangles around `v`); more than one is a pinch of the surface at `v`.
+fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize {
+    let mut tris: Vec<[u32; 2]> = Vec::new();
+    for &t in &cx.star[v as usize] {
+        let tu = t as usize;
+        if cl.ty[tu] == TetType::Flat {
+            continue;
+        }
+        let tv = cx.tets[tu];
+        for i in 0..4 {
+            if tv[i] == v {
+                continue;
+            }
+            let nb = cx.nbr[tu][i];
+            let open = nb == NONE || !alive[nb as usize];
+            let on_section = nb == NONE || cl.ty[nb as usize] == TetType::Flat;
+            let surface = if alive[tu] {
+                open && cl.grounded_faces[tu] >> i & 1 == 0
+            } else {
+                on_section && cl.section_faces[tu] >> i & 1 == 1
+            };
+            if surface {
+                let mut w = [0u32; 2];
+                let mut k = 0;
+                for (j, &x) in tv.iter().enumerate() {
+                    if j != i && x != v {
+                        w[k] = x;
+                        k += 1;
+                    }
+                }
+                tris.push(w);
+            }
+        }
+    }
+    if tris.len() < 2 {
+        return tris.len();
+    }
+    let mut parent: Vec<usize> = (0..tris.len()).collect();
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    let mut by_w: std::collections::HashMap<u32, usize> = Default::default();
+    for (k, w) in tris.iter().enumerate() {
+        for &x in w {
+            if let Some(&j) = by_w.get(&x) {
+                let (a, b) = (find(&mut parent, j), find(&mut parent, k));
+                parent[a] = b;
+            } else {
+                by_w.insert(x, k);
+            }
+        }
+    }
+    (0..tris.len())
+        .filter(|&k| find(&mut parent, k) == k)
+        .count()
+}
+
+/// Where the cell's surface is pinched at a vertex `v` (several fans: the removed regions around
+/// `v` — "notches", groups of removed tets of v's star joined through faces containing v — touch
+/// each other only at v), fill every notch but one when its tets all survived step 1: the paper's
+/// steps leave this case open (a branching sample where two crotches of the sampled branching
+/// diagram meet, or a section vertex where the attached region touches itself), and the gluing
+/// could only split the vertex. The notch kept open is one that cannot be filled, else the largest.
+/// Vertices of filled tets are re-examined. Returns (vertices repaired, tets added).
+pub fn fill_pinches(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> (u64, u64) {
+    let nv = cx.star.len();
+    let mut queue: Vec<u32> = (0..nv as u32).rev().collect();
+    let mut queued = vec![true; nv];
+    let mut visits = vec![0u8; nv];
+    let (mut fixed, mut added) = (0, 0);
+    while let Some(v) = queue.pop() {
+        queued[v as usize] = false;
+        if surface_fans(cx, cl, alive, v) < 2 || visits[v as usize] >= 3 {
+            continue;
+        }
+        visits[v as usize] += 1;
+        // notches around v
+        let star = &cx.star[v as usize];
+        let mut comp: Vec<usize> = vec![usize::MAX; star.len()];
+        let mut notches: Vec<Vec<u32>> = Vec::new();
+        for s in 0..star.len() {
+            if alive[star[s] as usize] || comp[s] != usize::MAX {
+                continue;
+            }
+            let id = notches.len();
+            comp[s] = id;
+            let mut group = vec![star[s]];
+            let mut k = 0;
+            while k < group.len() {
+                let t = group[k] as usize;
+                k += 1;
+                for (i, &nb) in cx.nbr[t].iter().enumerate() {
+                    if cx.tets[t][i] == v || nb == NONE || alive[nb as usize] {
+                        continue;
+                    }
+                    if let Some(p) = star.iter().position(|&x| x == nb) {
+                        if comp[p] == usize::MAX {
+                            comp[p] = id;
+                            group.push(nb);
+                        }
+                    }
+                }
+            }
+            notches.push(group);
+        }
+        if notches.len() < 2 {
+            continue;
+        }
+        let fillable = |g: &Vec<u32>| {
+            g.iter()
+                .all(|&t| r1[t as usize] && cl.ty[t as usize] != TetType::Flat)
+        };
+        let keep = notches
+            .iter()
+            .position(|g| !fillable(g))
+            .unwrap_or_else(|| {
+                (0..notches.len())
+                    .max_by_key(|&k| notches[k].len())
+                    .unwrap_or(0)
+            });
+        let mut any = false;
+        for (k, g) in notches.iter().enumerate() {
+            if k == keep || !fillable(g) {
+                continue;
+            }
+            any = true;
+            for &t in g {
+                alive[t as usize] = true;
+                added += 1;
+                for &w in &cx.tets[t as usize] {
+                    if !queued[w as usize] {
+                        queued[w as usize] = true;
+                        queue.push(w);
+                    }
+                }
+            }
+        }
+        if any {
+            fixed += 1;
+        }
+    }
+    (fixed, added)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -380,13 +541,14 @@ mod tests {
             cl.external.push(external[ti] || ty == TetType::Flat);
             cl.grounded_edges.push(g);
             cl.pivot_edges.push(p);
-            cl.grounded_faces
-                .push(super::super::classify::grounded_faces([
-                    masks[t[0] as usize],
-                    masks[t[1] as usize],
-                    masks[t[2] as usize],
-                    masks[t[3] as usize],
-                ]));
+            let gf = super::super::classify::grounded_faces([
+                masks[t[0] as usize],
+                masks[t[1] as usize],
+                masks[t[2] as usize],
+                masks[t[3] as usize],
+            ]);
+            cl.grounded_faces.push(gf);
+            cl.section_faces.push(if cl.external[ti] { 0 } else { gf });
         }
         cl
     }
@@ -488,6 +650,7 @@ mod tests {
         cl2.grounded_edges.push(0);
         cl2.pivot_edges.push(0);
         cl2.grounded_faces.push(0);
+        cl2.section_faces.push(0);
         assert!(!can_add(&cx2, &cl2, &alive2, 0, true));
         assert!(can_add(&cx2, &cl2, &alive2, 0, false));
     }
@@ -564,5 +727,47 @@ mod tests {
         // without tet 6 the Vf tet has a free non-grounded face: open, not filled
         let mut alive = vec![false, false, true, true, true, true, false];
         assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (0, 0));
+    }
+
+    /// The star of a section vertex 0 on P (bit 1): its link is a disk with boundary 1-2-3-4 (on
+    /// P) and inside 5, 6 (on Q). Tets: T1 (0,1,2,5) Vf, T2 (0,2,6,5) Ee, T3 (0,2,3,6) Vf,
+    /// T4 (0,3,4,6) Vf, T5 (0,4,5,6) Ee, T6 (0,4,1,5) Vf.
+    fn hourglass() -> (Complex, Vec<u128>) {
+        let tets = vec![
+            [0, 1, 2, 5],
+            [0, 2, 6, 5],
+            [0, 2, 3, 6],
+            [0, 3, 4, 6],
+            [0, 4, 5, 6],
+            [0, 4, 1, 5],
+        ];
+        (Complex::new(7, tets), vec![1, 1, 1, 1, 1, 2, 2])
+    }
+
+    #[test]
+    fn pinch_at_a_section_vertex_is_filled() {
+        // Kept T2, T3, T5, T6; removed T1 and T4: the attached section triangles (0,2,3), (0,4,1)
+        // touch at vertex 0 only and the two notches T1, T4 meet there: the surface is pinched
+        // (two fans), which the gluing could only split. One notch is filled.
+        let (cx, masks) = hourglass();
+        let cl = classified(&cx, &masks, &[false; 6]);
+        assert_eq!(cl.ty[0], TetType::Vf);
+        assert_eq!(cl.ty[1], TetType::Ee);
+        let r1 = vec![true; 6];
+        let mut alive = vec![false, true, true, false, true, true];
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 2);
+        let (fixed, added) = fill_pinches(&cx, &cl, &r1, &mut alive);
+        assert_eq!((fixed, added), (1, 1));
+        assert!(alive[0] != alive[3]);
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
+        // a notch holding an external tet stays open: the other one is filled
+        let r1 = vec![false, true, true, true, true, true];
+        let mut alive = vec![false, true, true, false, true, true];
+        assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (1, 1));
+        assert!(!alive[0] && alive[3]);
+        // one notch only: nothing to do
+        let mut alive = vec![false, true, true, true, true, true];
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
+        assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (0, 0));
     }
 }
