@@ -41,6 +41,9 @@ pub struct Classified {
     /// Bit `i` set when the face opposite vertex `i` is grounded and inside the section (an internal
     /// section triangle).
     pub section_faces: Vec<u8>,
+    /// Bit `i` set when the face opposite vertex `i` lies on a cap: a face whose other side holds
+    /// no cell that could attach (see `Slot::beyond_may_attach`).
+    pub cap_faces: Vec<u8>,
 }
 
 /// Bit `i` set when the face opposite vertex `i` has its three vertices on a common slot.
@@ -156,7 +159,14 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
         pivot_edges: Vec::with_capacity(n),
         grounded_faces: Vec::with_capacity(n),
         section_faces: Vec::with_capacity(n),
+        cap_faces: Vec::with_capacity(n),
     };
+    let caps: Mask = input
+        .slots
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.beyond_may_attach)
+        .fold(0, |m, (i, _)| m | 1 << i);
     for t in &cx.tets {
         let m = [
             input.mask[t[0] as usize],
@@ -202,6 +212,17 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
         }
         out.grounded_faces.push(gf);
         out.section_faces.push(sf);
+        let fm = [
+            m[1] & m[2] & m[3],
+            m[0] & m[2] & m[3],
+            m[0] & m[1] & m[3],
+            m[0] & m[1] & m[2],
+        ];
+        out.cap_faces.push(
+            (0..4)
+                .filter(|&i| fm[i] & caps != 0)
+                .fold(0, |b, i| b | 1 << i),
+        );
     }
     out
 }

@@ -238,11 +238,13 @@ pub fn fill_cavities(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bo
 }
 
 /// The cell's surface around vertex `v`, as the gluing makes it when the other side of every face
-/// attaches: boundary faces of kept tets that are not grounded, plus internal section triangles
-/// containing `v` that no kept tet stands on. Returns the number of fans (edge-connected groups
-/// of those triangles around `v`); more than one is a pinch of the surface at `v`.
+/// that is not a cap attaches: boundary faces of kept tets that are not grounded, internal section
+/// triangles containing `v` that no kept tet stands on, and on caps the attached triangles instead.
+/// Returns the number of fans (edge-connected groups of those triangles around `v`); more than
+/// one is a pinch of the surface at `v`.
 fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize {
     let mut tris: Vec<[u32; 2]> = Vec::new();
+    let mut planar: Vec<bool> = Vec::new();
     for &t in &cx.star[v as usize] {
         let tu = t as usize;
         if cl.ty[tu] == TetType::Flat {
@@ -256,10 +258,12 @@ fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize 
             let nb = cx.nbr[tu][i];
             let open = nb == NONE || !alive[nb as usize];
             let on_section = nb == NONE || cl.ty[nb as usize] == TetType::Flat;
+            // on a cap the attached triangles are surface, elsewhere the unattached ones
+            let cap = cl.cap_faces[tu] >> i & 1 == 1;
             let surface = if alive[tu] {
-                open && cl.grounded_faces[tu] >> i & 1 == 0
+                open && (cl.grounded_faces[tu] >> i & 1 == 0 || cap)
             } else {
-                on_section && cl.section_faces[tu] >> i & 1 == 1
+                on_section && cl.section_faces[tu] >> i & 1 == 1 && !cap
             };
             if surface {
                 let mut w = [0u32; 2];
@@ -271,6 +275,7 @@ fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize 
                     }
                 }
                 tris.push(w);
+                planar.push(cl.grounded_faces[tu] >> i & 1 == 1);
             }
         }
     }
@@ -285,14 +290,22 @@ fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize 
         }
         x
     }
-    let mut by_w: std::collections::HashMap<u32, usize> = Default::default();
+    // Triangles continue each other across an edge (v, w) they alone share; where more meet (a
+    // crease of the solid touching a section along the edge), only planar with planar and
+    // non-planar with non-planar, as the gluing pairs them.
+    let mut by_w: std::collections::HashMap<u32, Vec<usize>> = Default::default();
     for (k, w) in tris.iter().enumerate() {
         for &x in w {
-            if let Some(&j) = by_w.get(&x) {
-                let (a, b) = (find(&mut parent, j), find(&mut parent, k));
-                parent[a] = b;
-            } else {
-                by_w.insert(x, k);
+            by_w.entry(x).or_default().push(k);
+        }
+    }
+    for ks in by_w.values() {
+        for x in 0..ks.len() {
+            for y in x + 1..ks.len() {
+                if ks.len() == 2 || planar[ks[x]] == planar[ks[y]] {
+                    let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
+                    parent[a] = b;
+                }
             }
         }
     }
@@ -307,7 +320,10 @@ fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize 
 /// steps leave this case open (a branching sample where two crotches of the sampled branching
 /// diagram meet, or a section vertex where the attached region touches itself), and the gluing
 /// could only split the vertex. The notch kept open is one that cannot be filled, else the largest.
-/// Vertices of filled tets are re-examined. Returns (vertices repaired, tets added).
+/// With a single notch on a cap (a crotch between two branches coming down onto a section that
+/// nothing attaches to from the other side, e.g. along the branching diagram: the paper's Fig. 12
+/// case without a thickness), the notch is filled when possible. Vertices of filled tets are
+/// re-examined. Returns (vertices repaired, tets added).
 pub fn fill_pinches(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> (u64, u64) {
     let nv = cx.star.len();
     let mut queue: Vec<u32> = (0..nv as u32).rev().collect();
@@ -349,7 +365,7 @@ pub fn fill_pinches(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [boo
             }
             notches.push(group);
         }
-        if notches.len() < 2 {
+        if notches.is_empty() {
             continue;
         }
         let fillable = |g: &Vec<u32>| {
@@ -364,6 +380,16 @@ pub fn fill_pinches(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [boo
                     .max_by_key(|&k| notches[k].len())
                     .unwrap_or(0)
             });
+        // one notch: a crease (crotch between two branches) comes down onto the section at v,
+        // e.g. along the branching diagram on a cap; fill it when possible
+        let on_cap = star.iter().any(|&t| {
+            let tv = cx.tets[t as usize];
+            (0..4).any(|i| tv[i] != v && cl.cap_faces[t as usize] >> i & 1 == 1)
+        });
+        if notches.len() == 1 && !on_cap {
+            continue;
+        }
+        let keep = if notches.len() == 1 { usize::MAX } else { keep };
         let mut any = false;
         for (k, g) in notches.iter().enumerate() {
             if k == keep || !fillable(g) {
@@ -549,6 +575,7 @@ mod tests {
             ]);
             cl.grounded_faces.push(gf);
             cl.section_faces.push(if cl.external[ti] { 0 } else { gf });
+            cl.cap_faces.push(0);
         }
         cl
     }
@@ -651,6 +678,7 @@ mod tests {
         cl2.pivot_edges.push(0);
         cl2.grounded_faces.push(0);
         cl2.section_faces.push(0);
+        cl2.cap_faces.push(0);
         assert!(!can_add(&cx2, &cl2, &alive2, 0, true));
         assert!(can_add(&cx2, &cl2, &alive2, 0, false));
     }
@@ -769,5 +797,28 @@ mod tests {
         let mut alive = vec![false, true, true, true, true, true];
         assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
         assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (0, 0));
+    }
+
+    #[test]
+    fn crotch_on_a_cap_is_filled() {
+        // The same star, P a cap (nothing attaches from the other side): T1, T3, T4, T6 stand on
+        // the four section triangles around 0; T2 and T5 (one notch, the crotch between two
+        // branches) are removed and come down onto P along the edges 0-2 and 0-4. The surface has
+        // the cap fan and the crotch fan meeting at vertex 0 (4 triangles on edges 0-2, 0-4).
+        let (cx, masks) = hourglass();
+        let mut cl = classified(&cx, &masks, &[false; 6]);
+        let r1 = vec![true; 6];
+        let alive0 = vec![true, false, true, true, false, true];
+        // not a cap: the section is interior, the crotch is a single fan, nothing to do
+        let mut alive = alive0.clone();
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
+        assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (0, 0));
+        // a cap: two fans, the crotch is filled
+        cl.cap_faces = cl.grounded_faces.clone();
+        let mut alive = alive0.clone();
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 2);
+        assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (1, 2));
+        assert!(alive.iter().all(|&a| a));
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
     }
 }
