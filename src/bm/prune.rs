@@ -7,12 +7,13 @@
 //!   orientation of its other grounded edge); a tet receiving both orientations is eliminated and
 //!   pivots from it follow. Then face-connected groups of `Vf` tets sharing no face with a kept `Ee`
 //!   tet are eliminated.
-//! * Step 3: re-add `Evv`/`Vvvv` tets of step 1's result with 2, 3 or 4 faces shared with the current
-//!   complex (the paper's rule; with 2 faces, the free edge — in neither face — must not be grounded,
-//!   so no new contact with a section is made); repeat until none can be added. The stricter disk
-//!   test (free edge in no kept tet) left tunnels in the convex-hull case (sphere in a cube): tets
-//!   closing a loop must be added too. Then groups of
-//!   remaining candidates enclosed by the complex (voids) are filled.
+//! * Step 3: re-add `Evv`/`Vvvv` tets of step 1's result, and `Ee` tets eliminated in step 2, with
+//!   2, 3 or 4 faces shared with the current complex (the paper's rule; with 2 faces, the free edge
+//!   — in neither face — must not be grounded, so no new contact with a section is made); repeat
+//!   until none can be added. The stricter disk test (free edge in no kept tet) left tunnels in the
+//!   convex-hull case (sphere in a cube): tets closing a loop must be added too. Then voids (groups
+//!   of removed step-1 tets enclosed by the complex and the section) are filled (`fill_cavities`),
+//!   and pinches of the surface at vertices repaired by filling notches (`fill_pinches`).
 use super::classify::{Classified, TetType};
 use super::complex::{Complex, NONE, TET_EDGES};
 
@@ -135,8 +136,11 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
     }
     // Step 3
     let cand: Vec<bool> = (0..n)
-        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Evv | TetType::Vvvv))
+        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Evv | TetType::Vvvv | TetType::Ee))
         .collect();
+    // Ee tets eliminated in step 2 are candidates too: the Evv/Vvvv tets re-added around them can
+    // reconnect them to the ground, and the face rule keeps every grounded edge of the tet in a
+    // shared face (with two faces the free edge is not grounded), so no singularity is created.
     let mut queue: Vec<u32> = (0..n as u32).filter(|&t| cand[t as usize]).collect();
     let mut queued = cand.clone();
     while let Some(t) = queue.pop() {
