@@ -596,7 +596,7 @@ mod tests {
             tets.push([0, a, b, w + 1]);
         }
         let mut masks = vec![1u128, 1];
-        masks.extend(std::iter::repeat(2u128).take(3 * n as usize));
+        masks.extend(std::iter::repeat_n(2u128, 3 * n as usize));
         (Complex::new(2 + 3 * n as usize, tets), masks)
     }
 
