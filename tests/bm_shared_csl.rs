@@ -18,6 +18,20 @@ const KNOWN_GOOD: &[&str] = &[
     "eight_20",
 ];
 
+/// Files whose solid is one connected piece (the reference meshes are) and that come out as one
+/// component today. eight_20 came out as 23 (one-tet voids left by pruning, prune::fill_cavities).
+const ONE_PIECE: &[&str] = &[
+    "Elephant",
+    "Heart-simplified",
+    "ParallelEight",
+    "ParallelEightMore",
+    "SideBishop",
+    "balloondog",
+    "eight_15",
+    "eight_20",
+    "hand",
+];
+
 #[test]
 fn every_shared_csl_file_reconstructs() {
     let out_dir = std::env::var_os("BM_OUT_DIR").map(std::path::PathBuf::from);
@@ -61,6 +75,9 @@ fn every_shared_csl_file_reconstructs() {
                 "{name}: closed {} manifold {} oriented {} (boundary edges {}, non-manifold edges {}, vertices {})",
                 c.closed, c.manifold, c.oriented, c.boundary_edges, c.nonmanifold_edges, c.nonmanifold_vertices
             ));
+        }
+        if ONE_PIECE.contains(&name.as_str()) && c.components != 1 {
+            failures.push(format!("{name}: {} components, expected 1", c.components));
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");

@@ -121,6 +121,9 @@ pub struct Slot {
     pub uv: Vec<[f64; 2]>,
     pub contour_edges: HashSet<(u32, u32)>,
     pub locator: SectionLocator,
+    /// The cell on the other side of this face has sections on at least two faces, so it may
+    /// attach here; false when the other side is empty (the section is a cap of the solid).
+    pub beyond_may_attach: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -190,6 +193,21 @@ impl CellInput {
                 uv: vec![[f64::NAN; 2]; n],
                 contour_edges: HashSet::new(),
                 locator: SectionLocator::default(),
+                beyond_may_attach: {
+                    let face = &arr.faces[cf.face as usize];
+                    [face.positive_cell, face.negative_cell]
+                        .into_iter()
+                        .flatten()
+                        .filter(|&c| c != cell)
+                        .any(|c| {
+                            arr.cells[c as usize]
+                                .faces
+                                .iter()
+                                .filter(|g| !face_loops[g.face as usize].is_empty())
+                                .count()
+                                >= 2
+                        })
+                },
             })
             .collect();
         for (l, &g) in global.iter().enumerate() {

@@ -36,6 +36,25 @@ pub struct Classified {
     pub grounded_edges: Vec<u8>,
     /// Bit `k` set when `TET_EDGES[k]` is a pivot edge of a `Ee` tet.
     pub pivot_edges: Vec<u8>,
+    /// Bit `i` set when the face opposite local vertex `i` is grounded (lies on a section plane).
+    pub grounded_faces: Vec<u8>,
+    /// Bit `i` set when the face opposite vertex `i` is grounded and inside the section (an internal
+    /// section triangle).
+    pub section_faces: Vec<u8>,
+    /// Bit `i` set when the face opposite vertex `i` lies on a cap: a face whose other side holds
+    /// no cell that could attach (see `Slot::beyond_may_attach`).
+    pub cap_faces: Vec<u8>,
+}
+
+/// Bit `i` set when the face opposite vertex `i` has its three vertices on a common slot.
+pub fn grounded_faces(m: [Mask; 4]) -> u8 {
+    let faces = [
+        m[1] & m[2] & m[3],
+        m[0] & m[2] & m[3],
+        m[0] & m[1] & m[3],
+        m[0] & m[1] & m[2],
+    ];
+    (0..4).filter(|&i| faces[i] != 0).fold(0, |b, i| b | 1 << i)
 }
 
 fn slots_of(m: Mask) -> impl Iterator<Item = usize> {
@@ -138,7 +157,16 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
         external: Vec::with_capacity(n),
         grounded_edges: Vec::with_capacity(n),
         pivot_edges: Vec::with_capacity(n),
+        grounded_faces: Vec::with_capacity(n),
+        section_faces: Vec::with_capacity(n),
+        cap_faces: Vec::with_capacity(n),
     };
+    let caps: Mask = input
+        .slots
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| !s.beyond_may_attach)
+        .fold(0, |m, (i, _)| m | 1 << i);
     for t in &cx.tets {
         let m = [
             input.mask[t[0] as usize],
@@ -172,6 +200,29 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
         out.external.push(ext);
         out.grounded_edges.push(g);
         out.pivot_edges.push(p);
+        let gf = grounded_faces(m);
+        let mut sf = gf;
+        if ext && ty != TetType::Flat {
+            for i in 0..4 {
+                let f = super::complex::outward_face(t, i);
+                if gf >> i & 1 == 1 && cl.triangle_external(f[0], f[1], f[2]) {
+                    sf &= !(1 << i);
+                }
+            }
+        }
+        out.grounded_faces.push(gf);
+        out.section_faces.push(sf);
+        let fm = [
+            m[1] & m[2] & m[3],
+            m[0] & m[2] & m[3],
+            m[0] & m[1] & m[3],
+            m[0] & m[1] & m[2],
+        ];
+        out.cap_faces.push(
+            (0..4)
+                .filter(|&i| fm[i] & caps != 0)
+                .fold(0, |b, i| b | 1 << i),
+        );
     }
     out
 }

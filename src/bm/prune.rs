@@ -7,12 +7,13 @@
 //!   orientation of its other grounded edge); a tet receiving both orientations is eliminated and
 //!   pivots from it follow. Then face-connected groups of `Vf` tets sharing no face with a kept `Ee`
 //!   tet are eliminated.
-//! * Step 3: re-add `Evv`/`Vvvv` tets of step 1's result with 2, 3 or 4 faces shared with the current
-//!   complex (the paper's rule; with 2 faces, the free edge — in neither face — must not be grounded,
-//!   so no new contact with a section is made); repeat until none can be added. The stricter disk
-//!   test (free edge in no kept tet) left tunnels in the convex-hull case (sphere in a cube): tets
-//!   closing a loop must be added too. Then groups of
-//!   remaining candidates enclosed by the complex (voids) are filled.
+//! * Step 3: re-add `Evv`/`Vvvv` tets of step 1's result, and `Ee` tets eliminated in step 2, with
+//!   2, 3 or 4 faces shared with the current complex (the paper's rule; with 2 faces, the free edge
+//!   — in neither face — must not be grounded, so no new contact with a section is made); repeat
+//!   until none can be added. The stricter disk test (free edge in no kept tet) left tunnels in the
+//!   convex-hull case (sphere in a cube): tets closing a loop must be added too. Then voids (groups
+//!   of removed step-1 tets enclosed by the complex and the section) are filled (`fill_cavities`),
+//!   and pinches of the surface at vertices repaired by filling notches (`fill_pinches`).
 use super::classify::{Classified, TetType};
 use super::complex::{Complex, NONE, TET_EDGES};
 
@@ -23,10 +24,23 @@ pub struct PruneCounts {
     pub step2_vf_groups_removed: u64,
     pub step3_added: u64,
     pub step3_cavities_filled: u64,
+    pub pinches_filled: u64,
 }
 
 /// Returns the kept tets (`true`) and the counts.
 pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
+    let (a, c, why) = prune_why(cx, cl);
+    if std::env::var_os("BM_DEBUG").is_some() {
+        for l in debug_voids(cx, cl, &a, &why) {
+            eprintln!("prune: {l}");
+        }
+    }
+    (a, c)
+}
+
+/// `prune`, plus per tet why it is not kept: 1 external (step 1), 2 eliminated by the pivots,
+/// 3 in a Vf group without Ee, 4 Evv/Vvvv not re-added; 0 kept.
+pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<u8>) {
     let n = cx.len();
     let mut counts = PruneCounts::default();
     // Step 1
@@ -82,6 +96,9 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
             }
         }
     }
+    let pivoted: Vec<bool> = (0..n)
+        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Vf | TetType::Ee) && !alive[t])
+        .collect();
     // Vf groups sharing no face with a kept Ee tet
     let mut seen = vec![false; n];
     for s in 0..n {
@@ -119,8 +136,11 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
     }
     // Step 3
     let cand: Vec<bool> = (0..n)
-        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Evv | TetType::Vvvv))
+        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Evv | TetType::Vvvv | TetType::Ee))
         .collect();
+    // Ee tets eliminated in step 2 are candidates too: the Evv/Vvvv tets re-added around them can
+    // reconnect them to the ground, and the face rule keeps every grounded edge of the tet in a
+    // shared face (with two faces the free edge is not grounded), so no singularity is created.
     let mut queue: Vec<u32> = (0..n as u32).filter(|&t| cand[t as usize]).collect();
     let mut queued = cand.clone();
     while let Some(t) = queue.pop() {
@@ -139,12 +159,54 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
             }
         }
     }
-    // Cavities: face-connected groups of remaining candidates enclosed by the complex (every face of
-    // the group is shared with a kept tet or with the group) are filled: the intersection of the group
-    // with the complex is its whole boundary, a union of spheres, so filling removes voids only.
+    // Cavities: face-connected groups of removed (non-external, non-flat) tets enclosed by the
+    // complex and the section: every face of the group is shared with a kept tet, with the group, or
+    // is a grounded triangle (on the hull or against a flat sliver; grounded triangles of tets that
+    // survived step 1 are internal, inside the section). Such a group is a void of the solid: its
+    // intersection with the complex and the section is its whole boundary. Step 2 may leave these
+    // behind — an `Ee` tet between two `Evv` tets is disconnected from the ground in R2, and step 3
+    // then re-adds the `Evv` tets around it — and they surface as inverted closed components, so
+    // they are filled whatever their type.
+    // Filling a notch at a pinch can close a void and the reverse: alternate until neither acts.
+    for _ in 0..4 {
+        let (groups, tets) = fill_cavities(cx, cl, &r1, &mut alive);
+        counts.step3_cavities_filled += groups;
+        counts.step3_added += tets;
+        let (pinches, tets2) = fill_pinches(cx, cl, &r1, &mut alive);
+        counts.pinches_filled += pinches;
+        counts.step3_added += tets2;
+        if tets + tets2 == 0 {
+            break;
+        }
+    }
+    let why = (0..n)
+        .map(|t| {
+            if alive[t] {
+                0
+            } else if !r1[t] {
+                1
+            } else if pivoted[t] {
+                2
+            } else if cl.ty[t] == TetType::Vf || cl.ty[t] == TetType::Ee {
+                3
+            } else {
+                4
+            }
+        })
+        .collect();
+    (alive, counts, why)
+}
+
+/// Fills the voids of the complex `alive`: face-connected groups of tets of `r1` (step 1's result)
+/// that are not kept, not flat, and whose every face is shared with a kept tet, with the group, or is
+/// a grounded triangle. Returns (groups filled, tets added).
+pub fn fill_cavities(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> (u64, u64) {
+    let n = cx.len();
     let mut seen = vec![false; n];
+    let fillable = |t: usize| r1[t] && cl.ty[t] != TetType::Flat;
+    let (mut groups, mut tets) = (0, 0);
     for s in 0..n {
-        if seen[s] || alive[s] || !cand[s] {
+        if seen[s] || alive[s] || !fillable(s) {
             continue;
         }
         let mut group = vec![s as u32];
@@ -154,29 +216,206 @@ pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
         while k < group.len() {
             let t = group[k] as usize;
             k += 1;
-            for &nb in &cx.nbr[t] {
-                if nb == NONE {
-                    enclosed = false;
-                } else if alive[nb as usize] {
-                } else if cand[nb as usize] {
+            for (i, &nb) in cx.nbr[t].iter().enumerate() {
+                if nb != NONE && alive[nb as usize] {
+                    continue;
+                }
+                if nb != NONE && fillable(nb as usize) {
                     if !seen[nb as usize] {
                         seen[nb as usize] = true;
                         group.push(nb);
                     }
-                } else {
+                } else if cl.grounded_faces[t] >> i & 1 == 0 {
                     enclosed = false;
                 }
             }
         }
         if enclosed {
-            counts.step3_added += group.len() as u64;
-            counts.step3_cavities_filled += 1;
+            tets += group.len() as u64;
+            groups += 1;
             for t in group {
                 alive[t as usize] = true;
             }
         }
     }
-    (alive, counts)
+    (groups, tets)
+}
+
+/// The cell's surface around vertex `v`, as the gluing makes it when the other side of every face
+/// that is not a cap attaches: boundary faces of kept tets that are not grounded, internal section
+/// triangles containing `v` that no kept tet stands on, and on caps the attached triangles instead.
+/// Returns the number of fans (edge-connected groups of those triangles around `v`); more than
+/// one is a pinch of the surface at `v`.
+fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize {
+    let mut tris: Vec<[u32; 2]> = Vec::new();
+    let mut planar: Vec<bool> = Vec::new();
+    for &t in &cx.star[v as usize] {
+        let tu = t as usize;
+        if cl.ty[tu] == TetType::Flat {
+            continue;
+        }
+        let tv = cx.tets[tu];
+        for i in 0..4 {
+            if tv[i] == v {
+                continue;
+            }
+            let nb = cx.nbr[tu][i];
+            let open = nb == NONE || !alive[nb as usize];
+            let on_section = nb == NONE || cl.ty[nb as usize] == TetType::Flat;
+            // on a cap the attached triangles are surface, elsewhere the unattached ones
+            let cap = cl.cap_faces[tu] >> i & 1 == 1;
+            let surface = if alive[tu] {
+                open && (cl.grounded_faces[tu] >> i & 1 == 0 || cap)
+            } else {
+                on_section && cl.section_faces[tu] >> i & 1 == 1 && !cap
+            };
+            if surface {
+                let mut w = [0u32; 2];
+                let mut k = 0;
+                for (j, &x) in tv.iter().enumerate() {
+                    if j != i && x != v {
+                        w[k] = x;
+                        k += 1;
+                    }
+                }
+                tris.push(w);
+                planar.push(cl.grounded_faces[tu] >> i & 1 == 1);
+            }
+        }
+    }
+    if tris.len() < 2 {
+        return tris.len();
+    }
+    let mut parent: Vec<usize> = (0..tris.len()).collect();
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    // Triangles continue each other across an edge (v, w) they alone share; where more meet (a
+    // crease of the solid touching a section along the edge), only planar with planar and
+    // non-planar with non-planar, as the gluing pairs them.
+    let mut by_w: std::collections::HashMap<u32, Vec<usize>> = Default::default();
+    for (k, w) in tris.iter().enumerate() {
+        for &x in w {
+            by_w.entry(x).or_default().push(k);
+        }
+    }
+    for ks in by_w.values() {
+        for x in 0..ks.len() {
+            for y in x + 1..ks.len() {
+                if ks.len() == 2 || planar[ks[x]] == planar[ks[y]] {
+                    let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
+                    parent[a] = b;
+                }
+            }
+        }
+    }
+    (0..tris.len())
+        .filter(|&k| find(&mut parent, k) == k)
+        .count()
+}
+
+/// Where the cell's surface is pinched at a vertex `v` (several fans: the removed regions around
+/// `v` — "notches", groups of removed tets of v's star joined through faces containing v — touch
+/// each other only at v), fill every notch but one when its tets all survived step 1: the paper's
+/// steps leave this case open (a branching sample where two crotches of the sampled branching
+/// diagram meet, or a section vertex where the attached region touches itself), and the gluing
+/// could only split the vertex. The notch kept open is one that cannot be filled, else the largest.
+/// With a single notch on a cap (a crotch between two branches coming down onto a section that
+/// nothing attaches to from the other side, e.g. along the branching diagram: the paper's Fig. 12
+/// case without a thickness), the notch is filled when possible. Vertices of filled tets are
+/// re-examined. Returns (vertices repaired, tets added).
+pub fn fill_pinches(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> (u64, u64) {
+    let nv = cx.star.len();
+    let mut queue: Vec<u32> = (0..nv as u32).rev().collect();
+    let mut queued = vec![true; nv];
+    let mut visits = vec![0u8; nv];
+    let (mut fixed, mut added) = (0, 0);
+    while let Some(v) = queue.pop() {
+        queued[v as usize] = false;
+        if surface_fans(cx, cl, alive, v) < 2 || visits[v as usize] >= 3 {
+            continue;
+        }
+        visits[v as usize] += 1;
+        // notches around v
+        let star = &cx.star[v as usize];
+        let mut comp: Vec<usize> = vec![usize::MAX; star.len()];
+        let mut notches: Vec<Vec<u32>> = Vec::new();
+        for s in 0..star.len() {
+            if alive[star[s] as usize] || comp[s] != usize::MAX {
+                continue;
+            }
+            let id = notches.len();
+            comp[s] = id;
+            let mut group = vec![star[s]];
+            let mut k = 0;
+            while k < group.len() {
+                let t = group[k] as usize;
+                k += 1;
+                for (i, &nb) in cx.nbr[t].iter().enumerate() {
+                    if cx.tets[t][i] == v || nb == NONE || alive[nb as usize] {
+                        continue;
+                    }
+                    if let Some(p) = star.iter().position(|&x| x == nb) {
+                        if comp[p] == usize::MAX {
+                            comp[p] = id;
+                            group.push(nb);
+                        }
+                    }
+                }
+            }
+            notches.push(group);
+        }
+        if notches.is_empty() {
+            continue;
+        }
+        let fillable = |g: &Vec<u32>| {
+            g.iter()
+                .all(|&t| r1[t as usize] && cl.ty[t as usize] != TetType::Flat)
+        };
+        let keep = notches
+            .iter()
+            .position(|g| !fillable(g))
+            .unwrap_or_else(|| {
+                (0..notches.len())
+                    .max_by_key(|&k| notches[k].len())
+                    .unwrap_or(0)
+            });
+        // one notch: a crease (crotch between two branches) comes down onto the section at v,
+        // e.g. along the branching diagram on a cap; fill it when possible
+        let on_cap = star.iter().any(|&t| {
+            let tv = cx.tets[t as usize];
+            (0..4).any(|i| tv[i] != v && cl.cap_faces[t as usize] >> i & 1 == 1)
+        });
+        if notches.len() == 1 && !on_cap {
+            continue;
+        }
+        let keep = if notches.len() == 1 { usize::MAX } else { keep };
+        let mut any = false;
+        for (k, g) in notches.iter().enumerate() {
+            if k == keep || !fillable(g) {
+                continue;
+            }
+            any = true;
+            for &t in g {
+                alive[t as usize] = true;
+                added += 1;
+                for &w in &cx.tets[t as usize] {
+                    if !queued[w as usize] {
+                        queued[w as usize] = true;
+                        queue.push(w);
+                    }
+                }
+            }
+        }
+        if any {
+            fixed += 1;
+        }
+    }
+    (fixed, added)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -261,9 +500,62 @@ fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32, strict: bool) 
     }
 }
 
+/// Debug (`BM_DEBUG`): face-connected groups of removed tets that the complex and grounded
+/// triangles close off (voids of the solid), with each tet's type, removal reason (see
+/// `prune_why`), masks and neighbours. Should be empty after `fill_cavities`.
+pub fn debug_voids(cx: &Complex, cl: &Classified, alive: &[bool], why: &[u8]) -> Vec<String> {
+    let n = cx.len();
+    let mut seen = vec![false; n];
+    let mut out = Vec::new();
+    for s in 0..n {
+        if seen[s] || alive[s] || cl.ty[s] == TetType::Flat || why[s] == 1 {
+            continue;
+        }
+        let mut group = vec![s as u32];
+        seen[s] = true;
+        let mut closed = true;
+        let mut k = 0;
+        while k < group.len() {
+            let t = group[k] as usize;
+            k += 1;
+            for (i, &nb) in cx.nbr[t].iter().enumerate() {
+                if nb != NONE && alive[nb as usize] {
+                    continue;
+                }
+                if nb != NONE && cl.ty[nb as usize] != TetType::Flat && why[nb as usize] != 1 {
+                    if !seen[nb as usize] {
+                        seen[nb as usize] = true;
+                        group.push(nb);
+                    }
+                } else if cl.grounded_faces[t] >> i & 1 == 0 {
+                    closed = false;
+                }
+            }
+        }
+        if closed {
+            out.push(format!("void of {} tets", group.len()));
+            for &t in &group {
+                out.push(format!(
+                    "   tet {t} {:?}/{} piv {:06b} nbr {:?}",
+                    cl.ty[t as usize],
+                    why[t as usize],
+                    cl.pivot_edges[t as usize],
+                    cx.nbr[t as usize].map(|nb| if nb == NONE {
+                        "hull".to_string()
+                    } else {
+                        format!("{}:{:?}/{}", nb, cl.ty[nb as usize], why[nb as usize])
+                    })
+                ));
+            }
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::classify::tet_type;
+    use super::super::complex::outward_face;
     use super::*;
 
     fn classified(cx: &Complex, masks: &[u128], external: &[bool]) -> Classified {
@@ -279,6 +571,15 @@ mod tests {
             cl.external.push(external[ti] || ty == TetType::Flat);
             cl.grounded_edges.push(g);
             cl.pivot_edges.push(p);
+            let gf = super::super::classify::grounded_faces([
+                masks[t[0] as usize],
+                masks[t[1] as usize],
+                masks[t[2] as usize],
+                masks[t[3] as usize],
+            ]);
+            cl.grounded_faces.push(gf);
+            cl.section_faces.push(if cl.external[ti] { 0 } else { gf });
+            cl.cap_faces.push(0);
         }
         cl
     }
@@ -295,7 +596,7 @@ mod tests {
             tets.push([0, a, b, w + 1]);
         }
         let mut masks = vec![1u128, 1];
-        masks.extend(std::iter::repeat(2u128).take(3 * n as usize));
+        masks.extend(std::iter::repeat_n(2u128, 3 * n as usize));
         (Complex::new(2 + 3 * n as usize, tets), masks)
     }
 
@@ -379,7 +680,149 @@ mod tests {
         cl2.external.push(false);
         cl2.grounded_edges.push(0);
         cl2.pivot_edges.push(0);
+        cl2.grounded_faces.push(0);
+        cl2.section_faces.push(0);
+        cl2.cap_faces.push(0);
         assert!(!can_add(&cx2, &cl2, &alive2, 0, true));
         assert!(can_add(&cx2, &cl2, &alive2, 0, false));
+    }
+
+    /// An `Ee` tet T=(0,1,2,3) (edge 01 on P, edge 23 on Q) with a tet across each face (apexes 4..7
+    /// on a third plane R). Returns the complex and masks; T is tet 0.
+    fn enclosed_ee() -> (Complex, Vec<u128>) {
+        let t = [0u32, 1, 2, 3];
+        let mut tets = vec![t];
+        for i in 0..4 {
+            let f = outward_face(&t, i);
+            // the neighbour across face f: f reversed plus a new apex
+            tets.push([f[0], f[2], f[1], 4 + i as u32]);
+        }
+        let (p, q, r) = (1u128, 2u128, 4u128);
+        (Complex::new(8, tets), vec![p, p, q, q, r, r, r, r])
+    }
+
+    #[test]
+    fn void_left_by_step2_is_filled() {
+        // eight_20: step 2 eliminates an Ee tet lying between two eliminated (Evv) tets around its
+        // grounded edge, step 3 then re-adds the Evv tets around it and a one-tet void remained (an
+        // inverted closed component of the output surface).
+        let (cx, masks) = enclosed_ee();
+        for i in 0..4 {
+            assert_ne!(cx.nbr[0][i], NONE);
+        }
+        let cl = classified(&cx, &masks, &[false; 5]);
+        assert_eq!(cl.ty[0], TetType::Ee);
+        assert!((1..5).all(|t| cl.ty[t] == TetType::Evv));
+        let r1 = vec![true; 5];
+        let mut alive = vec![false, true, true, true, true];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (1, 1));
+        assert!(alive[0]);
+    }
+
+    #[test]
+    fn group_open_to_the_outside_is_not_filled() {
+        // T and its neighbour across the face opposite 0 are both removed; that neighbour has
+        // non-grounded hull faces: the group reaches the outside and stays empty.
+        let (cx, masks) = enclosed_ee();
+        let cl = classified(&cx, &masks, &[false; 5]);
+        let r1 = vec![true; 5];
+        let mut alive = vec![false, false, true, true, true];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (0, 0));
+        assert_eq!(alive, vec![false, false, true, true, true]);
+        // an external (step 1) neighbour also opens it
+        let r1 = vec![true, false, true, true, true];
+        let mut alive = vec![false, false, true, true, true];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (0, 0));
+    }
+
+    #[test]
+    fn void_closed_by_the_section_is_filled() {
+        // Put apex 4 (of tet 1, the neighbour (1,2,3)+4 across the face opposite 0) on Q: tet 1 is a
+        // Vf tet standing on (2,3,4) on Q, that grounded face on the hull; its two other free faces
+        // get kept neighbours (tets 5, 6). Removing T and tet 1 leaves a group closed by kept tets
+        // and a section triangle: filled.
+        let (cx, mut masks) = enclosed_ee();
+        let mut tets = cx.tets.clone();
+        assert_eq!(tets[1], [1, 2, 3, 4]);
+        tets.push([1, 4, 3, 8]);
+        tets.push([1, 2, 4, 9]);
+        let cx = Complex::new(10, tets);
+        masks[4] = 2;
+        masks.extend([4u128, 4]);
+        let cl = classified(&cx, &masks, &[false; 7]);
+        assert_eq!(cl.ty[1], TetType::Vf);
+        assert_eq!(cx.nbr[1].iter().filter(|&&nb| nb == NONE).count(), 1);
+        let r1 = vec![true; 7];
+        let mut alive = vec![false, false, true, true, true, true, true];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (1, 2));
+        assert!(alive.iter().all(|&a| a));
+        // without tet 6 the Vf tet has a free non-grounded face: open, not filled
+        let mut alive = vec![false, false, true, true, true, true, false];
+        assert_eq!(fill_cavities(&cx, &cl, &r1, &mut alive), (0, 0));
+    }
+
+    /// The star of a section vertex 0 on P (bit 1): its link is a disk with boundary 1-2-3-4 (on
+    /// P) and inside 5, 6 (on Q). Tets: T1 (0,1,2,5) Vf, T2 (0,2,6,5) Ee, T3 (0,2,3,6) Vf,
+    /// T4 (0,3,4,6) Vf, T5 (0,4,5,6) Ee, T6 (0,4,1,5) Vf.
+    fn hourglass() -> (Complex, Vec<u128>) {
+        let tets = vec![
+            [0, 1, 2, 5],
+            [0, 2, 6, 5],
+            [0, 2, 3, 6],
+            [0, 3, 4, 6],
+            [0, 4, 5, 6],
+            [0, 4, 1, 5],
+        ];
+        (Complex::new(7, tets), vec![1, 1, 1, 1, 1, 2, 2])
+    }
+
+    #[test]
+    fn pinch_at_a_section_vertex_is_filled() {
+        // Kept T2, T3, T5, T6; removed T1 and T4: the attached section triangles (0,2,3), (0,4,1)
+        // touch at vertex 0 only and the two notches T1, T4 meet there: the surface is pinched
+        // (two fans), which the gluing could only split. One notch is filled.
+        let (cx, masks) = hourglass();
+        let cl = classified(&cx, &masks, &[false; 6]);
+        assert_eq!(cl.ty[0], TetType::Vf);
+        assert_eq!(cl.ty[1], TetType::Ee);
+        let r1 = vec![true; 6];
+        let mut alive = vec![false, true, true, false, true, true];
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 2);
+        let (fixed, added) = fill_pinches(&cx, &cl, &r1, &mut alive);
+        assert_eq!((fixed, added), (1, 1));
+        assert!(alive[0] != alive[3]);
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
+        // a notch holding an external tet stays open: the other one is filled
+        let r1 = vec![false, true, true, true, true, true];
+        let mut alive = vec![false, true, true, false, true, true];
+        assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (1, 1));
+        assert!(!alive[0] && alive[3]);
+        // one notch only: nothing to do
+        let mut alive = vec![false, true, true, true, true, true];
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
+        assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (0, 0));
+    }
+
+    #[test]
+    fn crotch_on_a_cap_is_filled() {
+        // The same star, P a cap (nothing attaches from the other side): T1, T3, T4, T6 stand on
+        // the four section triangles around 0; T2 and T5 (one notch, the crotch between two
+        // branches) are removed and come down onto P along the edges 0-2 and 0-4. The surface has
+        // the cap fan and the crotch fan meeting at vertex 0 (4 triangles on edges 0-2, 0-4).
+        let (cx, masks) = hourglass();
+        let mut cl = classified(&cx, &masks, &[false; 6]);
+        let r1 = vec![true; 6];
+        let alive0 = vec![true, false, true, true, false, true];
+        // not a cap: the section is interior, the crotch is a single fan, nothing to do
+        let mut alive = alive0.clone();
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
+        assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (0, 0));
+        // a cap: two fans, the crotch is filled
+        cl.cap_faces = cl.grounded_faces.clone();
+        let mut alive = alive0.clone();
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 2);
+        assert_eq!(fill_pinches(&cx, &cl, &r1, &mut alive), (1, 2));
+        assert!(alive.iter().all(|&a| a));
+        assert_eq!(surface_fans(&cx, &cl, &alive, 0), 1);
     }
 }
