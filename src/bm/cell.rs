@@ -1,7 +1,7 @@
 //! One cell, end to end: Delaunay of its section vertices (plus branching samples), conformity check,
 //! classification, pruning, and what the gluing needs (kept tets, non-planar boundary, per face the
 //! section triangles seen from this cell and whether the cell attaches to them).
-use super::cell_input::CellInput;
+use super::cell_input::{CellInput, Mask};
 use super::classify::{classify, tet_type, Classifier, TetType};
 
 /// Rounds of branching sampling (sample, re-triangulate) per cell.
@@ -33,6 +33,60 @@ pub struct CellResult {
     pub tets: u64,
     pub flat_tets: u64,
     pub branching_samples: u64,
+    /// CPU seconds spent in this run's sub-phases.
+    pub timing: CellTiming,
+}
+
+/// CPU seconds per sub-phase of one cell run (summed over cells and rounds in the report).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CellTiming {
+    /// Gathering the cell's points, slots and locators (`CellInput::build`).
+    pub input: f64,
+    /// Delaunay triangulations (kernel) and their neighbour complexes.
+    pub delaunay: f64,
+    /// Branching-diagram samples (without the re-triangulation).
+    pub branching: f64,
+    /// Section triangles per face and the contour-edge conformity check.
+    pub conformity: f64,
+    /// Simplex classification by plane tags.
+    pub classify: f64,
+    /// Pruning steps 1–3.
+    pub prune: f64,
+    /// Kept tets, non-planar boundary and per-face section triangles for the gluing.
+    pub output: f64,
+}
+
+impl CellTiming {
+    pub fn add(&mut self, o: &CellTiming) {
+        self.input += o.input;
+        self.delaunay += o.delaunay;
+        self.branching += o.branching;
+        self.conformity += o.conformity;
+        self.classify += o.classify;
+        self.prune += o.prune;
+        self.output += o.output;
+    }
+
+    /// (name, seconds) pairs in pipeline order.
+    pub fn entries(&self) -> [(&'static str, f64); 7] {
+        [
+            ("input", self.input),
+            ("delaunay", self.delaunay),
+            ("branching", self.branching),
+            ("conformity", self.conformity),
+            ("classify", self.classify),
+            ("prune", self.prune),
+            ("output", self.output),
+        ]
+    }
+}
+
+/// Seconds since `t`, restarting `t`.
+fn lap(t: &mut std::time::Instant) -> f64 {
+    let now = std::time::Instant::now();
+    let d = now.duration_since(*t).as_secs_f64();
+    *t = now;
+    d
 }
 
 /// Triangulate `points` with our exact kernel; finite tets in input vertex ids, positively oriented
@@ -60,7 +114,10 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
             ..Default::default()
         });
     }
+    let mut timing = CellTiming::default();
+    let mut clock = std::time::Instant::now();
     let mut tets = delaunay_tets(&input.points)?;
+    timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
     if branching {
         for _round in 0..BRANCHING_ROUNDS {
@@ -79,6 +136,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
                 })
                 .collect();
             let samples = super::branching::samples(&input, &cx, &ty);
+            timing.branching += lap(&mut clock);
             if samples.is_empty() {
                 break;
             }
@@ -87,17 +145,23 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
                 n_branch += 1;
             }
             tets = delaunay_tets(&input.points)?;
+            timing.delaunay += lap(&mut clock);
         }
     }
     let cx = Complex::new(input.points.len(), tets);
-    let cl = classify(&input, &cx);
+    timing.delaunay += lap(&mut clock);
     let classifier = Classifier::new(&input);
 
     // Section triangles per slot: grounded faces of non-flat tets.
     let n_slots = input.slots.len();
     let mut top: Vec<HashMap<[u32; 3], ([u32; 3], u32)>> = vec![HashMap::new(); n_slots];
     for (t, tv) in cx.tets.iter().enumerate() {
-        if cl.ty[t] == TetType::Flat {
+        // flat: one slot holds all four vertices (classify's `TetType::Flat`)
+        if tv
+            .iter()
+            .fold(!0 as Mask, |m, &v| m & input.mask[v as usize])
+            != 0
+        {
             continue;
         }
         for i in 0..4 {
@@ -133,16 +197,21 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
     }
     missing.sort_unstable();
     missing.dedup();
-    let flat_tets = cl.ty.iter().filter(|&&t| t == TetType::Flat).count() as u64;
+    timing.conformity += lap(&mut clock);
     if check_only && !missing.is_empty() {
         return Ok(CellResult {
             input: Some(input),
             missing,
             tets: cx.len() as u64,
+            timing,
             ..Default::default()
         });
     }
+    let cl = classify(&input, &cx);
+    let flat_tets = cl.ty.iter().filter(|&&t| t == TetType::Flat).count() as u64;
+    timing.classify += lap(&mut clock);
     let (alive, counts) = prune(&cx, &cl);
+    timing.prune += lap(&mut clock);
     if std::env::var("BM_DEBUG").is_ok() {
         let mut h: std::collections::BTreeMap<String, (u32, u32, u32)> = Default::default();
         for t in 0..cx.len() {
@@ -192,6 +261,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
             }
         })
         .collect();
+    timing.output += lap(&mut clock);
     Ok(CellResult {
         input: Some(input),
         missing,
@@ -202,5 +272,6 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
         tets: cx.len() as u64,
         flat_tets,
         branching_samples: n_branch,
+        timing,
     })
 }

@@ -30,12 +30,31 @@ use crate::arrangement::Arrangement;
 use crate::error::Result;
 use crate::reconstruct::{Options, Report, Solid};
 use crate::sections::Sections;
-use cell::{run_cell, CellResult};
+use cell::{run_cell, CellResult, CellTiming};
 use cell_input::CellInput;
 use rayon::prelude::*;
 
 /// Most global conformity rounds before giving up (warned).
 const MAX_ROUNDS: usize = 12;
+
+/// Gather cell `c`'s input and run it, the input gathering timed into the result.
+fn run_timed(
+    arr: &Arrangement,
+    pool: &crate::arrangement::VertexPool,
+    loops: &[Vec<Vec<u32>>],
+    c: u32,
+    branching: bool,
+    check_only: bool,
+) -> Result<Option<CellResult>> {
+    let t = std::time::Instant::now();
+    let Some(input) = CellInput::build(arr, pool, loops, c) else {
+        return Ok(None);
+    };
+    let build = t.elapsed().as_secs_f64();
+    let mut r = run_cell(input, branching, check_only)?;
+    r.timing.input += build;
+    Ok(Some(r))
+}
 
 /// Reconstruct with the Delaunay pruning method. Fills `report` (phases, counts, warnings).
 pub fn reconstruct(
@@ -65,6 +84,8 @@ pub fn reconstruct(
     let t0 = std::time::Instant::now();
     let mut rounds = 0;
     let mut conforming = false;
+    let mut timing = CellTiming::default();
+    let mut cell_runs = 0u64;
     while rounds < MAX_ROUNDS {
         rounds += 1;
         let loops = conform::face_loops(arr, &splits);
@@ -91,10 +112,7 @@ pub fn reconstruct(
         let out: Vec<(usize, Result<Option<CellResult>>)> = todo
             .par_iter()
             .map(|&c| {
-                let r = match CellInput::build(arr, &pool, &loops, c as u32) {
-                    Some(input) => run_cell(input, branching, true).map(Some),
-                    None => Ok(None),
-                };
+                let r = run_timed(arr, &pool, &loops, c as u32, branching, true);
                 if let Some(pb) = &progress {
                     pb.inc(1);
                 }
@@ -105,7 +123,9 @@ pub fn reconstruct(
         for (c, r) in out {
             let r = r?;
             dirty[c] = false;
+            cell_runs += 1;
             if let Some(r) = &r {
+                timing.add(&r.timing);
                 missing.extend(r.missing.iter().copied());
             }
             results[c] = r;
@@ -132,15 +152,17 @@ pub fn reconstruct(
         let out: Vec<(usize, Result<Option<CellResult>>)> = redo
             .par_iter()
             .map(|&c| {
-                let r = match CellInput::build(arr, &pool, &loops, c as u32) {
-                    Some(input) => run_cell(input, branching, false).map(Some),
-                    None => Ok(None),
-                };
+                let r = run_timed(arr, &pool, &loops, c as u32, branching, false);
                 (c, r)
             })
             .collect();
         for (c, r) in out {
-            results[c] = r?;
+            let r = r?;
+            cell_runs += 1;
+            if let Some(r) = &r {
+                timing.add(&r.timing);
+            }
+            results[c] = r;
         }
     }
     if let Some(pb) = &progress {
@@ -151,6 +173,12 @@ pub fn reconstruct(
         seconds: t0.elapsed().as_secs_f64(),
     });
     report.count("conformity_rounds", rounds as u64);
+    report.count("cell_runs", cell_runs);
+    for (name, secs) in timing.entries() {
+        report
+            .values
+            .insert(format!("cell_cpu_seconds.{name}"), secs);
+    }
     report.count("steiner_points", splits.mid.len() as u64);
     report.count("points", (pool.positions.len()) as u64);
     for r in results.iter().flatten() {
