@@ -91,17 +91,50 @@ fn lap(t: &mut std::time::Instant) -> f64 {
 
 /// Triangulate `points` with our exact kernel; finite tets in input vertex ids, positively oriented
 /// in `robust`'s convention (`orient3d > 0`, as `TetMesh` wants; the kernel hands out the opposite
-/// orientation, positive volume, so two vertices are swapped). Exact duplicates are merged by the
-/// kernel into the smallest index.
+/// orientation, positive volume, so two vertices are swapped), in canonical order (see
+/// [`finite_tets`]). Exact duplicates are merged by the kernel into the smallest index.
 pub fn delaunay_tets(points: &[[f64; 3]]) -> Result<Vec<[u32; 4]>> {
-    let dt = crate::delaunay::Delaunay::try_new(points)?;
-    Ok(dt
+    Ok(finite_tets(&crate::delaunay::Delaunay::try_new(points)?))
+}
+
+/// The finite tets of `dt` as [`delaunay_tets`] gives them. The kernel's perturbation makes the
+/// triangulation unique for a point set, but its tet slots depend on the insertion history; so each
+/// tet is rotated (by an even permutation, keeping its orientation) to start with its smallest
+/// vertex, then its smallest other vertex, and the list is sorted. A triangulation built at once or
+/// grown by later insertions then gives the same list.
+pub fn finite_tets(dt: &crate::delaunay::Delaunay) -> Vec<[u32; 4]> {
+    let mut tets: Vec<[u32; 4]> = dt
         .tets()
         .map(|t| {
             let v = dt.tet_vertices(t);
-            [v[0], v[1], v[3], v[2]]
+            canonical_tet([v[0], v[1], v[3], v[2]])
         })
-        .collect())
+        .collect();
+    tets.sort_unstable();
+    tets
+}
+
+/// `t` rotated by an even permutation so that t[0] is its smallest vertex and t[1] the smallest of
+/// the other three.
+fn canonical_tet(t: [u32; 4]) -> [u32; 4] {
+    let [a, b, c, d] = t;
+    let m = if a <= b.min(c).min(d) {
+        t
+    } else if b <= c.min(d) {
+        [b, a, d, c]
+    } else if c <= d {
+        [c, d, a, b]
+    } else {
+        [d, c, b, a]
+    };
+    let [a, b, c, d] = m;
+    if b <= c.min(d) {
+        m
+    } else if c <= d {
+        [a, c, d, b]
+    } else {
+        [a, d, b, c]
+    }
 }
 
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
@@ -116,7 +149,8 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
     }
     let mut timing = CellTiming::default();
     let mut clock = std::time::Instant::now();
-    let mut tets = delaunay_tets(&input.points)?;
+    let mut dt = crate::delaunay::Delaunay::try_new(&input.points)?;
+    let mut tets = finite_tets(&dt);
     timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
     if branching {
@@ -144,7 +178,8 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
                 input.add_local_vertex(s, q, p3);
                 n_branch += 1;
             }
-            tets = delaunay_tets(&input.points)?;
+            dt = crate::delaunay::Delaunay::try_new(&input.points)?;
+            tets = finite_tets(&dt);
             timing.delaunay += lap(&mut clock);
         }
     }
