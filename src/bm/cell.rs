@@ -174,11 +174,19 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
             if samples.is_empty() {
                 break;
             }
+            // inserted into the triangulation we have (same result as re-triangulating everything)
             for (s, q, p3) in samples {
-                input.add_local_vertex(s, q, p3);
+                if !p3.iter().all(|c| c.is_finite()) {
+                    return Err(crate::Error::input(
+                        format!("cell {} branching sample", input.cell),
+                        "non-finite coordinate",
+                    ));
+                }
+                let l = input.add_local_vertex(s, q, p3);
+                let id = dt.insert(p3);
+                debug_assert!(id == l || id < l);
                 n_branch += 1;
             }
-            dt = crate::delaunay::Delaunay::try_new(&input.points)?;
             tets = finite_tets(&dt);
             timing.delaunay += lap(&mut clock);
         }
