@@ -1,7 +1,7 @@
 //! One cell, end to end: Delaunay of its section vertices (plus branching samples), conformity check,
 //! classification, pruning, and what the gluing needs (kept tets, non-planar boundary, per face the
 //! section triangles seen from this cell and whether the cell attaches to them).
-use super::cell_input::{CellInput, Mask};
+use super::cell_input::{CellInput, IdMap, IdSet, Mask};
 use super::classify::{classify, tet_type, Classifier, TetType};
 
 /// Rounds of branching sampling (sample, re-triangulate) per cell.
@@ -9,7 +9,6 @@ const BRANCHING_ROUNDS: usize = 1;
 use super::complex::{outward_face, Complex, NONE};
 use super::prune::{prune, PruneCounts};
 use crate::error::Result;
-use std::collections::{HashMap, HashSet};
 
 /// The section triangles of one face as this cell's triangulation has them.
 #[derive(Clone, Debug, Default)]
@@ -197,7 +196,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
 
     // Section triangles per slot: grounded faces of non-flat tets.
     let n_slots = input.slots.len();
-    let mut top: Vec<HashMap<[u32; 3], ([u32; 3], u32)>> = vec![HashMap::new(); n_slots];
+    let mut top: Vec<IdMap<[u32; 3], ([u32; 3], u32)>> = vec![IdMap::default(); n_slots];
     for (t, tv) in cx.tets.iter().enumerate() {
         // flat: one slot holds all four vertices (classify's `TetType::Flat`)
         if tv
@@ -226,7 +225,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
     // Conformity: every contour edge is an edge of a section triangle.
     let mut missing = Vec::new();
     for (s, slot) in input.slots.iter().enumerate() {
-        let mut edges: HashSet<(u32, u32)> = HashSet::new();
+        let mut edges: IdSet<(u32, u32)> = IdSet::default();
         for k in top[s].keys() {
             edges.insert((k[0], k[1]));
             edges.insert((k[0], k[2]));
