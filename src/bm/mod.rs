@@ -37,6 +37,27 @@ use rayon::prelude::*;
 /// Most global conformity rounds before giving up (warned).
 const MAX_ROUNDS: usize = 12;
 
+/// `cells` ordered by decreasing number of section vertices on their faces, so that the threads,
+/// taking cells in this order (`par_bridge`), start the longest ones first and finish together.
+fn biggest_first(
+    arr: &Arrangement,
+    loops: &[Vec<Vec<u32>>],
+    cells: impl Iterator<Item = usize>,
+) -> Vec<usize> {
+    let mut w: Vec<(usize, usize)> = cells
+        .map(|c| {
+            let n = arr.cells[c]
+                .faces
+                .iter()
+                .map(|cf| loops[cf.face as usize].iter().map(Vec::len).sum::<usize>())
+                .sum();
+            (n, c)
+        })
+        .collect();
+    w.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+    w.into_iter().map(|(_, c)| c).collect()
+}
+
 /// Gather cell `c`'s input and run it, the input gathering timed into the result.
 fn run_timed(
     arr: &Arrangement,
@@ -103,14 +124,15 @@ pub fn reconstruct(
                 }
             }
         }
-        let todo: Vec<usize> = (0..n_cells).filter(|&c| dirty[c]).collect();
+        let todo = biggest_first(arr, &loops, (0..n_cells).filter(|&c| dirty[c]));
         if let Some(pb) = &progress {
             pb.set_message(format!("round {rounds}"));
             pb.set_length(todo.len() as u64);
             pb.set_position(0);
         }
-        let out: Vec<(usize, Result<Option<CellResult>>)> = todo
-            .par_iter()
+        let mut out: Vec<(usize, Result<Option<CellResult>>)> = todo
+            .iter()
+            .par_bridge()
             .map(|&c| {
                 let r = run_timed(arr, &pool, &loops, c as u32, branching, true);
                 if let Some(pb) = &progress {
@@ -119,6 +141,7 @@ pub fn reconstruct(
                 (c, r)
             })
             .collect();
+        out.sort_unstable_by_key(|o| o.0);
         let mut missing = Vec::new();
         for (c, r) in out {
             let r = r?;
@@ -146,16 +169,20 @@ pub fn reconstruct(
             "conformity splitting stopped after {MAX_ROUNDS} rounds: some contour edges are not Delaunay edges"
         ));
         let loops = conform::face_loops(arr, &splits);
-        let redo: Vec<usize> = (0..n_cells)
-            .filter(|&c| results[c].as_ref().is_some_and(|r| !r.missing.is_empty()))
-            .collect();
-        let out: Vec<(usize, Result<Option<CellResult>>)> = redo
-            .par_iter()
+        let redo = biggest_first(
+            arr,
+            &loops,
+            (0..n_cells).filter(|&c| results[c].as_ref().is_some_and(|r| !r.missing.is_empty())),
+        );
+        let mut out: Vec<(usize, Result<Option<CellResult>>)> = redo
+            .iter()
+            .par_bridge()
             .map(|&c| {
                 let r = run_timed(arr, &pool, &loops, c as u32, branching, false);
                 (c, r)
             })
             .collect();
+        out.sort_unstable_by_key(|o| o.0);
         for (c, r) in out {
             let r = r?;
             cell_runs += 1;
