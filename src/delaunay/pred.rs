@@ -18,6 +18,10 @@ pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
     if det > bound || -det > bound {
         return -det;
     }
+    if bound == 0.0 {
+        // the points share one coordinate exactly (a section on an axis plane): coplanar
+        return 0.0;
+    }
     -gp::orient3d(a, b, c, d)
 }
 
@@ -28,6 +32,10 @@ pub fn insphere(a: P, b: P, c: P, d: P, e: P) -> f64 {
     let (det, bound) = insphere_filter(a, b, c, d, e);
     if det > bound || -det > bound {
         return -det;
+    }
+    if bound == 0.0 {
+        // the points share one coordinate exactly: every 3×3 minor, hence the determinant, is 0
+        return 0.0;
     }
     if let Some(det) = insphere_dd(a, b, c, d, e) {
         return -det;
@@ -183,6 +191,10 @@ fn orient3d_filter(a: P, b: P, c: P, d: P) -> (f64, f64) {
     let mz = adz.abs().max(bdz.abs()).max(cdz.abs());
     let lo = mx.min(my).min(mz);
     let hi = mx.max(my).max(mz);
+    if lo == 0.0 && !det.is_nan() {
+        // one coordinate equal in all four points: the determinant is exactly 0 (bound 0 says so)
+        return (0.0, 0.0);
+    }
     if !in_safe_range(lo, hi) {
         return (det, f64::INFINITY);
     }
@@ -215,6 +227,10 @@ fn insphere_filter(a: P, b: P, c: P, d: P, e: P) -> (f64, f64) {
     let mz = aez.abs().max(bez.abs()).max(cez.abs()).max(dez.abs());
     let lo = mx.min(my).min(mz);
     let hi = mx.max(my).max(mz);
+    if lo == 0.0 && !det.is_nan() {
+        // one coordinate equal in all five points: the determinant is exactly 0 (bound 0 says so)
+        return (0.0, 0.0);
+    }
     if !in_safe_range(lo, hi) {
         return (det, f64::INFINITY);
     }
