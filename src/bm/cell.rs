@@ -136,6 +136,9 @@ fn canonical_tet(t: [u32; 4]) -> [u32; 4] {
     }
 }
 
+/// Per slot: sorted vertex triple → (the triangle oriented outward from its tet, the tet).
+type SectionTriangles = IdMap<[u32; 3], ([u32; 3], u32)>;
+
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
 pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Result<CellResult> {
     let all = input.mask.iter().fold(!0u128, |a, &m| a & m);
@@ -183,7 +186,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
                 }
                 let l = input.add_local_vertex(s, q, p3);
                 let id = dt.insert(p3);
-                debug_assert!(id == l || id < l);
+                debug_assert!(id <= l);
                 n_branch += 1;
             }
             tets = finite_tets(&dt);
@@ -196,7 +199,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
 
     // Section triangles per slot: grounded faces of non-flat tets.
     let n_slots = input.slots.len();
-    let mut top: Vec<IdMap<[u32; 3], ([u32; 3], u32)>> = vec![IdMap::default(); n_slots];
+    let mut top: Vec<SectionTriangles> = vec![IdMap::default(); n_slots];
     for (t, tv) in cx.tets.iter().enumerate() {
         // flat: one slot holds all four vertices (classify's `TetType::Flat`)
         if tv
