@@ -329,7 +329,8 @@ impl SiteIndex {
     fn lower_bound(&self, d: f64, hr: (f64, f64)) -> f64 {
         let d = (d - self.slack).max(0.0);
         let h = d.clamp(hr.0, hr.1.max(hr.0));
-        if !(h > 0.0) {
+        // h is never NaN here (finite slack and heights); h <= 0 only when d is 0
+        if h <= 0.0 {
             return 0.0;
         }
         (0.5 * h + d * d / (2.0 * h)) * (1.0 - 1e-9)
