@@ -152,15 +152,19 @@ fn grid_samples(
             dist2(a3, site.1) / (2.0 * hb)
         }
     };
+    let index = SiteIndex::new(&plane, &sites);
+    // Same answer as a scan of all sites in order (smallest r, first site on ties), visiting only
+    // the sites whose in-plane distance can still beat the best r found (r_b(a) >= that distance).
     let argmin = |q: [f64; 2]| -> usize {
         let a3 = plane.to_3d(q);
         let mut best = (f64::INFINITY, 0);
-        for (k, site) in sites.iter().enumerate() {
-            let v = r(a3, site);
-            if v < best.0 {
+        index.visit(q, |k| {
+            let v = r(a3, &sites[k]);
+            if v < best.0 || (v == best.0 && v < f64::INFINITY && k < best.1) {
                 best = (v, k);
             }
-        }
+            best.0
+        });
         best.1
     };
     let w = nx + 1;
@@ -250,4 +254,150 @@ fn grid_samples(
         }
     }
     out
+}
+
+/// The sites bucketed by their projection on the face's plane, for the minimiser search of r_b:
+/// since |a − b|² = h_b² + d² (d the in-plane distance), r_b(a) = h_b / 2 + d² / (2 h_b), at least
+/// `lower_bound(D, h range)` for a bucket at distance D whose sites' heights lie in that range; a
+/// bucket whose bound exceeds the best r found so far cannot hold a better site.
+struct SiteIndex {
+    lo: [f64; 2],
+    cell: f64,
+    nx: i64,
+    ny: i64,
+    /// Site indices per bucket (row-major), ascending.
+    buckets: Vec<Vec<u32>>,
+    /// Per bucket the range of the sites' heights above the plane, widened by `slack`.
+    heights: Vec<(f64, f64)>,
+    /// Range of all heights, widened by `slack`.
+    all_heights: (f64, f64),
+    /// Absolute slack on distances for rounding (coordinates' magnitude × 1e-9).
+    slack: f64,
+}
+
+impl SiteIndex {
+    fn new(plane: &crate::sections::Plane, sites: &[(u32, [f64; 3], f64)]) -> SiteIndex {
+        let uv: Vec<[f64; 2]> = sites.iter().map(|s| plane.to_2d(s.1)).collect();
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let mut scale: f64 = 1.0;
+        for (q, s) in uv.iter().zip(sites) {
+            for k in 0..2 {
+                lo[k] = lo[k].min(q[k]);
+                hi[k] = hi[k].max(q[k]);
+            }
+            scale =
+                s.1.iter()
+                    .chain(plane.origin.iter())
+                    .fold(scale, |m, c| m.max(c.abs()));
+        }
+        let ext = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let per_axis = ((sites.len() as f64 / 2.0).sqrt().ceil() as i64).clamp(1, 256);
+        let cell = if ext > 0.0 && ext.is_finite() {
+            ext / per_axis as f64
+        } else {
+            1.0
+        };
+        let nx = (((hi[0] - lo[0]) / cell) as i64 + 1).clamp(1, 257);
+        let ny = (((hi[1] - lo[1]) / cell) as i64 + 1).clamp(1, 257);
+        let slack = 1e-9 * scale;
+        let mut buckets = vec![Vec::new(); (nx * ny) as usize];
+        let mut heights = vec![(f64::INFINITY, f64::NEG_INFINITY); (nx * ny) as usize];
+        let mut all_heights = (f64::INFINITY, f64::NEG_INFINITY);
+        for (k, q) in uv.iter().enumerate() {
+            let ix = (((q[0] - lo[0]) / cell) as i64).clamp(0, nx - 1);
+            let iy = (((q[1] - lo[1]) / cell) as i64).clamp(0, ny - 1);
+            let b = (iy * nx + ix) as usize;
+            buckets[b].push(k as u32);
+            let h = sites[k].2;
+            heights[b] = (heights[b].0.min(h - slack), heights[b].1.max(h + slack));
+            all_heights = (all_heights.0.min(h - slack), all_heights.1.max(h + slack));
+        }
+        SiteIndex {
+            lo,
+            cell,
+            nx,
+            ny,
+            buckets,
+            heights,
+            all_heights,
+            slack,
+        }
+    }
+
+    /// Least value of h / 2 + d² / (2 h) over h in `hr` (h > 0), d ≥ `d` (shrunk by the slack),
+    /// scaled down by 1e-9 for rounding.
+    fn lower_bound(&self, d: f64, hr: (f64, f64)) -> f64 {
+        let d = (d - self.slack).max(0.0);
+        let h = d.clamp(hr.0, hr.1.max(hr.0));
+        // h is never NaN here (finite slack and heights); h <= 0 only when d is 0
+        if h <= 0.0 {
+            return 0.0;
+        }
+        (0.5 * h + d * d / (2.0 * h)) * (1.0 - 1e-9)
+    }
+
+    /// Call `f(site)` for every site that may have r below the current best, ring by ring of buckets
+    /// around `q`; `f` returns the best r so far.
+    fn visit(&self, q: [f64; 2], mut f: impl FnMut(usize) -> f64) {
+        let fx = ((q[0] - self.lo[0]) / self.cell).floor();
+        let fy = ((q[1] - self.lo[1]) / self.cell).floor();
+        // far outside the buckets (or not finite): plain scan
+        if !(fx.abs() < 1e6 && fy.abs() < 1e6) {
+            for k in self.buckets.iter().flatten() {
+                f(*k as usize);
+            }
+            return;
+        }
+        let (cx, cy) = (fx as i64, fy as i64);
+        // the farthest bucket is this many rings away
+        let last = [cx, cx - (self.nx - 1), cy, cy - (self.ny - 1)]
+            .iter()
+            .map(|d| d.abs())
+            .max()
+            .unwrap_or(0);
+        let mut best = f64::INFINITY;
+        let mut bucket = |x: i64, y: i64, best: &mut f64| {
+            if x >= 0 && x < self.nx && y >= 0 && y < self.ny {
+                let b = (y * self.nx + x) as usize;
+                if self.buckets[b].is_empty() {
+                    return;
+                }
+                // distance from q to the bucket's square
+                let (bx, by) = (
+                    self.lo[0] + x as f64 * self.cell,
+                    self.lo[1] + y as f64 * self.cell,
+                );
+                let dx = (bx - q[0]).max(q[0] - bx - self.cell).max(0.0);
+                let dy = (by - q[1]).max(q[1] - by - self.cell).max(0.0);
+                if self.lower_bound((dx * dx + dy * dy).sqrt(), self.heights[b]) > *best {
+                    return;
+                }
+                for &k in &self.buckets[b] {
+                    *best = f(k as usize);
+                }
+            }
+        };
+        for ring in 0..=last {
+            // every point of a bucket in this ring is at least (ring - 1) buckets away from q
+            let reach = (ring - 1).max(0) as f64 * self.cell;
+            if self.lower_bound(reach, self.all_heights) > best {
+                break;
+            }
+            if ring == 0 {
+                bucket(cx, cy, &mut best);
+                continue;
+            }
+            let (x0, x1) = ((cx - ring).max(0), (cx + ring).min(self.nx - 1));
+            for y in [cy - ring, cy + ring] {
+                for x in x0..=x1 {
+                    bucket(x, y, &mut best);
+                }
+            }
+            let (y0, y1) = ((cy - ring + 1).max(0), (cy + ring - 1).min(self.ny - 1));
+            for y in y0..=y1 {
+                bucket(cx - ring, y, &mut best);
+                bucket(cx + ring, y, &mut best);
+            }
+        }
+    }
 }

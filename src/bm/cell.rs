@@ -1,7 +1,7 @@
 //! One cell, end to end: Delaunay of its section vertices (plus branching samples), conformity check,
 //! classification, pruning, and what the gluing needs (kept tets, non-planar boundary, per face the
 //! section triangles seen from this cell and whether the cell attaches to them).
-use super::cell_input::CellInput;
+use super::cell_input::{CellInput, IdMap, IdSet, Mask};
 use super::classify::{classify, tet_type, Classifier, TetType};
 
 /// Rounds of branching sampling (sample, re-triangulate) per cell.
@@ -9,7 +9,6 @@ const BRANCHING_ROUNDS: usize = 1;
 use super::complex::{outward_face, Complex, NONE};
 use super::prune::{prune, PruneCounts};
 use crate::error::Result;
-use std::collections::{HashMap, HashSet};
 
 /// The section triangles of one face as this cell's triangulation has them.
 #[derive(Clone, Debug, Default)]
@@ -33,22 +32,112 @@ pub struct CellResult {
     pub tets: u64,
     pub flat_tets: u64,
     pub branching_samples: u64,
+    /// CPU seconds spent in this run's sub-phases.
+    pub timing: CellTiming,
+}
+
+/// CPU seconds per sub-phase of one cell run (summed over cells and rounds in the report).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CellTiming {
+    /// Gathering the cell's points, slots and locators (`CellInput::build`).
+    pub input: f64,
+    /// Delaunay triangulations (kernel) and their neighbour complexes.
+    pub delaunay: f64,
+    /// Branching-diagram samples (without the re-triangulation).
+    pub branching: f64,
+    /// Section triangles per face and the contour-edge conformity check.
+    pub conformity: f64,
+    /// Simplex classification by plane tags.
+    pub classify: f64,
+    /// Pruning steps 1–3.
+    pub prune: f64,
+    /// Kept tets, non-planar boundary and per-face section triangles for the gluing.
+    pub output: f64,
+}
+
+impl CellTiming {
+    pub fn add(&mut self, o: &CellTiming) {
+        self.input += o.input;
+        self.delaunay += o.delaunay;
+        self.branching += o.branching;
+        self.conformity += o.conformity;
+        self.classify += o.classify;
+        self.prune += o.prune;
+        self.output += o.output;
+    }
+
+    /// (name, seconds) pairs in pipeline order.
+    pub fn entries(&self) -> [(&'static str, f64); 7] {
+        [
+            ("input", self.input),
+            ("delaunay", self.delaunay),
+            ("branching", self.branching),
+            ("conformity", self.conformity),
+            ("classify", self.classify),
+            ("prune", self.prune),
+            ("output", self.output),
+        ]
+    }
+}
+
+/// Seconds since `t`, restarting `t`.
+fn lap(t: &mut std::time::Instant) -> f64 {
+    let now = std::time::Instant::now();
+    let d = now.duration_since(*t).as_secs_f64();
+    *t = now;
+    d
 }
 
 /// Triangulate `points` with our exact kernel; finite tets in input vertex ids, positively oriented
 /// in `robust`'s convention (`orient3d > 0`, as `TetMesh` wants; the kernel hands out the opposite
-/// orientation, positive volume, so two vertices are swapped). Exact duplicates are merged by the
-/// kernel into the smallest index.
+/// orientation, positive volume, so two vertices are swapped), in canonical order (see
+/// [`finite_tets`]). Exact duplicates are merged by the kernel into the smallest index.
 pub fn delaunay_tets(points: &[[f64; 3]]) -> Result<Vec<[u32; 4]>> {
-    let dt = crate::delaunay::Delaunay::try_new(points)?;
-    Ok(dt
+    Ok(finite_tets(&crate::delaunay::Delaunay::try_new(points)?))
+}
+
+/// The finite tets of `dt` as [`delaunay_tets`] gives them. The kernel's perturbation makes the
+/// triangulation unique for a point set, but its tet slots depend on the insertion history; so each
+/// tet is rotated (by an even permutation, keeping its orientation) to start with its smallest
+/// vertex, then its smallest other vertex, and the list is sorted. A triangulation built at once or
+/// grown by later insertions then gives the same list.
+pub fn finite_tets(dt: &crate::delaunay::Delaunay) -> Vec<[u32; 4]> {
+    let mut tets: Vec<[u32; 4]> = dt
         .tets()
         .map(|t| {
             let v = dt.tet_vertices(t);
-            [v[0], v[1], v[3], v[2]]
+            canonical_tet([v[0], v[1], v[3], v[2]])
         })
-        .collect())
+        .collect();
+    tets.sort_unstable();
+    tets
 }
+
+/// `t` rotated by an even permutation so that t[0] is its smallest vertex and t[1] the smallest of
+/// the other three.
+fn canonical_tet(t: [u32; 4]) -> [u32; 4] {
+    let [a, b, c, d] = t;
+    let m = if a <= b.min(c).min(d) {
+        t
+    } else if b <= c.min(d) {
+        [b, a, d, c]
+    } else if c <= d {
+        [c, d, a, b]
+    } else {
+        [d, c, b, a]
+    };
+    let [a, b, c, d] = m;
+    if b <= c.min(d) {
+        m
+    } else if c <= d {
+        [a, c, d, b]
+    } else {
+        [a, d, b, c]
+    }
+}
+
+/// Per slot: sorted vertex triple → (the triangle oriented outward from its tet, the tet).
+type SectionTriangles = IdMap<[u32; 3], ([u32; 3], u32)>;
 
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
 pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Result<CellResult> {
@@ -60,7 +149,11 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
             ..Default::default()
         });
     }
-    let mut tets = delaunay_tets(&input.points)?;
+    let mut timing = CellTiming::default();
+    let mut clock = std::time::Instant::now();
+    let mut dt = crate::delaunay::Delaunay::try_new(&input.points)?;
+    let mut tets = finite_tets(&dt);
+    timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
     if branching {
         for _round in 0..BRANCHING_ROUNDS {
@@ -79,25 +172,41 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
                 })
                 .collect();
             let samples = super::branching::samples(&input, &cx, &ty);
+            timing.branching += lap(&mut clock);
             if samples.is_empty() {
                 break;
             }
+            // inserted into the triangulation we have (same result as re-triangulating everything)
             for (s, q, p3) in samples {
-                input.add_local_vertex(s, q, p3);
+                if !p3.iter().all(|c| c.is_finite()) {
+                    return Err(crate::Error::input(
+                        format!("cell {} branching sample", input.cell),
+                        "non-finite coordinate",
+                    ));
+                }
+                let l = input.add_local_vertex(s, q, p3);
+                let id = dt.insert(p3);
+                debug_assert!(id <= l);
                 n_branch += 1;
             }
-            tets = delaunay_tets(&input.points)?;
+            tets = finite_tets(&dt);
+            timing.delaunay += lap(&mut clock);
         }
     }
     let cx = Complex::new(input.points.len(), tets);
-    let cl = classify(&input, &cx);
+    timing.delaunay += lap(&mut clock);
     let classifier = Classifier::new(&input);
 
     // Section triangles per slot: grounded faces of non-flat tets.
     let n_slots = input.slots.len();
-    let mut top: Vec<HashMap<[u32; 3], ([u32; 3], u32)>> = vec![HashMap::new(); n_slots];
+    let mut top: Vec<SectionTriangles> = vec![IdMap::default(); n_slots];
     for (t, tv) in cx.tets.iter().enumerate() {
-        if cl.ty[t] == TetType::Flat {
+        // flat: one slot holds all four vertices (classify's `TetType::Flat`)
+        if tv
+            .iter()
+            .fold(!0 as Mask, |m, &v| m & input.mask[v as usize])
+            != 0
+        {
             continue;
         }
         for i in 0..4 {
@@ -119,7 +228,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
     // Conformity: every contour edge is an edge of a section triangle.
     let mut missing = Vec::new();
     for (s, slot) in input.slots.iter().enumerate() {
-        let mut edges: HashSet<(u32, u32)> = HashSet::new();
+        let mut edges: IdSet<(u32, u32)> = IdSet::default();
         for k in top[s].keys() {
             edges.insert((k[0], k[1]));
             edges.insert((k[0], k[2]));
@@ -133,16 +242,21 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
     }
     missing.sort_unstable();
     missing.dedup();
-    let flat_tets = cl.ty.iter().filter(|&&t| t == TetType::Flat).count() as u64;
+    timing.conformity += lap(&mut clock);
     if check_only && !missing.is_empty() {
         return Ok(CellResult {
             input: Some(input),
             missing,
             tets: cx.len() as u64,
+            timing,
             ..Default::default()
         });
     }
+    let cl = classify(&input, &cx);
+    let flat_tets = cl.ty.iter().filter(|&&t| t == TetType::Flat).count() as u64;
+    timing.classify += lap(&mut clock);
     let (alive, counts) = prune(&cx, &cl);
+    timing.prune += lap(&mut clock);
     if std::env::var("BM_DEBUG").is_ok() {
         let mut h: std::collections::BTreeMap<String, (u32, u32, u32)> = Default::default();
         for t in 0..cx.len() {
@@ -192,6 +306,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
             }
         })
         .collect();
+    timing.output += lap(&mut clock);
     Ok(CellResult {
         input: Some(input),
         missing,
@@ -202,5 +317,6 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
         tets: cx.len() as u64,
         flat_tets,
         branching_samples: n_branch,
+        timing,
     })
 }

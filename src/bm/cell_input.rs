@@ -9,6 +9,63 @@ use crate::geom::predicates::orient2d;
 use std::collections::{HashMap, HashSet};
 
 pub type Mask = u128;
+
+/// Multiplicative hasher for the cells' id-keyed maps (vertex ids, edges, faces): much cheaper than
+/// SipHash, and no result depends on these maps' iteration order.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct IdHash;
+
+impl std::hash::BuildHasher for IdHash {
+    type Hasher = IdHasher;
+    fn build_hasher(&self) -> IdHasher {
+        IdHasher(0)
+    }
+}
+
+pub struct IdHasher(u64);
+
+impl IdHasher {
+    #[inline(always)]
+    fn add(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+impl std::hash::Hasher for IdHasher {
+    #[inline]
+    fn finish(&self) -> u64 {
+        // fold the well-mixed high bits into the low ones the table indexes with
+        self.0 ^ (self.0 >> 29)
+    }
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        let mut c = bytes.chunks_exact(8);
+        for ch in &mut c {
+            self.add(u64::from_le_bytes(ch.try_into().expect("8 bytes")));
+        }
+        let r = c.remainder();
+        if !r.is_empty() {
+            let mut buf = [0u8; 8];
+            buf[..r.len()].copy_from_slice(r);
+            self.add(u64::from_le_bytes(buf));
+        }
+    }
+    #[inline]
+    fn write_u32(&mut self, i: u32) {
+        self.add(i as u64);
+    }
+    #[inline]
+    fn write_u64(&mut self, i: u64) {
+        self.add(i);
+    }
+    #[inline]
+    fn write_usize(&mut self, i: usize) {
+        self.add(i as u64);
+    }
+}
+
+pub type IdMap<K, V> = HashMap<K, V, IdHash>;
+pub type IdSet<K> = HashSet<K, IdHash>;
 pub const MAX_SLOTS: usize = 128;
 
 /// (u,v) of global vertex `v` in plane `p`, if `v` carries tag `p`.
@@ -119,7 +176,7 @@ pub struct Slot {
     pub loops: Vec<Vec<u32>>,
     /// (u,v) in this plane per local vertex (meaningful for vertices carrying the slot's bit).
     pub uv: Vec<[f64; 2]>,
-    pub contour_edges: HashSet<(u32, u32)>,
+    pub contour_edges: IdSet<(u32, u32)>,
     pub locator: SectionLocator,
     /// The cell on the other side of this face has sections on at least two faces, so it may
     /// attach here; false when the other side is empty (the section is a cap of the solid).
@@ -163,7 +220,7 @@ impl CellInput {
             return None;
         }
         slot_faces.truncate(MAX_SLOTS);
-        let mut local: HashMap<u32, u32> = HashMap::new();
+        let mut local: IdMap<u32, u32> = IdMap::default();
         let mut global = Vec::new();
         for cf in &slot_faces {
             for l in &face_loops[cf.face as usize] {
@@ -175,7 +232,7 @@ impl CellInput {
                 }
             }
         }
-        let plane_slot: HashMap<PlaneId, usize> = slot_faces
+        let plane_slot: IdMap<PlaneId, usize> = slot_faces
             .iter()
             .enumerate()
             .map(|(s, cf)| (arr.faces[cf.face as usize].plane, s))
@@ -191,7 +248,7 @@ impl CellInput {
                 outward_is_plane_normal: cf.outward_is_plane_normal,
                 loops: Vec::new(),
                 uv: vec![[f64::NAN; 2]; n],
-                contour_edges: HashSet::new(),
+                contour_edges: IdSet::default(),
                 locator: SectionLocator::default(),
                 beyond_may_attach: {
                     let face = &arr.faces[cf.face as usize];

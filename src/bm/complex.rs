@@ -1,7 +1,7 @@
 //! A plain tetrahedral complex in local vertex ids: tetrahedra, face neighbours and vertex stars.
 //! Built from any list of positively oriented tetrahedra (the Delaunay kernel's finite tets, or a
 //! hand-built complex in tests), so the pruning code does not depend on the kernel's internals.
-use std::collections::HashMap;
+use super::cell_input::IdMap;
 
 pub const NONE: u32 = u32::MAX;
 
@@ -35,7 +35,8 @@ fn key3(mut f: [u32; 3]) -> [u32; 3] {
 impl Complex {
     pub fn new(n_vertices: usize, tets: Vec<[u32; 4]>) -> Complex {
         let mut nbr = vec![[NONE; 4]; tets.len()];
-        let mut open: HashMap<[u32; 3], (u32, u8)> = HashMap::with_capacity(tets.len() * 2);
+        let mut open: IdMap<[u32; 3], (u32, u8)> =
+            IdMap::with_capacity_and_hasher(tets.len() * 2, Default::default());
         for (ti, t) in tets.iter().enumerate() {
             for i in 0..4 {
                 let k = key3(outward_face(t, i));

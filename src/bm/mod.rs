@@ -30,12 +30,52 @@ use crate::arrangement::Arrangement;
 use crate::error::Result;
 use crate::reconstruct::{Options, Report, Solid};
 use crate::sections::Sections;
-use cell::{run_cell, CellResult};
+use cell::{run_cell, CellResult, CellTiming};
 use cell_input::CellInput;
 use rayon::prelude::*;
 
 /// Most global conformity rounds before giving up (warned).
 const MAX_ROUNDS: usize = 12;
+
+/// `cells` ordered by decreasing number of section vertices on their faces, so that the threads,
+/// taking cells in this order (`par_bridge`), start the longest ones first and finish together.
+fn biggest_first(
+    arr: &Arrangement,
+    loops: &[Vec<Vec<u32>>],
+    cells: impl Iterator<Item = usize>,
+) -> Vec<usize> {
+    let mut w: Vec<(usize, usize)> = cells
+        .map(|c| {
+            let n = arr.cells[c]
+                .faces
+                .iter()
+                .map(|cf| loops[cf.face as usize].iter().map(Vec::len).sum::<usize>())
+                .sum();
+            (n, c)
+        })
+        .collect();
+    w.sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+    w.into_iter().map(|(_, c)| c).collect()
+}
+
+/// Gather cell `c`'s input and run it, the input gathering timed into the result.
+fn run_timed(
+    arr: &Arrangement,
+    pool: &crate::arrangement::VertexPool,
+    loops: &[Vec<Vec<u32>>],
+    c: u32,
+    branching: bool,
+    check_only: bool,
+) -> Result<Option<CellResult>> {
+    let t = std::time::Instant::now();
+    let Some(input) = CellInput::build(arr, pool, loops, c) else {
+        return Ok(None);
+    };
+    let build = t.elapsed().as_secs_f64();
+    let mut r = run_cell(input, branching, check_only)?;
+    r.timing.input += build;
+    Ok(Some(r))
+}
 
 /// Reconstruct with the Delaunay pruning method. Fills `report` (phases, counts, warnings).
 pub fn reconstruct(
@@ -65,6 +105,8 @@ pub fn reconstruct(
     let t0 = std::time::Instant::now();
     let mut rounds = 0;
     let mut conforming = false;
+    let mut timing = CellTiming::default();
+    let mut cell_runs = 0u64;
     while rounds < MAX_ROUNDS {
         rounds += 1;
         let loops = conform::face_loops(arr, &splits);
@@ -82,30 +124,31 @@ pub fn reconstruct(
                 }
             }
         }
-        let todo: Vec<usize> = (0..n_cells).filter(|&c| dirty[c]).collect();
+        let todo = biggest_first(arr, &loops, (0..n_cells).filter(|&c| dirty[c]));
         if let Some(pb) = &progress {
             pb.set_message(format!("round {rounds}"));
             pb.set_length(todo.len() as u64);
             pb.set_position(0);
         }
-        let out: Vec<(usize, Result<Option<CellResult>>)> = todo
-            .par_iter()
+        let mut out: Vec<(usize, Result<Option<CellResult>>)> = todo
+            .iter()
+            .par_bridge()
             .map(|&c| {
-                let r = match CellInput::build(arr, &pool, &loops, c as u32) {
-                    Some(input) => run_cell(input, branching, true).map(Some),
-                    None => Ok(None),
-                };
+                let r = run_timed(arr, &pool, &loops, c as u32, branching, true);
                 if let Some(pb) = &progress {
                     pb.inc(1);
                 }
                 (c, r)
             })
             .collect();
+        out.sort_unstable_by_key(|o| o.0);
         let mut missing = Vec::new();
         for (c, r) in out {
             let r = r?;
             dirty[c] = false;
+            cell_runs += 1;
             if let Some(r) = &r {
+                timing.add(&r.timing);
                 missing.extend(r.missing.iter().copied());
             }
             results[c] = r;
@@ -126,21 +169,27 @@ pub fn reconstruct(
             "conformity splitting stopped after {MAX_ROUNDS} rounds: some contour edges are not Delaunay edges"
         ));
         let loops = conform::face_loops(arr, &splits);
-        let redo: Vec<usize> = (0..n_cells)
-            .filter(|&c| results[c].as_ref().is_some_and(|r| !r.missing.is_empty()))
-            .collect();
-        let out: Vec<(usize, Result<Option<CellResult>>)> = redo
-            .par_iter()
+        let redo = biggest_first(
+            arr,
+            &loops,
+            (0..n_cells).filter(|&c| results[c].as_ref().is_some_and(|r| !r.missing.is_empty())),
+        );
+        let mut out: Vec<(usize, Result<Option<CellResult>>)> = redo
+            .iter()
+            .par_bridge()
             .map(|&c| {
-                let r = match CellInput::build(arr, &pool, &loops, c as u32) {
-                    Some(input) => run_cell(input, branching, false).map(Some),
-                    None => Ok(None),
-                };
+                let r = run_timed(arr, &pool, &loops, c as u32, branching, false);
                 (c, r)
             })
             .collect();
+        out.sort_unstable_by_key(|o| o.0);
         for (c, r) in out {
-            results[c] = r?;
+            let r = r?;
+            cell_runs += 1;
+            if let Some(r) = &r {
+                timing.add(&r.timing);
+            }
+            results[c] = r;
         }
     }
     if let Some(pb) = &progress {
@@ -151,6 +200,12 @@ pub fn reconstruct(
         seconds: t0.elapsed().as_secs_f64(),
     });
     report.count("conformity_rounds", rounds as u64);
+    report.count("cell_runs", cell_runs);
+    for (name, secs) in timing.entries() {
+        report
+            .values
+            .insert(format!("cell_cpu_seconds.{name}"), secs);
+    }
     report.count("steiner_points", splits.mid.len() as u64);
     report.count("points", (pool.positions.len()) as u64);
     for r in results.iter().flatten() {

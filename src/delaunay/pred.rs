@@ -18,6 +18,10 @@ pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
     if det > bound || -det > bound {
         return -det;
     }
+    if bound == 0.0 {
+        // the points share one coordinate exactly (a section on an axis plane): coplanar
+        return 0.0;
+    }
     -gp::orient3d(a, b, c, d)
 }
 
@@ -29,7 +33,134 @@ pub fn insphere(a: P, b: P, c: P, d: P, e: P) -> f64 {
     if det > bound || -det > bound {
         return -det;
     }
+    if bound == 0.0 {
+        // the points share one coordinate exactly: every 3×3 minor, hence the determinant, is 0
+        return 0.0;
+    }
+    if let Some(det) = insphere_dd(a, b, c, d, e) {
+        return -det;
+    }
     -gp::insphere(a, b, c, d, e)
+}
+
+// Double-double stage between the filter and `robust`'s adaptive insphere, for the nearly coplanar
+// 5-tuples that sections on tilted planes produce in bulk: there the determinant is about
+// ε·permanent, below Shewchuk's stage-B bound, and `robust` went on to its tail and exact stages
+// (zero-filling 30 KB of expansion buffers per call; most of the Elephant's run time). Here the
+// coordinate differences are formed exactly (as double-doubles) and the determinant is evaluated in
+// double-double, within ~2^-100 × permanent of the exact value; when it clears a bound far above that
+// error its sign is the exact sign, otherwise (exact zeros, extreme exponents) `robust` decides.
+type Dd = (f64, f64);
+
+#[inline(always)]
+fn two_sum(a: f64, b: f64) -> Dd {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+#[inline(always)]
+fn fast_two_sum(a: f64, b: f64) -> Dd {
+    let s = a + b;
+    (s, b - (s - a))
+}
+
+#[inline(always)]
+fn split(a: f64) -> Dd {
+    let c = 134_217_729.0 * a;
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+#[inline(always)]
+fn two_prod(a: f64, b: f64) -> Dd {
+    let p = a * b;
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    (p, al * bl - (((p - ah * bh) - al * bh) - ah * bl))
+}
+
+#[inline(always)]
+fn dd_add(x: Dd, y: Dd) -> Dd {
+    let (sh, sl) = two_sum(x.0, y.0);
+    let (th, tl) = two_sum(x.1, y.1);
+    let (sh, sl) = fast_two_sum(sh, sl + th);
+    fast_two_sum(sh, sl + tl)
+}
+
+#[inline(always)]
+fn dd_sub(x: Dd, y: Dd) -> Dd {
+    dd_add(x, (-y.0, -y.1))
+}
+
+#[inline(always)]
+fn dd_mul(x: Dd, y: Dd) -> Dd {
+    let (p, e) = two_prod(x.0, y.0);
+    fast_two_sum(p, e + (x.0 * y.1 + x.1 * y.0))
+}
+
+/// `robust::insphere`'s determinant (its sign convention) when double-double arithmetic certifies
+/// its sign, else `None`.
+fn insphere_dd(a: P, b: P, c: P, d: P, e: P) -> Option<f64> {
+    let diff = |p: P| [0, 1, 2].map(|k| two_sum(p[k], -e[k]));
+    let (pa, pb, pc, pd) = (diff(a), diff(b), diff(c), diff(d));
+    let m = [pa, pb, pc, pd]
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.0.abs()));
+    // keep products far from overflow and underflow (else `robust`)
+    if !(m > 1e-30 && m < 1e30) {
+        return None;
+    }
+    let [aex, aey, aez] = pa;
+    let [bex, bey, bez] = pb;
+    let [cex, cey, cez] = pc;
+    let [dex, dey, dez] = pd;
+    // an upper bound of the permanent (absolute values of every product of the expansion)
+    let h = |x: Dd| x.0.abs() * (1.0 + 1e-10);
+    let m2 = |p: Dd, q: Dd, r: Dd, s: Dd| h(p) * h(q) + h(r) * h(s);
+    let (ab, bc, cd) = (
+        m2(aex, bey, bex, aey),
+        m2(bex, cey, cex, bey),
+        m2(cex, dey, dex, cey),
+    );
+    let (da, ac, bd) = (
+        m2(dex, aey, aex, dey),
+        m2(aex, cey, cex, aey),
+        m2(bex, dey, dex, bey),
+    );
+    let lift = |x: Dd, y: Dd, z: Dd| h(x) * h(x) + h(y) * h(y) + h(z) * h(z);
+    let permanent = (cd * h(bez) + bd * h(cez) + bc * h(dez)) * lift(aex, aey, aez)
+        + (da * h(cez) + ac * h(dez) + cd * h(aez)) * lift(bex, bey, bez)
+        + (ab * h(dez) + bd * h(aez) + da * h(bez)) * lift(cex, cey, cez)
+        + (bc * h(aez) + ac * h(bez) + ab * h(cez)) * lift(dex, dey, dez);
+    let minor = |p: Dd, q: Dd, r: Dd, s: Dd| dd_sub(dd_mul(p, q), dd_mul(r, s));
+    let ab = minor(aex, bey, bex, aey);
+    let bc = minor(bex, cey, cex, bey);
+    let cd = minor(cex, dey, dex, cey);
+    let da = minor(dex, aey, aex, dey);
+    let ac = minor(aex, cey, cex, aey);
+    let bd = minor(bex, dey, dex, bey);
+    let abc = dd_add(dd_sub(dd_mul(bc, aez), dd_mul(ac, bez)), dd_mul(ab, cez));
+    let bcd = dd_add(dd_sub(dd_mul(cd, bez), dd_mul(bd, cez)), dd_mul(bc, dez));
+    let cda = dd_add(dd_add(dd_mul(da, cez), dd_mul(ac, dez)), dd_mul(cd, aez));
+    let dab = dd_add(dd_add(dd_mul(ab, dez), dd_mul(bd, aez)), dd_mul(da, bez));
+    let lift = |x: Dd, y: Dd, z: Dd| dd_add(dd_add(dd_mul(x, x), dd_mul(y, y)), dd_mul(z, z));
+    let (al, bl, cl, dl) = (
+        lift(aex, aey, aez),
+        lift(bex, bey, bez),
+        lift(cex, cey, cez),
+        lift(dex, dey, dez),
+    );
+    let det = dd_add(
+        dd_sub(dd_mul(dl, abc), dd_mul(cl, dab)),
+        dd_sub(dd_mul(bl, cda), dd_mul(al, bcd)),
+    );
+    let det = det.0 + det.1;
+    // ~40 double-double operations deep, each within 2^-100 of its operands' magnitudes: the
+    // error is far below 1e-24 × permanent
+    let bound = 1e-24 * permanent + 1e-200;
+    (det > bound || -det > bound).then_some(det)
 }
 
 // Semi-static filters. They evaluate Shewchuk's determinants (same expressions as his orient3d and
@@ -60,6 +191,10 @@ fn orient3d_filter(a: P, b: P, c: P, d: P) -> (f64, f64) {
     let mz = adz.abs().max(bdz.abs()).max(cdz.abs());
     let lo = mx.min(my).min(mz);
     let hi = mx.max(my).max(mz);
+    if lo == 0.0 && !det.is_nan() {
+        // one coordinate equal in all four points: the determinant is exactly 0 (bound 0 says so)
+        return (0.0, 0.0);
+    }
     if !in_safe_range(lo, hi) {
         return (det, f64::INFINITY);
     }
@@ -92,6 +227,10 @@ fn insphere_filter(a: P, b: P, c: P, d: P, e: P) -> (f64, f64) {
     let mz = aez.abs().max(bez.abs()).max(cez.abs()).max(dez.abs());
     let lo = mx.min(my).min(mz);
     let hi = mx.max(my).max(mz);
+    if lo == 0.0 && !det.is_nan() {
+        // one coordinate equal in all five points: the determinant is exactly 0 (bound 0 says so)
+        return (0.0, 0.0);
+    }
     if !in_safe_range(lo, hi) {
         return (det, f64::INFINITY);
     }
@@ -215,6 +354,55 @@ fn coplanar_conflict(t: [P; 4], k: usize, d: P, q: P) -> bool {
 mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
+
+    #[test]
+    fn double_double_stage_agrees_with_robust() {
+        // nearly coplanar 5-tuples on tilted planes (rounded), nearly cospherical ones, random ones
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (mut answered, mut nonzero) = (0, 0);
+        for k in 0..40000 {
+            let n: P = [
+                r.gen::<f64>() - 0.5,
+                r.gen::<f64>() - 0.5,
+                r.gen::<f64>() - 0.5,
+            ];
+            let u: P = [n[1], -n[0], 0.0];
+            let v: P = [
+                n[1] * u[2] - n[2] * u[1],
+                n[2] * u[0] - n[0] * u[2],
+                n[0] * u[1] - n[1] * u[0],
+            ];
+            let o: P = [r.gen(), r.gen(), r.gen()];
+            let mut p: [P; 5] = [[0.0; 3]; 5];
+            for (i, q) in p.iter_mut().enumerate() {
+                let (s, t): (f64, f64) = (r.gen::<f64>() - 0.5, r.gen::<f64>() - 0.5);
+                let h = match k % 4 {
+                    0 => 0.0,
+                    1 if i == 4 => 1e-12 * (r.gen::<f64>() - 0.5),
+                    2 => r.gen::<f64>() - 0.5,
+                    _ => 0.0,
+                };
+                *q = std::array::from_fn(|c| o[c] + s * u[c] + t * v[c] + h * n[c]);
+            }
+            if k % 4 == 3 {
+                // on a sphere, rounded
+                for q in p.iter_mut() {
+                    let l = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+                    *q = q.map(|c| c / l);
+                }
+            }
+            let exact = gp::insphere(p[0], p[1], p[2], p[3], p[4]);
+            if exact != 0.0 {
+                nonzero += 1;
+            }
+            if let Some(dd) = insphere_dd(p[0], p[1], p[2], p[3], p[4]) {
+                answered += 1;
+                assert_eq!(dd > 0.0, exact > 0.0, "case {k}: {p:?}");
+                assert!(exact != 0.0, "case {k}");
+            }
+        }
+        assert!(answered > nonzero / 2, "{answered} of {nonzero}");
+    }
 
     #[test]
     fn filters_agree_with_exact_predicates() {
