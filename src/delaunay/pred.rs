@@ -158,8 +158,9 @@ fn insphere_dd(a: P, b: P, c: P, d: P, e: P) -> Option<f64> {
     );
     let det = det.0 + det.1;
     // ~40 double-double operations deep, each within 2^-100 of its operands' magnitudes: the
-    // error is far below 1e-24 × permanent
-    let bound = 1e-24 * permanent + 1e-200;
+    // error is far below 1e-24 × permanent. The absolute term covers underflow of the low parts when
+    // some differences are tiny: each costs at most ~1e-308 times a cofactor below 1e120 (m < 1e30).
+    let bound = 1e-24 * permanent + 1e-150;
     (det > bound || -det > bound).then_some(det)
 }
 
