@@ -18,6 +18,7 @@
 //! The tetrahedral mesh is the union of the kept tets; it is non-conforming across a face where the
 //! two cells' section triangulations differ (counted in the report).
 use super::cell::CellResult;
+use super::face_overlay::{overlay, Overlay};
 use crate::arrangement::{Arrangement, VertexPool};
 use crate::mesh::{TetMesh, TriMesh};
 use std::collections::HashMap;
@@ -32,6 +33,12 @@ pub struct Glued {
     pub double_sheet_triangles: u64,
     pub nonconforming_faces: u64,
     pub pinched_vertices: u64,
+    /// Faces whose output is the overlay of the two sides' attached regions.
+    pub overlay_faces: u64,
+    /// Vertices created where the two sides' triangle edges cross.
+    pub overlay_vertices: u64,
+    /// Faces where the overlay failed and each side's unattached triangles were kept.
+    pub overlay_fallbacks: u64,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -109,6 +116,8 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             sides.entry(fs.face).or_default().push((c, s));
         }
     }
+    // original edge (min, max) → vertices the face overlays put inside it, from min to max
+    let mut edge_splits: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
     let mut face_ids: Vec<u32> = sides.keys().copied().collect();
     face_ids.sort_unstable();
     for f in face_ids {
@@ -180,18 +189,51 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                 }
             }
             _ => {
-                for &(c, s) in list {
-                    for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
-                        if !att {
-                            let t = map3(&maps[c], t);
-                            tris.push([t[0], t[2], t[1]]);
-                            kind.push(Kind::Face(f));
+                let face = &arr.faces[f as usize];
+                let plane = &arr.planes[face.plane as usize].plane;
+                match overlay_face(results, &maps, list, positions.len() as u32) {
+                    Ok((o, section_area)) => {
+                        g.overlay_faces += 1;
+                        g.overlay_vertices += o.new_vertices.len() as u64;
+                        positions.extend(o.new_vertices.iter().map(|&q| plane.to_3d(q)));
+                        tris.extend(o.triangles.iter().copied());
+                        kind.resize(tris.len(), Kind::Face(f));
+                        for (e, chain) in o.splits {
+                            edge_splits.entry(e).or_insert(chain);
+                        }
+                        let flat = section_area - o.attached_area;
+                        if flat > 1e-9 * section_area {
+                            g.flat_zone_faces += 1;
+                            g.flat_zone_area += flat;
+                            g.warnings.push(format!(
+                                "face {f} (plane {}): flat zone of area {flat:.4e} attached from neither side (not in the solid)",
+                                face.plane
+                            ));
+                        }
+                    }
+                    Err(why) => {
+                        // each side's own unattached triangles (closed as a chain; may leave two
+                        // sheets where neither side attaches)
+                        g.overlay_fallbacks += 1;
+                        g.warnings.push(format!(
+                            "face {f} (plane {}): overlay of the two sides failed ({why}); each side's unattached triangles kept",
+                            face.plane
+                        ));
+                        for &(c, s) in list {
+                            for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
+                                if !att {
+                                    let t = map3(&maps[c], t);
+                                    tris.push([t[0], t[2], t[1]]);
+                                    kind.push(Kind::Face(f));
+                                }
+                            }
                         }
                     }
                 }
             }
         }
     }
+    split_at_edges(&mut tris, &mut kind, &mut positions, &edge_splits);
     // Cancel coincident opposite triangles (flat-zone sheets triangulated alike on both sides).
     let mut by_key: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
     for (i, &t) in tris.iter().enumerate() {
@@ -313,6 +355,121 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         tets,
     };
     g
+}
+
+/// The overlay of a face attached from both sides (`list`: its two (cell, slot) sides), plus the
+/// section's area (the larger of the two sides' triangulated areas).
+fn overlay_face(
+    results: &[Option<CellResult>],
+    maps: &[Vec<u32>],
+    list: &[(usize, usize)],
+    first_new: u32,
+) -> Result<(Overlay, f64), String> {
+    if list.len() != 2 {
+        return Err(format!("{} sides", list.len()));
+    }
+    let mut uv: HashMap<u32, [f64; 2]> = HashMap::new();
+    let mut x: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
+    let mut section_area = 0.0f64;
+    let mut ccw_a = true;
+    for (k, &(c, s)) in list.iter().enumerate() {
+        let r = results[c].as_ref().ok_or("cell without result")?;
+        let inp = r.input.as_ref().ok_or("cell without input")?;
+        let slot = &inp.slots[s];
+        if k == 0 {
+            ccw_a = slot.outward_is_plane_normal;
+        }
+        let mut area = 0.0;
+        for &(t, att) in &r.faces[s].triangles {
+            let q = t.map(|l| slot.uv[l as usize]);
+            area += 0.5
+                * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1])
+                    - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]))
+                    .abs();
+            if !att {
+                continue;
+            }
+            for l in t {
+                let p = slot.uv[l as usize];
+                if !(p[0].is_finite() && p[1].is_finite()) {
+                    return Err(format!("local vertex {l} of cell {c} has no (u,v)"));
+                }
+                uv.insert(maps[c][l as usize], p);
+            }
+            x[k].push(t.map(|l| maps[c][l as usize]));
+        }
+        section_area = section_area.max(area);
+    }
+    let o = overlay(&uv, &x[0], &x[1], ccw_a, first_new)?;
+    Ok((o, section_area))
+}
+
+/// Splits every triangle that has an edge with vertices inserted on it (by a face overlay), so the
+/// surface has no T-junctions: a fan from the opposite corner when one edge is split, else a fan
+/// from a new vertex at the triangle's centroid.
+fn split_at_edges(
+    tris: &mut Vec<[u32; 3]>,
+    kind: &mut Vec<Kind>,
+    positions: &mut Vec<[f64; 3]>,
+    splits: &HashMap<(u32, u32), Vec<u32>>,
+) {
+    if splits.is_empty() {
+        return;
+    }
+    let n = tris.len();
+    for i in 0..n {
+        let t = tris[i];
+        let mut on: [Vec<u32>; 3] = Default::default();
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if let Some(ch) = splits.get(&(a.min(b), a.max(b))) {
+                on[k] = ch.clone();
+                if a > b {
+                    on[k].reverse();
+                }
+            }
+        }
+        let split: Vec<usize> = (0..3).filter(|&k| !on[k].is_empty()).collect();
+        if split.is_empty() {
+            continue;
+        }
+        let mut pieces: Vec<[u32; 3]> = Vec::new();
+        if split.len() == 1 {
+            let k = split[0];
+            let apex = t[(k + 2) % 3];
+            let mut run = vec![t[k]];
+            run.extend(on[k].iter().copied());
+            run.push(t[(k + 1) % 3]);
+            for w in run.windows(2) {
+                pieces.push([w[0], w[1], apex]);
+            }
+        } else {
+            let mut ring = Vec::new();
+            for k in 0..3 {
+                ring.push(t[k]);
+                ring.extend(on[k].iter().copied());
+            }
+            let (a, b, c) = (
+                positions[t[0] as usize],
+                positions[t[1] as usize],
+                positions[t[2] as usize],
+            );
+            positions.push([
+                (a[0] + b[0] + c[0]) / 3.0,
+                (a[1] + b[1] + c[1]) / 3.0,
+                (a[2] + b[2] + c[2]) / 3.0,
+            ]);
+            let m = (positions.len() - 1) as u32;
+            for j in 0..ring.len() {
+                pieces.push([ring[j], ring[(j + 1) % ring.len()], m]);
+            }
+        }
+        tris[i] = pieces[0];
+        for p in &pieces[1..] {
+            tris.push(*p);
+            kind.push(kind[i]);
+        }
+    }
 }
 
 fn sorted(mut t: [u32; 3]) -> [u32; 3] {

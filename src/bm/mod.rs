@@ -23,6 +23,7 @@ pub mod cell_input;
 pub mod classify;
 pub mod complex;
 pub mod conform;
+pub mod face_overlay;
 pub mod glue;
 pub mod prune;
 
@@ -171,6 +172,9 @@ pub fn reconstruct(
         .insert("flat_zone_area".into(), glued.flat_zone_area);
     report.count("nonconforming_faces", glued.nonconforming_faces);
     report.count("pinched_vertices_lifted", glued.pinched_vertices);
+    report.count("overlay_faces", glued.overlay_faces);
+    report.count("overlay_vertices", glued.overlay_vertices);
+    report.count("overlay_fallbacks", glued.overlay_fallbacks);
     report.warnings.extend(glued.warnings);
     Ok(Solid {
         surface: glued.surface,
