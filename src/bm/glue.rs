@@ -41,7 +41,7 @@ pub struct Glued {
     pub overlay_fallbacks: u64,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 enum Kind {
     /// Boundary triangle inside this cell.
     Cell(u32),
@@ -145,6 +145,21 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             if ka != kb {
                 g.nonconforming_faces += 1;
             }
+        }
+        if std::env::var("BM_DEBUG").is_ok() {
+            let d: Vec<String> = list
+                .iter()
+                .map(|cs| {
+                    let t = &side(cs).triangles;
+                    format!(
+                        "cell {} {}/{} attached",
+                        cs.0,
+                        t.iter().filter(|t| t.1).count(),
+                        t.len()
+                    )
+                })
+                .collect();
+            eprintln!("glue face {f}: {}", d.join(", "));
         }
         match attaching.len() {
             0 => {
@@ -503,13 +518,18 @@ fn count_double_sheet(tris: &[[u32; 3]]) -> u64 {
 }
 
 /// Where the solid touches a section plane from one side only (branching on a side the other cell
-/// does not attach to, paper Fig. 12), the surface is pinched at vertices: the triangles around a
-/// vertex form several fans. Fans are found by walking triangles around the vertex through their
-/// shared edges (at an edge with more than two triangles, only triangles of the same kind — planar on
-/// the same face, or non-planar of the same cell — continue each other). Every fan but the one with
-/// the most planar triangles gets its own copy of the vertex, lifted by a millionth of the shortest
-/// incident edge into its cell when the fan is non-planar (the paper's remedy: displace slightly into
-/// the cell). Returns the split vertices.
+/// does not attach to, paper Fig. 12), or two pieces meet along an edge, the surface is pinched: the
+/// triangles around a vertex form several fans. Every edge used by more than two triangles first gets
+/// one pairing of its triangles into sheets, decided once for the edge so that both its endpoints
+/// agree (otherwise the two endpoints split the edge's triangles differently and open the surface):
+/// by kind when every kind (planar on one face, non-planar of one cell) holds exactly two of them,
+/// else by angular order around the edge, each triangle with its neighbour across the solid's wedge
+/// (`pair_around_edges` pass 0) or, where that leaves the edge's sheets in one fan at both endpoints,
+/// across the void's (pass 1); an edge with no usable pairing keeps its triangles together. Fans are
+/// then the classes of the triangles around a vertex joined through two-triangle edges and paired
+/// triangles. Every fan but the one with the most planar triangles gets its own copy of the vertex,
+/// lifted by a millionth of the shortest incident edge into its cell when the fan is non-planar (the
+/// paper's remedy: displace slightly into the cell). Returns the split vertices.
 fn unpinch(
     arr: &Arrangement,
     positions: &mut Vec<[f64; 3]>,
@@ -517,82 +537,170 @@ fn unpinch(
     kind: &[Kind],
 ) -> std::collections::HashSet<u32> {
     let mut at: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
     for (i, t) in tris.iter().enumerate() {
-        for &v in t {
-            at.entry(v).or_default().push(i);
+        for k in 0..3 {
+            at.entry(t[k]).or_default().push(i);
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_default().push(i);
         }
+    }
+    let partners = pair_around_edges(positions, tris);
+    // per edge with more than two triangles: its sheets (groups of triangles that stay together)
+    #[derive(Clone, Copy, PartialEq)]
+    enum Pairing {
+        Kind,
+        Angle(usize),
+        Together,
+    }
+    let forward = |i: usize, a: u32, b: u32| {
+        let t = tris[i];
+        (0..3).any(|k| t[k] == a && t[(k + 1) % 3] == b)
+    };
+    let mut choice: HashMap<(u32, u32), Pairing> = HashMap::new();
+    for (&(a, b), l) in &edges {
+        if l.len() <= 2 {
+            continue;
+        }
+        let mut by_kind: HashMap<Kind, Vec<usize>> = HashMap::new();
+        for &i in l {
+            by_kind.entry(kind_key(kind[i])).or_default().push(i);
+        }
+        let kind_ok = by_kind
+            .values()
+            .all(|g| g.len() == 2 && forward(g[0], a, b) != forward(g[1], a, b));
+        let angle_ok = l.iter().all(|&i| {
+            let k = slot_of(&tris[i], a, b);
+            partners[0].contains_key(&(i, k)) && partners[1].contains_key(&(i, k))
+        });
+        let c = if kind_ok && by_kind.len() > 1 {
+            Pairing::Kind
+        } else if angle_ok {
+            Pairing::Angle(0)
+        } else if kind_ok {
+            Pairing::Kind
+        } else {
+            Pairing::Together
+        };
+        choice.insert((a, b), c);
+    }
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
     }
     let mut vs: Vec<u32> = at.keys().copied().collect();
     vs.sort_unstable();
-    let partners = pair_around_edges(positions, tris);
-    let mut split = std::collections::HashSet::new();
-    for v in vs {
-        let list = at[&v].clone();
-        // edges (v,w) → incident triangles (indices into list)
-        let mut by_w: HashMap<u32, Vec<usize>> = HashMap::new();
-        for (k, &i) in list.iter().enumerate() {
-            for &w in &tris[i] {
-                if w != v {
-                    by_w.entry(w).or_default().push(k);
+    // the sheets of an edge, as pairs of triangles to join
+    let sheet_links = |e: (u32, u32), c: Pairing| -> Vec<(usize, usize)> {
+        let l = &edges[&e];
+        match c {
+            Pairing::Together => l.windows(2).map(|w| (w[0], w[1])).collect(),
+            Pairing::Kind => {
+                let mut out = Vec::new();
+                for x in 0..l.len() {
+                    for y in x + 1..l.len() {
+                        if kind_key(kind[l[x]]) == kind_key(kind[l[y]]) {
+                            out.push((l[x], l[y]));
+                        }
+                    }
+                }
+                out
+            }
+            Pairing::Angle(pass) => l
+                .iter()
+                .map(|&i| (i, partners[pass][&(i, slot_of(&tris[i], e.0, e.1))]))
+                .collect(),
+        }
+    };
+    // fans of a vertex: classes of its star's triangles (as indices into tris)
+    let fans_of = |v: u32, choice: &HashMap<(u32, u32), Pairing>| -> Vec<Vec<usize>> {
+        let list = &at[&v];
+        let pos = |i: usize| list.iter().position(|&j| j == i);
+        let mut parent: Vec<usize> = (0..list.len()).collect();
+        let mut ws: Vec<u32> = list
+            .iter()
+            .flat_map(|&i| tris[i].iter().copied())
+            .filter(|&w| w != v)
+            .collect();
+        ws.sort_unstable();
+        ws.dedup();
+        for w in ws {
+            let e = (v.min(w), v.max(w));
+            let links = match choice.get(&e) {
+                Some(&c) => sheet_links(e, c),
+                None => {
+                    let l = &edges[&e];
+                    if l.len() == 2 {
+                        vec![(l[0], l[1])]
+                    } else {
+                        Vec::new()
+                    }
+                }
+            };
+            for (x, y) in links {
+                if let (Some(x), Some(y)) = (pos(x), pos(y)) {
+                    let (x, y) = (find(&mut parent, x), find(&mut parent, y));
+                    parent[x] = y;
                 }
             }
         }
         let mut fans: HashMap<usize, Vec<usize>> = HashMap::new();
-        for pass in 0..2 {
-            let mut singular = false;
-            // union-find over the triangles of the star
-            let mut parent: Vec<usize> = (0..list.len()).collect();
-            fn find(p: &mut [usize], mut x: usize) -> usize {
-                while p[x] != x {
-                    p[x] = p[p[x]];
-                    x = p[x];
-                }
-                x
-            }
-            for (&w, ks) in &by_w {
-                if ks.len() == 2 {
-                    let (a, b) = (find(&mut parent, ks[0]), find(&mut parent, ks[1]));
-                    parent[a] = b;
-                } else if ks.iter().all(|&k| kind[list[k]] == kind[list[ks[0]]])
-                    && ks.iter().all(|&k| {
-                        partners[pass].contains_key(&(list[k], slot_of(&tris[list[k]], v, w)))
-                    })
-                {
-                    // a singular edge inside one piece (two tets of a cell meet along an edge only):
-                    // each triangle continues its angular neighbour across the solid's wedge (pass 0)
-                    // or, when that leaves the vertex's star in one piece, across the void's (pass 1)
-                    singular = true;
-                    for &k in ks {
-                        let j = partners[pass][&(list[k], slot_of(&tris[list[k]], v, w))];
-                        if let Some(kj) = list.iter().position(|&i| i == j) {
-                            let (a, b) = (find(&mut parent, k), find(&mut parent, kj));
-                            parent[a] = b;
-                        }
-                    }
-                } else {
-                    for x in 0..ks.len() {
-                        for y in x + 1..ks.len() {
-                            if kind[list[ks[x]]] == kind[list[ks[y]]] {
-                                let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
-                                parent[a] = b;
-                            }
-                        }
-                    }
-                }
-            }
-            fans.clear();
-            for k in 0..list.len() {
-                let r = find(&mut parent, k);
-                fans.entry(r).or_default().push(list[k]);
-            }
-            if fans.len() >= 2 || !singular {
-                break;
-            }
-        }
-        if fans.len() < 2 {
-            continue;
+        for (k, &i) in list.iter().enumerate() {
+            let r = find(&mut parent, k);
+            fans.entry(r).or_default().push(i);
         }
         let mut fans: Vec<Vec<usize>> = fans.into_values().collect();
+        fans.sort();
+        fans
+    };
+    // an angular pairing that separates nothing at either endpoint: try the other side's wedges
+    let mut keys: Vec<(u32, u32)> = choice.keys().copied().collect();
+    keys.sort_unstable();
+    for _ in 0..2 {
+        let mut changed = false;
+        for &e in &keys {
+            if choice[&e] != Pairing::Angle(0) {
+                continue;
+            }
+            let l = &edges[&e];
+            let separated = [e.0, e.1].iter().any(|&v| {
+                let fans = fans_of(v, &choice);
+                let f0 = fans.iter().position(|f| f.contains(&l[0]));
+                l.iter()
+                    .any(|&i| fans.iter().position(|f| f.contains(&i)) != f0)
+            });
+            if !separated {
+                choice.insert(e, Pairing::Angle(1));
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let diag = {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in positions.iter() {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let d = crate::sections::sub(hi, lo);
+        crate::sections::dot(d, d).sqrt()
+    };
+    // all fans from the original ids, before any vertex is split
+    let all_fans: Vec<(u32, Vec<Vec<usize>>)> = vs
+        .iter()
+        .map(|&v| (v, fans_of(v, &choice)))
+        .filter(|(_, f)| f.len() >= 2)
+        .collect();
+    let mut split = std::collections::HashSet::new();
+    for (v, mut fans) in all_fans {
+        let list = at[&v].clone();
         let planar = |f: &Vec<usize>| {
             f.iter()
                 .filter(|&&i| matches!(kind[i], Kind::Face(_)))
@@ -609,7 +717,9 @@ fn unpinch(
                 }
             }
         }
-        let delta = 1e-6 * min_len;
+        // a millionth of the model's size (so that welding equal positions to ~1e-8 keeps the copies
+        // apart), but never more than a hundredth of the shortest incident edge
+        let delta = (1e-6 * diag).min(1e-2 * min_len).max(1e-6 * min_len);
         for fan in &fans[1..] {
             // lift direction: into the cell of a purely non-planar fan, when the vertex lies on a
             // face of that cell with planar output here; otherwise the copy stays in place
@@ -636,6 +746,11 @@ fn unpinch(
                     }
                 }
             }
+            if dir == [0.0; 3] {
+                // elsewhere towards the fan's own triangles, so that the copies do not coincide
+                // (a consumer welding equal positions would pinch the surface again)
+                dir = fan_direction(positions, tris, fan, v);
+            }
             positions.push([
                 p[0] + delta * dir[0],
                 p[1] + delta * dir[1],
@@ -653,6 +768,38 @@ fn unpinch(
         split.insert(v);
     }
     split
+}
+
+/// Unit direction from `v` into its fan: the mean of the unit vectors to the fan's other vertices
+/// (zero when they cancel).
+fn fan_direction(positions: &[[f64; 3]], tris: &[[u32; 3]], fan: &[usize], v: u32) -> [f64; 3] {
+    use crate::sections::{dot, sub};
+    let p = positions[v as usize];
+    let mut d = [0.0; 3];
+    for &i in fan {
+        for &w in &tris[i] {
+            if w != v {
+                let e = sub(positions[w as usize], p);
+                let l = dot(e, e).sqrt();
+                if l > 0.0 {
+                    for k in 0..3 {
+                        d[k] += e[k] / l;
+                    }
+                }
+            }
+        }
+    }
+    let l = dot(d, d).sqrt();
+    if l > 0.0 {
+        [d[0] / l, d[1] / l, d[2] / l]
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// Kinds compared for pairing (identity; a hook should kinds grow fields).
+fn kind_key(k: Kind) -> Kind {
+    k
 }
 
 /// Slot k of the edge {v, w} in a triangle (the edge t[k], t[k+1]).
