@@ -425,4 +425,26 @@ mod tests {
         let uv = uvmap(&[(0, [0.0, 0.0]), (1, [1.0, 0.0]), (2, [0.0, 1.0])]);
         assert!(overlay(&uv, &[[0, 2, 1]], &[], true, 1000).is_err());
     }
+
+    #[test]
+    fn flat_zone_left_by_both_sides_vanishes() {
+        // square [0,2]x[0,1]; both sides attach the left half [0,1]x[0,1], triangulated differently,
+        // and leave the right half (a flat zone, triangulated differently too): nothing is output
+        let uv = uvmap(&[
+            (0, [0.0, 0.0]),
+            (1, [1.0, 0.0]),
+            (2, [2.0, 0.0]),
+            (3, [2.0, 1.0]),
+            (4, [1.0, 1.0]),
+            (5, [0.0, 1.0]),
+            (6, [0.5, 0.5]), // a sample of B only
+        ]);
+        let a = [[0, 1, 4], [0, 4, 5]];
+        let b = [[0, 6, 1], [1, 6, 4], [4, 6, 5], [5, 6, 0]];
+        let o = overlay(&uv, &a, &b, true, 1000).unwrap();
+        assert!(o.triangles.is_empty(), "{:?}", o.triangles);
+        assert!((o.attached_area - 1.0).abs() < 1e-12);
+        // B's sample 6 lies on A's diagonal 0–4, which now passes through it
+        assert!(o.splits.contains(&((0, 4), vec![6])));
+    }
 }

@@ -1,18 +1,23 @@
 //! Gluing the cells' complexes into one solid.
 //!
-//! Choice (see DESIGN "Gluing without overlays"): two cells may triangulate a shared face differently
-//! (their Delaunay triangulations break the massive cocircularity of a section independently), so
-//! section triangles are never matched across cells. Instead, per face with a section, with cells A
-//! and B on its two sides and X_A, X_B the section triangles each attaches to (a kept tet stands on
-//! them):
-//! * both attach somewhere: each side outputs the section triangles of its *own* triangulation that
-//!   it leaves unattached, oriented into its own cell. As chains this is ∂R_A − S_A + ∂R_B − S_B on
-//!   the face, whose boundary cancels because contour edges and their Steiner points are shared, so
-//!   the surface is closed; where both attach the section is interior; where only A attaches the
-//!   boundary is B's triangles over that region. Where neither attaches (a flat zone) the two sides'
-//!   sheets coincide with opposite orientations: identical triangles cancel, the rest is reported.
-//! * only A attaches: A's attached triangles are output, oriented outward from A (no double sheet).
+//! Two cells may triangulate a shared face differently (their Delaunay triangulations break the
+//! massive cocircularity of a section independently, and each has its own branching samples), so
+//! section triangles are never matched across cells. Per face with a section, with cells A and B on
+//! its two sides and X_A, X_B the section triangles each attaches to (a kept tet stands on them):
+//! * both attach somewhere: the output is the oriented symmetric difference of X_A and X_B, from a
+//!   2D overlay in the plane's (u,v) frame (`face_overlay`): where only A attaches, that region
+//!   oriented outward from A; only B: outward from B; both: interior; neither: a flat zone, reported
+//!   with its area. Vertices created where the two sides' edges cross are new global vertices (the
+//!   plane frame applied to their (u,v)), and every output triangle on an edge that received vertices
+//!   is split (`split_at_edges`), so the surface has no T-junctions. When the overlay is
+//!   inconsistent (a triangle folded in (u,v), two vertices at one (u,v), …) the face falls back to
+//!   each side's own unattached triangles oriented into its cell (closed as a chain, but two sheets
+//!   may remain where neither attaches), with a warning.
+//! * only A attaches: A's attached triangles are output, oriented outward from A.
 //! * neither attaches: the whole section is a flat zone, not output, reported with its area.
+//!
+//! Where pieces touch along edges or at vertices (singularities), `unpinch` splits vertices with one
+//! sheet pairing decided per edge; branching samples are lifted off the plane (`lift_samples`).
 //!
 //! All vertices are global (pool ids, Steiner points, then branching samples), so the pieces weld.
 //! The tetrahedral mesh is the union of the kept tets; it is non-conforming across a face where the
@@ -911,5 +916,117 @@ fn lift_samples(
         for k in 0..3 {
             p[k] += delta * d[k];
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn empty_arrangement() -> Arrangement {
+        Arrangement {
+            planes: Vec::new(),
+            n_input: 0,
+            pool: VertexPool::default(),
+            faces: Vec::new(),
+            cells: Vec::new(),
+            bbox: ([0.0; 3], [1.0; 3]),
+            max_disagreement: 0.0,
+            warnings: Vec::new(),
+        }
+    }
+
+    /// The four faces of tetrahedron `t`, oriented outward.
+    fn tet_surface(p: &[[f64; 3]], t: [u32; 4]) -> Vec<[u32; 3]> {
+        use crate::sections::{cross, dot, sub};
+        let vol = |a: u32, b: u32, c: u32, d: u32| {
+            let (a, b, c, d) = (p[a as usize], p[b as usize], p[c as usize], p[d as usize]);
+            dot(cross(sub(b, a), sub(c, a)), sub(d, a))
+        };
+        (0..4)
+            .map(|i| {
+                let f: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| t[k]).collect();
+                // outward: the opposite vertex is behind the face
+                if vol(f[0], f[1], f[2], t[i]) < 0.0 {
+                    [f[0], f[1], f[2]]
+                } else {
+                    [f[0], f[2], f[1]]
+                }
+            })
+            .collect()
+    }
+
+    fn edge_uses(tris: &[[u32; 3]]) -> HashMap<(u32, u32), usize> {
+        let mut m = HashMap::new();
+        for t in tris {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *m.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        m
+    }
+
+    /// Two tetrahedra meeting along the edge 0–1 only: unpinching makes every edge two-sided.
+    fn two_tets(kinds: [Kind; 2]) {
+        let mut pos = vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.5, 0.5],
+            [1.0, -0.5, 0.5],
+            [-1.0, 0.5, 0.5],
+            [-1.0, -0.5, 0.5],
+        ];
+        let mut tris = tet_surface(&pos, [0, 1, 2, 3]);
+        let mut kind = vec![kinds[0]; 4];
+        tris.extend(tet_surface(&pos, [0, 1, 4, 5]));
+        kind.extend([kinds[1]; 4]);
+        assert_eq!(edge_uses(&tris)[&(0, 1)], 4);
+        let split = unpinch(&empty_arrangement(), &mut pos, &mut tris, &kind);
+        assert!(!split.is_empty());
+        let uses = edge_uses(&tris);
+        assert!(uses.values().all(|&c| c == 2), "{uses:?}");
+        // the copies do not coincide with the originals
+        for v in 6..pos.len() {
+            assert!((0..6).all(|w| pos[w] != pos[v]));
+        }
+    }
+
+    #[test]
+    fn tets_of_two_cells_touching_along_an_edge() {
+        two_tets([Kind::Cell(0), Kind::Cell(1)]);
+    }
+
+    #[test]
+    fn tets_of_one_cell_touching_along_an_edge() {
+        two_tets([Kind::Cell(0), Kind::Cell(0)]);
+    }
+
+    #[test]
+    fn splitting_an_edge_splits_its_triangles() {
+        let mut pos = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+        ];
+        let mut tris = vec![[0, 1, 2]];
+        let mut kind = vec![Kind::Cell(0)];
+        let mut splits = HashMap::new();
+        splits.insert((0, 1), vec![3]);
+        split_at_edges(&mut tris, &mut kind, &mut pos, &splits);
+        assert_eq!(tris, vec![[0, 3, 2], [3, 1, 2]]);
+        // edges on two sides: fan from a centroid
+        pos.push([0.0, 0.5, 0.0]);
+        let mut tris = vec![[0, 1, 2]];
+        let mut kind = vec![Kind::Cell(0)];
+        splits.insert((0, 2), vec![4]);
+        split_at_edges(&mut tris, &mut kind, &mut pos, &splits);
+        assert_eq!(tris.len(), 5);
+        assert_eq!(kind.len(), 5);
+        let uses = edge_uses(&tris);
+        assert!(!uses.contains_key(&(0, 1)) && !uses.contains_key(&(0, 2)));
+        assert_eq!(uses[&(0, 3)], 1);
+        assert_eq!(uses[&(0, 4)], 1);
     }
 }

@@ -13,8 +13,9 @@
 //! (`glue`), flat zones are reported, pinched vertices are split and singular crossings of the two
 //! cells' branching diagrams avoided by displacing samples 1e-6 of an edge into their cell (Fig. 12b).
 //!
-//! Known limits: cutting-diagram samples are not computed; where both cells attach part of a face and
-//! leave a common part unattached, the two flat-zone sheets can remain (counted in warnings); the
+//! Known limits: cutting-diagram samples are not computed; on a face attached from both sides the
+//! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
+//! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
 //! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
 //! Set `SLICE2SOLID_NO_BRANCHING` to skip branching samples, `BM_DEBUG` for per-cell diagnostics.
 pub mod branching;
