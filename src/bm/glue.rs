@@ -718,13 +718,21 @@ fn unpinch(
             for &w in &tris[i] {
                 if w != v {
                     let d = crate::sections::sub(positions[w as usize], p);
-                    min_len = min_len.min(crate::sections::dot(d, d).sqrt());
+                    let l = crate::sections::dot(d, d).sqrt();
+                    // edges to coincident vertices (duplicates within rounding) do not count
+                    if l > 1e-9 * diag {
+                        min_len = min_len.min(l);
+                    }
                 }
             }
         }
         // a millionth of the model's size (so that welding equal positions to ~1e-8 keeps the copies
         // apart), but never more than a hundredth of the shortest incident edge
-        let delta = (1e-6 * diag).min(1e-2 * min_len).max(1e-6 * min_len);
+        let delta = if min_len.is_finite() {
+            (1e-6 * diag).min(1e-2 * min_len).max(1e-6 * min_len)
+        } else {
+            1e-6 * diag
+        };
         for fan in &fans[1..] {
             // lift direction: into the cell of a purely non-planar fan, when the vertex lies on a
             // face of that cell with planar output here; otherwise the copy stays in place
