@@ -8,6 +8,7 @@ use slice2solid::{Error, Options};
 
 const KNOWN_GOOD: &[&str] = &[
     "Armadillo-23-better",
+    "Elephant",
     "Heart-simplified",
     "ParallelEight",
     "ParallelEightMore",
@@ -69,7 +70,8 @@ fn every_shared_csl_file_reconstructs() {
             solid.report.counts.get("branching_samples").unwrap_or(&0),
         );
         // Files that reconstruct into closed oriented manifolds today must keep doing so; the others
-        // are reported (known failures: flat-zone double sheets and pinches between cells).
+        // are reported (known failures: hand, non-manifold edges where pieces meet; Horsers, closed and
+        // manifold but with an inside-out component).
         if KNOWN_GOOD.contains(&name.as_str()) && !(c.closed && c.manifold && c.oriented) {
             failures.push(format!(
                 "{name}: closed {} manifold {} oriented {} (boundary edges {}, non-manifold edges {}, vertices {})",

@@ -1,23 +1,29 @@
 //! Gluing the cells' complexes into one solid.
 //!
-//! Choice (see DESIGN "Gluing without overlays"): two cells may triangulate a shared face differently
-//! (their Delaunay triangulations break the massive cocircularity of a section independently), so
-//! section triangles are never matched across cells. Instead, per face with a section, with cells A
-//! and B on its two sides and X_A, X_B the section triangles each attaches to (a kept tet stands on
-//! them):
-//! * both attach somewhere: each side outputs the section triangles of its *own* triangulation that
-//!   it leaves unattached, oriented into its own cell. As chains this is ∂R_A − S_A + ∂R_B − S_B on
-//!   the face, whose boundary cancels because contour edges and their Steiner points are shared, so
-//!   the surface is closed; where both attach the section is interior; where only A attaches the
-//!   boundary is B's triangles over that region. Where neither attaches (a flat zone) the two sides'
-//!   sheets coincide with opposite orientations: identical triangles cancel, the rest is reported.
-//! * only A attaches: A's attached triangles are output, oriented outward from A (no double sheet).
+//! Two cells may triangulate a shared face differently (their Delaunay triangulations break the
+//! massive cocircularity of a section independently, and each has its own branching samples), so
+//! section triangles are never matched across cells. Per face with a section, with cells A and B on
+//! its two sides and X_A, X_B the section triangles each attaches to (a kept tet stands on them):
+//! * both attach somewhere: the output is the oriented symmetric difference of X_A and X_B, from a
+//!   2D overlay in the plane's (u,v) frame (`face_overlay`): where only A attaches, that region
+//!   oriented outward from A; only B: outward from B; both: interior; neither: a flat zone, reported
+//!   with its area. Vertices created where the two sides' edges cross are new global vertices (the
+//!   plane frame applied to their (u,v)), and every output triangle on an edge that received vertices
+//!   is split (`split_at_edges`), so the surface has no T-junctions. When the overlay is
+//!   inconsistent (a triangle folded in (u,v), two vertices at one (u,v), …) the face falls back to
+//!   each side's own unattached triangles oriented into its cell (closed as a chain, but two sheets
+//!   may remain where neither attaches), with a warning.
+//! * only A attaches: A's attached triangles are output, oriented outward from A.
 //! * neither attaches: the whole section is a flat zone, not output, reported with its area.
+//!
+//! Where pieces touch along edges or at vertices (singularities), `unpinch` splits vertices with one
+//! sheet pairing decided per edge; branching samples are lifted off the plane (`lift_samples`).
 //!
 //! All vertices are global (pool ids, Steiner points, then branching samples), so the pieces weld.
 //! The tetrahedral mesh is the union of the kept tets; it is non-conforming across a face where the
 //! two cells' section triangulations differ (counted in the report).
 use super::cell::CellResult;
+use super::face_overlay::{overlay, Overlay};
 use crate::arrangement::{Arrangement, VertexPool};
 use crate::mesh::{TetMesh, TriMesh};
 use std::collections::HashMap;
@@ -32,9 +38,15 @@ pub struct Glued {
     pub double_sheet_triangles: u64,
     pub nonconforming_faces: u64,
     pub pinched_vertices: u64,
+    /// Faces whose output is the overlay of the two sides' attached regions.
+    pub overlay_faces: u64,
+    /// Vertices created where the two sides' triangle edges cross.
+    pub overlay_vertices: u64,
+    /// Faces where the overlay failed and each side's unattached triangles were kept.
+    pub overlay_fallbacks: u64,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 enum Kind {
     /// Boundary triangle inside this cell.
     Cell(u32),
@@ -109,6 +121,8 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             sides.entry(fs.face).or_default().push((c, s));
         }
     }
+    // original edge (min, max) → vertices the face overlays put inside it, from min to max
+    let mut edge_splits: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
     let mut face_ids: Vec<u32> = sides.keys().copied().collect();
     face_ids.sort_unstable();
     for f in face_ids {
@@ -136,6 +150,21 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             if ka != kb {
                 g.nonconforming_faces += 1;
             }
+        }
+        if std::env::var("BM_DEBUG").is_ok() {
+            let d: Vec<String> = list
+                .iter()
+                .map(|cs| {
+                    let t = &side(cs).triangles;
+                    format!(
+                        "cell {} {}/{} attached",
+                        cs.0,
+                        t.iter().filter(|t| t.1).count(),
+                        t.len()
+                    )
+                })
+                .collect();
+            eprintln!("glue face {f}: {}", d.join(", "));
         }
         match attaching.len() {
             0 => {
@@ -180,18 +209,51 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                 }
             }
             _ => {
-                for &(c, s) in list {
-                    for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
-                        if !att {
-                            let t = map3(&maps[c], t);
-                            tris.push([t[0], t[2], t[1]]);
-                            kind.push(Kind::Face(f));
+                let face = &arr.faces[f as usize];
+                let plane = &arr.planes[face.plane as usize].plane;
+                match overlay_face(results, &maps, list, positions.len() as u32) {
+                    Ok((o, section_area)) => {
+                        g.overlay_faces += 1;
+                        g.overlay_vertices += o.new_vertices.len() as u64;
+                        positions.extend(o.new_vertices.iter().map(|&q| plane.to_3d(q)));
+                        tris.extend(o.triangles.iter().copied());
+                        kind.resize(tris.len(), Kind::Face(f));
+                        for (e, chain) in o.splits {
+                            edge_splits.entry(e).or_insert(chain);
+                        }
+                        let flat = section_area - o.attached_area;
+                        if flat > 1e-9 * section_area {
+                            g.flat_zone_faces += 1;
+                            g.flat_zone_area += flat;
+                            g.warnings.push(format!(
+                                "face {f} (plane {}): flat zone of area {flat:.4e} attached from neither side (not in the solid)",
+                                face.plane
+                            ));
+                        }
+                    }
+                    Err(why) => {
+                        // each side's own unattached triangles (closed as a chain; may leave two
+                        // sheets where neither side attaches)
+                        g.overlay_fallbacks += 1;
+                        g.warnings.push(format!(
+                            "face {f} (plane {}): overlay of the two sides failed ({why}); each side's unattached triangles kept",
+                            face.plane
+                        ));
+                        for &(c, s) in list {
+                            for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
+                                if !att {
+                                    let t = map3(&maps[c], t);
+                                    tris.push([t[0], t[2], t[1]]);
+                                    kind.push(Kind::Face(f));
+                                }
+                            }
                         }
                     }
                 }
             }
         }
     }
+    split_at_edges(&mut tris, &mut kind, &mut positions, &edge_splits);
     // Cancel coincident opposite triangles (flat-zone sheets triangulated alike on both sides).
     let mut by_key: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
     for (i, &t) in tris.iter().enumerate() {
@@ -315,6 +377,121 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     g
 }
 
+/// The overlay of a face attached from both sides (`list`: its two (cell, slot) sides), plus the
+/// section's area (the larger of the two sides' triangulated areas).
+fn overlay_face(
+    results: &[Option<CellResult>],
+    maps: &[Vec<u32>],
+    list: &[(usize, usize)],
+    first_new: u32,
+) -> Result<(Overlay, f64), String> {
+    if list.len() != 2 {
+        return Err(format!("{} sides", list.len()));
+    }
+    let mut uv: HashMap<u32, [f64; 2]> = HashMap::new();
+    let mut x: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
+    let mut section_area = 0.0f64;
+    let mut ccw_a = true;
+    for (k, &(c, s)) in list.iter().enumerate() {
+        let r = results[c].as_ref().ok_or("cell without result")?;
+        let inp = r.input.as_ref().ok_or("cell without input")?;
+        let slot = &inp.slots[s];
+        if k == 0 {
+            ccw_a = slot.outward_is_plane_normal;
+        }
+        let mut area = 0.0;
+        for &(t, att) in &r.faces[s].triangles {
+            let q = t.map(|l| slot.uv[l as usize]);
+            area += 0.5
+                * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1])
+                    - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]))
+                    .abs();
+            if !att {
+                continue;
+            }
+            for l in t {
+                let p = slot.uv[l as usize];
+                if !(p[0].is_finite() && p[1].is_finite()) {
+                    return Err(format!("local vertex {l} of cell {c} has no (u,v)"));
+                }
+                uv.insert(maps[c][l as usize], p);
+            }
+            x[k].push(t.map(|l| maps[c][l as usize]));
+        }
+        section_area = section_area.max(area);
+    }
+    let o = overlay(&uv, &x[0], &x[1], ccw_a, first_new)?;
+    Ok((o, section_area))
+}
+
+/// Splits every triangle that has an edge with vertices inserted on it (by a face overlay), so the
+/// surface has no T-junctions: a fan from the opposite corner when one edge is split, else a fan
+/// from a new vertex at the triangle's centroid.
+fn split_at_edges(
+    tris: &mut Vec<[u32; 3]>,
+    kind: &mut Vec<Kind>,
+    positions: &mut Vec<[f64; 3]>,
+    splits: &HashMap<(u32, u32), Vec<u32>>,
+) {
+    if splits.is_empty() {
+        return;
+    }
+    let n = tris.len();
+    for i in 0..n {
+        let t = tris[i];
+        let mut on: [Vec<u32>; 3] = Default::default();
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            if let Some(ch) = splits.get(&(a.min(b), a.max(b))) {
+                on[k] = ch.clone();
+                if a > b {
+                    on[k].reverse();
+                }
+            }
+        }
+        let split: Vec<usize> = (0..3).filter(|&k| !on[k].is_empty()).collect();
+        if split.is_empty() {
+            continue;
+        }
+        let mut pieces: Vec<[u32; 3]> = Vec::new();
+        if split.len() == 1 {
+            let k = split[0];
+            let apex = t[(k + 2) % 3];
+            let mut run = vec![t[k]];
+            run.extend(on[k].iter().copied());
+            run.push(t[(k + 1) % 3]);
+            for w in run.windows(2) {
+                pieces.push([w[0], w[1], apex]);
+            }
+        } else {
+            let mut ring = Vec::new();
+            for k in 0..3 {
+                ring.push(t[k]);
+                ring.extend(on[k].iter().copied());
+            }
+            let (a, b, c) = (
+                positions[t[0] as usize],
+                positions[t[1] as usize],
+                positions[t[2] as usize],
+            );
+            positions.push([
+                (a[0] + b[0] + c[0]) / 3.0,
+                (a[1] + b[1] + c[1]) / 3.0,
+                (a[2] + b[2] + c[2]) / 3.0,
+            ]);
+            let m = (positions.len() - 1) as u32;
+            for j in 0..ring.len() {
+                pieces.push([ring[j], ring[(j + 1) % ring.len()], m]);
+            }
+        }
+        tris[i] = pieces[0];
+        for p in &pieces[1..] {
+            tris.push(*p);
+            kind.push(kind[i]);
+        }
+    }
+}
+
 fn sorted(mut t: [u32; 3]) -> [u32; 3] {
     t.sort_unstable();
     t
@@ -346,13 +523,18 @@ fn count_double_sheet(tris: &[[u32; 3]]) -> u64 {
 }
 
 /// Where the solid touches a section plane from one side only (branching on a side the other cell
-/// does not attach to, paper Fig. 12), the surface is pinched at vertices: the triangles around a
-/// vertex form several fans. Fans are found by walking triangles around the vertex through their
-/// shared edges (at an edge with more than two triangles, only triangles of the same kind — planar on
-/// the same face, or non-planar of the same cell — continue each other). Every fan but the one with
-/// the most planar triangles gets its own copy of the vertex, lifted by a millionth of the shortest
-/// incident edge into its cell when the fan is non-planar (the paper's remedy: displace slightly into
-/// the cell). Returns the split vertices.
+/// does not attach to, paper Fig. 12), or two pieces meet along an edge, the surface is pinched: the
+/// triangles around a vertex form several fans. Every edge used by more than two triangles first gets
+/// one pairing of its triangles into sheets, decided once for the edge so that both its endpoints
+/// agree (otherwise the two endpoints split the edge's triangles differently and open the surface):
+/// by kind when every kind (planar on one face, non-planar of one cell) holds exactly two of them,
+/// else by angular order around the edge, each triangle with its neighbour across the solid's wedge
+/// (`pair_around_edges` pass 0) or, where that leaves the edge's sheets in one fan at both endpoints,
+/// across the void's (pass 1); an edge with no usable pairing keeps its triangles together. Fans are
+/// then the classes of the triangles around a vertex joined through two-triangle edges and paired
+/// triangles. Every fan but the one with the most planar triangles gets its own copy of the vertex,
+/// lifted by a millionth of the shortest incident edge into its cell when the fan is non-planar (the
+/// paper's remedy: displace slightly into the cell). Returns the split vertices.
 fn unpinch(
     arr: &Arrangement,
     positions: &mut Vec<[f64; 3]>,
@@ -360,82 +542,170 @@ fn unpinch(
     kind: &[Kind],
 ) -> std::collections::HashSet<u32> {
     let mut at: HashMap<u32, Vec<usize>> = HashMap::new();
+    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
     for (i, t) in tris.iter().enumerate() {
-        for &v in t {
-            at.entry(v).or_default().push(i);
+        for k in 0..3 {
+            at.entry(t[k]).or_default().push(i);
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_default().push(i);
         }
+    }
+    let partners = pair_around_edges(positions, tris);
+    // per edge with more than two triangles: its sheets (groups of triangles that stay together)
+    #[derive(Clone, Copy, PartialEq)]
+    enum Pairing {
+        Kind,
+        Angle(usize),
+        Together,
+    }
+    let forward = |i: usize, a: u32, b: u32| {
+        let t = tris[i];
+        (0..3).any(|k| t[k] == a && t[(k + 1) % 3] == b)
+    };
+    let mut choice: HashMap<(u32, u32), Pairing> = HashMap::new();
+    for (&(a, b), l) in &edges {
+        if l.len() <= 2 {
+            continue;
+        }
+        let mut by_kind: HashMap<Kind, Vec<usize>> = HashMap::new();
+        for &i in l {
+            by_kind.entry(kind_key(kind[i])).or_default().push(i);
+        }
+        let kind_ok = by_kind
+            .values()
+            .all(|g| g.len() == 2 && forward(g[0], a, b) != forward(g[1], a, b));
+        let angle_ok = l.iter().all(|&i| {
+            let k = slot_of(&tris[i], a, b);
+            partners[0].contains_key(&(i, k)) && partners[1].contains_key(&(i, k))
+        });
+        let c = if kind_ok && by_kind.len() > 1 {
+            Pairing::Kind
+        } else if angle_ok {
+            Pairing::Angle(0)
+        } else if kind_ok {
+            Pairing::Kind
+        } else {
+            Pairing::Together
+        };
+        choice.insert((a, b), c);
+    }
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
     }
     let mut vs: Vec<u32> = at.keys().copied().collect();
     vs.sort_unstable();
-    let partners = pair_around_edges(positions, tris);
-    let mut split = std::collections::HashSet::new();
-    for v in vs {
-        let list = at[&v].clone();
-        // edges (v,w) → incident triangles (indices into list)
-        let mut by_w: HashMap<u32, Vec<usize>> = HashMap::new();
-        for (k, &i) in list.iter().enumerate() {
-            for &w in &tris[i] {
-                if w != v {
-                    by_w.entry(w).or_default().push(k);
+    // the sheets of an edge, as pairs of triangles to join
+    let sheet_links = |e: (u32, u32), c: Pairing| -> Vec<(usize, usize)> {
+        let l = &edges[&e];
+        match c {
+            Pairing::Together => l.windows(2).map(|w| (w[0], w[1])).collect(),
+            Pairing::Kind => {
+                let mut out = Vec::new();
+                for x in 0..l.len() {
+                    for y in x + 1..l.len() {
+                        if kind_key(kind[l[x]]) == kind_key(kind[l[y]]) {
+                            out.push((l[x], l[y]));
+                        }
+                    }
+                }
+                out
+            }
+            Pairing::Angle(pass) => l
+                .iter()
+                .map(|&i| (i, partners[pass][&(i, slot_of(&tris[i], e.0, e.1))]))
+                .collect(),
+        }
+    };
+    // fans of a vertex: classes of its star's triangles (as indices into tris)
+    let fans_of = |v: u32, choice: &HashMap<(u32, u32), Pairing>| -> Vec<Vec<usize>> {
+        let list = &at[&v];
+        let pos = |i: usize| list.iter().position(|&j| j == i);
+        let mut parent: Vec<usize> = (0..list.len()).collect();
+        let mut ws: Vec<u32> = list
+            .iter()
+            .flat_map(|&i| tris[i].iter().copied())
+            .filter(|&w| w != v)
+            .collect();
+        ws.sort_unstable();
+        ws.dedup();
+        for w in ws {
+            let e = (v.min(w), v.max(w));
+            let links = match choice.get(&e) {
+                Some(&c) => sheet_links(e, c),
+                None => {
+                    let l = &edges[&e];
+                    if l.len() == 2 {
+                        vec![(l[0], l[1])]
+                    } else {
+                        Vec::new()
+                    }
+                }
+            };
+            for (x, y) in links {
+                if let (Some(x), Some(y)) = (pos(x), pos(y)) {
+                    let (x, y) = (find(&mut parent, x), find(&mut parent, y));
+                    parent[x] = y;
                 }
             }
         }
         let mut fans: HashMap<usize, Vec<usize>> = HashMap::new();
-        for pass in 0..2 {
-            let mut singular = false;
-            // union-find over the triangles of the star
-            let mut parent: Vec<usize> = (0..list.len()).collect();
-            fn find(p: &mut [usize], mut x: usize) -> usize {
-                while p[x] != x {
-                    p[x] = p[p[x]];
-                    x = p[x];
-                }
-                x
-            }
-            for (&w, ks) in &by_w {
-                if ks.len() == 2 {
-                    let (a, b) = (find(&mut parent, ks[0]), find(&mut parent, ks[1]));
-                    parent[a] = b;
-                } else if ks.iter().all(|&k| kind[list[k]] == kind[list[ks[0]]])
-                    && ks.iter().all(|&k| {
-                        partners[pass].contains_key(&(list[k], slot_of(&tris[list[k]], v, w)))
-                    })
-                {
-                    // a singular edge inside one piece (two tets of a cell meet along an edge only):
-                    // each triangle continues its angular neighbour across the solid's wedge (pass 0)
-                    // or, when that leaves the vertex's star in one piece, across the void's (pass 1)
-                    singular = true;
-                    for &k in ks {
-                        let j = partners[pass][&(list[k], slot_of(&tris[list[k]], v, w))];
-                        if let Some(kj) = list.iter().position(|&i| i == j) {
-                            let (a, b) = (find(&mut parent, k), find(&mut parent, kj));
-                            parent[a] = b;
-                        }
-                    }
-                } else {
-                    for x in 0..ks.len() {
-                        for y in x + 1..ks.len() {
-                            if kind[list[ks[x]]] == kind[list[ks[y]]] {
-                                let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
-                                parent[a] = b;
-                            }
-                        }
-                    }
-                }
-            }
-            fans.clear();
-            for k in 0..list.len() {
-                let r = find(&mut parent, k);
-                fans.entry(r).or_default().push(list[k]);
-            }
-            if fans.len() >= 2 || !singular {
-                break;
-            }
-        }
-        if fans.len() < 2 {
-            continue;
+        for (k, &i) in list.iter().enumerate() {
+            let r = find(&mut parent, k);
+            fans.entry(r).or_default().push(i);
         }
         let mut fans: Vec<Vec<usize>> = fans.into_values().collect();
+        fans.sort();
+        fans
+    };
+    // an angular pairing that separates nothing at either endpoint: try the other side's wedges
+    let mut keys: Vec<(u32, u32)> = choice.keys().copied().collect();
+    keys.sort_unstable();
+    for _ in 0..2 {
+        let mut changed = false;
+        for &e in &keys {
+            if choice[&e] != Pairing::Angle(0) {
+                continue;
+            }
+            let l = &edges[&e];
+            let separated = [e.0, e.1].iter().any(|&v| {
+                let fans = fans_of(v, &choice);
+                let f0 = fans.iter().position(|f| f.contains(&l[0]));
+                l.iter()
+                    .any(|&i| fans.iter().position(|f| f.contains(&i)) != f0)
+            });
+            if !separated {
+                choice.insert(e, Pairing::Angle(1));
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let diag = {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in positions.iter() {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let d = crate::sections::sub(hi, lo);
+        crate::sections::dot(d, d).sqrt()
+    };
+    // all fans from the original ids, before any vertex is split
+    let all_fans: Vec<(u32, Vec<Vec<usize>>)> = vs
+        .iter()
+        .map(|&v| (v, fans_of(v, &choice)))
+        .filter(|(_, f)| f.len() >= 2)
+        .collect();
+    let mut split = std::collections::HashSet::new();
+    for (v, mut fans) in all_fans {
+        let list = at[&v].clone();
         let planar = |f: &Vec<usize>| {
             f.iter()
                 .filter(|&&i| matches!(kind[i], Kind::Face(_)))
@@ -448,11 +718,21 @@ fn unpinch(
             for &w in &tris[i] {
                 if w != v {
                     let d = crate::sections::sub(positions[w as usize], p);
-                    min_len = min_len.min(crate::sections::dot(d, d).sqrt());
+                    let l = crate::sections::dot(d, d).sqrt();
+                    // edges to coincident vertices (duplicates within rounding) do not count
+                    if l > 1e-9 * diag {
+                        min_len = min_len.min(l);
+                    }
                 }
             }
         }
-        let delta = 1e-6 * min_len;
+        // a millionth of the model's size (so that welding equal positions to ~1e-8 keeps the copies
+        // apart), but never more than a hundredth of the shortest incident edge
+        let delta = if min_len.is_finite() {
+            (1e-6 * diag).min(1e-2 * min_len).max(1e-6 * min_len)
+        } else {
+            1e-6 * diag
+        };
         for fan in &fans[1..] {
             // lift direction: into the cell of a purely non-planar fan, when the vertex lies on a
             // face of that cell with planar output here; otherwise the copy stays in place
@@ -479,6 +759,11 @@ fn unpinch(
                     }
                 }
             }
+            if dir == [0.0; 3] {
+                // elsewhere towards the fan's own triangles, so that the copies do not coincide
+                // (a consumer welding equal positions would pinch the surface again)
+                dir = fan_direction(positions, tris, fan, v);
+            }
             positions.push([
                 p[0] + delta * dir[0],
                 p[1] + delta * dir[1],
@@ -496,6 +781,38 @@ fn unpinch(
         split.insert(v);
     }
     split
+}
+
+/// Unit direction from `v` into its fan: the mean of the unit vectors to the fan's other vertices
+/// (zero when they cancel).
+fn fan_direction(positions: &[[f64; 3]], tris: &[[u32; 3]], fan: &[usize], v: u32) -> [f64; 3] {
+    use crate::sections::{dot, sub};
+    let p = positions[v as usize];
+    let mut d = [0.0; 3];
+    for &i in fan {
+        for &w in &tris[i] {
+            if w != v {
+                let e = sub(positions[w as usize], p);
+                let l = dot(e, e).sqrt();
+                if l > 0.0 {
+                    for k in 0..3 {
+                        d[k] += e[k] / l;
+                    }
+                }
+            }
+        }
+    }
+    let l = dot(d, d).sqrt();
+    if l > 0.0 {
+        [d[0] / l, d[1] / l, d[2] / l]
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// Kinds compared for pairing (identity; a hook should kinds grow fields).
+fn kind_key(k: Kind) -> Kind {
+    k
 }
 
 /// Slot k of the edge {v, w} in a triangle (the edge t[k], t[k+1]).
@@ -607,5 +924,117 @@ fn lift_samples(
         for k in 0..3 {
             p[k] += delta * d[k];
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn empty_arrangement() -> Arrangement {
+        Arrangement {
+            planes: Vec::new(),
+            n_input: 0,
+            pool: VertexPool::default(),
+            faces: Vec::new(),
+            cells: Vec::new(),
+            bbox: ([0.0; 3], [1.0; 3]),
+            max_disagreement: 0.0,
+            warnings: Vec::new(),
+        }
+    }
+
+    /// The four faces of tetrahedron `t`, oriented outward.
+    fn tet_surface(p: &[[f64; 3]], t: [u32; 4]) -> Vec<[u32; 3]> {
+        use crate::sections::{cross, dot, sub};
+        let vol = |a: u32, b: u32, c: u32, d: u32| {
+            let (a, b, c, d) = (p[a as usize], p[b as usize], p[c as usize], p[d as usize]);
+            dot(cross(sub(b, a), sub(c, a)), sub(d, a))
+        };
+        (0..4)
+            .map(|i| {
+                let f: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| t[k]).collect();
+                // outward: the opposite vertex is behind the face
+                if vol(f[0], f[1], f[2], t[i]) < 0.0 {
+                    [f[0], f[1], f[2]]
+                } else {
+                    [f[0], f[2], f[1]]
+                }
+            })
+            .collect()
+    }
+
+    fn edge_uses(tris: &[[u32; 3]]) -> HashMap<(u32, u32), usize> {
+        let mut m = HashMap::new();
+        for t in tris {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *m.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        m
+    }
+
+    /// Two tetrahedra meeting along the edge 0–1 only: unpinching makes every edge two-sided.
+    fn two_tets(kinds: [Kind; 2]) {
+        let mut pos = vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.5, 0.5],
+            [1.0, -0.5, 0.5],
+            [-1.0, 0.5, 0.5],
+            [-1.0, -0.5, 0.5],
+        ];
+        let mut tris = tet_surface(&pos, [0, 1, 2, 3]);
+        let mut kind = vec![kinds[0]; 4];
+        tris.extend(tet_surface(&pos, [0, 1, 4, 5]));
+        kind.extend([kinds[1]; 4]);
+        assert_eq!(edge_uses(&tris)[&(0, 1)], 4);
+        let split = unpinch(&empty_arrangement(), &mut pos, &mut tris, &kind);
+        assert!(!split.is_empty());
+        let uses = edge_uses(&tris);
+        assert!(uses.values().all(|&c| c == 2), "{uses:?}");
+        // the copies do not coincide with the originals
+        for v in 6..pos.len() {
+            assert!((0..6).all(|w| pos[w] != pos[v]));
+        }
+    }
+
+    #[test]
+    fn tets_of_two_cells_touching_along_an_edge() {
+        two_tets([Kind::Cell(0), Kind::Cell(1)]);
+    }
+
+    #[test]
+    fn tets_of_one_cell_touching_along_an_edge() {
+        two_tets([Kind::Cell(0), Kind::Cell(0)]);
+    }
+
+    #[test]
+    fn splitting_an_edge_splits_its_triangles() {
+        let mut pos = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+        ];
+        let mut tris = vec![[0, 1, 2]];
+        let mut kind = vec![Kind::Cell(0)];
+        let mut splits = HashMap::new();
+        splits.insert((0, 1), vec![3]);
+        split_at_edges(&mut tris, &mut kind, &mut pos, &splits);
+        assert_eq!(tris, vec![[0, 3, 2], [3, 1, 2]]);
+        // edges on two sides: fan from a centroid
+        pos.push([0.0, 0.5, 0.0]);
+        let mut tris = vec![[0, 1, 2]];
+        let mut kind = vec![Kind::Cell(0)];
+        splits.insert((0, 2), vec![4]);
+        split_at_edges(&mut tris, &mut kind, &mut pos, &splits);
+        assert_eq!(tris.len(), 5);
+        assert_eq!(kind.len(), 5);
+        let uses = edge_uses(&tris);
+        assert!(!uses.contains_key(&(0, 1)) && !uses.contains_key(&(0, 2)));
+        assert_eq!(uses[&(0, 3)], 1);
+        assert_eq!(uses[&(0, 4)], 1);
     }
 }

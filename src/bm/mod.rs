@@ -13,8 +13,9 @@
 //! (`glue`), flat zones are reported, pinched vertices are split and singular crossings of the two
 //! cells' branching diagrams avoided by displacing samples 1e-6 of an edge into their cell (Fig. 12b).
 //!
-//! Known limits: cutting-diagram samples are not computed; where both cells attach part of a face and
-//! leave a common part unattached, the two flat-zone sheets can remain (counted in warnings); the
+//! Known limits: cutting-diagram samples are not computed; on a face attached from both sides the
+//! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
+//! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
 //! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
 //! Set `SLICE2SOLID_NO_BRANCHING` to skip branching samples, `BM_DEBUG` for per-cell diagnostics.
 pub mod branching;
@@ -23,6 +24,7 @@ pub mod cell_input;
 pub mod classify;
 pub mod complex;
 pub mod conform;
+pub mod face_overlay;
 pub mod glue;
 pub mod prune;
 
@@ -226,6 +228,9 @@ pub fn reconstruct(
         .insert("flat_zone_area".into(), glued.flat_zone_area);
     report.count("nonconforming_faces", glued.nonconforming_faces);
     report.count("pinched_vertices_lifted", glued.pinched_vertices);
+    report.count("overlay_faces", glued.overlay_faces);
+    report.count("overlay_vertices", glued.overlay_vertices);
+    report.count("overlay_fallbacks", glued.overlay_fallbacks);
     report.warnings.extend(glued.warnings);
     Ok(Solid {
         surface: glued.surface,
