@@ -44,6 +44,8 @@ pub struct Glued {
     pub overlay_vertices: u64,
     /// Faces where the overlay failed and each side's unattached triangles were kept.
     pub overlay_fallbacks: u64,
+    /// Displaced vertices moved to another candidate position because the first one crossed the surface.
+    pub lifts_redirected: u64,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -284,9 +286,25 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .filter(|(_, d)| !d)
         .map(|(t, _)| t)
         .unzip();
-    let split = unpinch(arr, &mut positions, &mut tris, &kind);
+    let before_lift = positions.clone();
+    let mut copies = Vec::new();
+    let split = unpinch(arr, &mut positions, &mut tris, &kind, &mut copies);
     g.pinched_vertices = split.len() as u64;
     lift_samples(&mut positions, &tris, &samples, &split);
+    // every displaced vertex with the position it was displaced from
+    let moved: Vec<(u32, [f64; 3])> = (0..before_lift.len())
+        .filter(|&v| positions[v] != before_lift[v])
+        .map(|v| (v as u32, before_lift[v]))
+        .chain(copies.iter().map(|&(c, v)| (c, before_lift[v as usize])))
+        .collect();
+    let untangled = super::untangle::untangle(&mut positions, &tris, &moved);
+    g.lifts_redirected = untangled.redirected;
+    if untangled.unresolved > 0 {
+        g.warnings.push(format!(
+            "{} displaced vertices still make their triangles cross others (no candidate position was free)",
+            untangled.unresolved
+        ));
+    }
     if std::env::var("BM_DEBUG").is_ok() {
         let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
         for (i, t) in tris.iter().enumerate() {
@@ -540,6 +558,7 @@ fn unpinch(
     positions: &mut Vec<[f64; 3]>,
     tris: &mut [[u32; 3]],
     kind: &[Kind],
+    copies: &mut Vec<(u32, u32)>,
 ) -> std::collections::HashSet<u32> {
     let mut at: HashMap<u32, Vec<usize>> = HashMap::new();
     let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
@@ -770,6 +789,7 @@ fn unpinch(
                 p[2] + delta * dir[2],
             ]);
             let id = (positions.len() - 1) as u32;
+            copies.push((id, v));
             for &i in fan {
                 for w in tris[i].iter_mut() {
                     if *w == v {
@@ -990,7 +1010,13 @@ mod tests {
         tris.extend(tet_surface(&pos, [0, 1, 4, 5]));
         kind.extend([kinds[1]; 4]);
         assert_eq!(edge_uses(&tris)[&(0, 1)], 4);
-        let split = unpinch(&empty_arrangement(), &mut pos, &mut tris, &kind);
+        let split = unpinch(
+            &empty_arrangement(),
+            &mut pos,
+            &mut tris,
+            &kind,
+            &mut Vec::new(),
+        );
         assert!(!split.is_empty());
         let uses = edge_uses(&tris);
         assert!(uses.values().all(|&c| c == 2), "{uses:?}");

@@ -27,6 +27,7 @@ pub mod conform;
 pub mod face_overlay;
 pub mod glue;
 pub mod prune;
+pub mod untangle;
 
 use crate::arrangement::Arrangement;
 use crate::error::Result;
@@ -228,6 +229,7 @@ pub fn reconstruct(
         .insert("flat_zone_area".into(), glued.flat_zone_area);
     report.count("nonconforming_faces", glued.nonconforming_faces);
     report.count("pinched_vertices_lifted", glued.pinched_vertices);
+    report.count("lifts_redirected", glued.lifts_redirected);
     report.count("overlay_faces", glued.overlay_faces);
     report.count("overlay_vertices", glued.overlay_vertices);
     report.count("overlay_fallbacks", glued.overlay_fallbacks);

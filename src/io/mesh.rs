@@ -783,8 +783,16 @@ fn check_tets(mesh: &TetMesh, name: &str) -> Result<()> {
 }
 
 /// Writers refuse a cell that refers past the vertex array instead of writing a file that cannot be read back.
-fn check_indices<const K: usize>(cells: &[[u32; K]], n: usize, name: &str, what: &str) -> Result<()> {
-    match cells.iter().position(|c| c.iter().any(|&v| v as usize >= n)) {
+fn check_indices<const K: usize>(
+    cells: &[[u32; K]],
+    n: usize,
+    name: &str,
+    what: &str,
+) -> Result<()> {
+    match cells
+        .iter()
+        .position(|c| c.iter().any(|&v| v as usize >= n))
+    {
         Some(i) => Err(Error::input(
             name,
             format!("{what} {i} has a vertex index out of range ({n} vertices)"),
