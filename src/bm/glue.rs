@@ -291,11 +291,20 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     let split = unpinch(arr, &mut positions, &mut tris, &kind, &mut copies);
     g.pinched_vertices = split.len() as u64;
     lift_samples(&mut positions, &tris, &samples, &split);
+    let mut kind = kind;
+    let mut crease_mids = Vec::new();
+    let n_split_edges = split_mixed_edges(&mut positions, &mut tris, &mut kind, &mut crease_mids);
+    if n_split_edges > 0 {
+        g.warnings.push(format!(
+            "{n_split_edges} edges where a crease met a section were split, the crease's side displaced into its cell"
+        ));
+    }
     // every displaced vertex with the position it was displaced from
     let moved: Vec<(u32, [f64; 3])> = (0..before_lift.len())
         .filter(|&v| positions[v] != before_lift[v])
         .map(|v| (v as u32, before_lift[v]))
         .chain(copies.iter().map(|&(c, v)| (c, before_lift[v as usize])))
+        .chain(crease_mids.iter().copied())
         .collect();
     let untangled = super::untangle::untangle(&mut positions, &tris, &moved);
     g.lifts_redirected = untangled.redirected;
@@ -803,6 +812,103 @@ fn unpinch(
     split
 }
 
+/// An edge still used by four triangles after `unpinch` — two non-planar ones of one cell (a crease)
+/// and two section triangles of one face — keeps both sheets in one fan at both endpoints, so no
+/// vertex split separates them. The edge is split at its midpoint instead, with a separate midpoint for
+/// the crease displaced a thousandth of the edge towards the crease's other vertices (into its cell):
+/// the two sheets then share only the edge's endpoints. Returns the number of edges split; the crease
+/// midpoints are added to `moved` (with the midpoint they came from) so that `untangle` checks them.
+fn split_mixed_edges(
+    positions: &mut Vec<[f64; 3]>,
+    tris: &mut Vec<[u32; 3]>,
+    kind: &mut Vec<Kind>,
+    moved: &mut Vec<(u32, [f64; 3])>,
+) -> usize {
+    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_default().push(i);
+        }
+    }
+    let mut todo: Vec<((u32, u32), Vec<usize>)> = edges
+        .into_iter()
+        .filter(|(_, l)| {
+            l.len() == 4 && {
+                let cells: Vec<&usize> = l
+                    .iter()
+                    .filter(|&&i| matches!(kind[i], Kind::Cell(_)))
+                    .collect();
+                let faces: Vec<&usize> = l
+                    .iter()
+                    .filter(|&&i| matches!(kind[i], Kind::Face(_)))
+                    .collect();
+                cells.len() == 2
+                    && faces.len() == 2
+                    && kind[*cells[0]] == kind[*cells[1]]
+                    && kind[*faces[0]] == kind[*faces[1]]
+            }
+        })
+        .collect();
+    todo.sort_unstable();
+    let mut touched = std::collections::HashSet::new();
+    let mut n = 0;
+    for ((a, b), l) in todo {
+        // one split per triangle (a triangle on two such edges waits for another run)
+        if l.iter().any(|i| touched.contains(i)) {
+            continue;
+        }
+        let (pa, pb) = (positions[a as usize], positions[b as usize]);
+        let mid = [0, 1, 2].map(|k| 0.5 * (pa[k] + pb[k]));
+        positions.push(mid);
+        let m_face = (positions.len() - 1) as u32;
+        // crease midpoint: towards the crease triangles' apexes
+        let apexes: Vec<[f64; 3]> = l
+            .iter()
+            .filter(|&&i| matches!(kind[i], Kind::Cell(_)))
+            .map(|&i| {
+                let w = tris[i]
+                    .iter()
+                    .copied()
+                    .find(|&w| w != a && w != b)
+                    .unwrap_or(a);
+                positions[w as usize]
+            })
+            .collect();
+        let towards = [0, 1, 2].map(|k| 0.5 * (apexes[0][k] + apexes[1][k]) - mid[k]);
+        let tl = crate::sections::dot(towards, towards).sqrt();
+        let e = crate::sections::sub(pb, pa);
+        let len = crate::sections::dot(e, e).sqrt();
+        let m_cell_pos = if tl > 0.0 {
+            [0, 1, 2].map(|k| mid[k] + 1e-3 * len * towards[k] / tl)
+        } else {
+            mid
+        };
+        positions.push(m_cell_pos);
+        let m_cell = (positions.len() - 1) as u32;
+        moved.push((m_cell, mid));
+        for &i in &l {
+            touched.insert(i);
+            let m = if matches!(kind[i], Kind::Cell(_)) {
+                m_cell
+            } else {
+                m_face
+            };
+            let t = tris[i];
+            // t = (a, b, w) up to rotation: (a, m, w) and (m, b, w) keep the orientation
+            let k = (0..3)
+                .find(|&k| (t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a))
+                .unwrap_or(0);
+            let (p, q, w) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+            tris[i] = [p, m, w];
+            tris.push([m, q, w]);
+            kind.push(kind[i]);
+        }
+        n += 1;
+    }
+    n
+}
+
 /// Unit direction from `v` into its fan: the mean of the unit vectors to the fan's other vertices
 /// (zero when they cancel).
 fn fan_direction(positions: &[[f64; 3]], tris: &[[u32; 3]], fan: &[usize], v: u32) -> [f64; 3] {
@@ -950,6 +1056,45 @@ fn lift_samples(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// hand.csl: a crease (two triangles of one cell) on an edge shared with two section triangles
+    /// kept both sheets in one fan at both endpoints, so the edge stayed non-manifold.
+    #[test]
+    fn crease_meeting_a_section_edge_is_split_apart() {
+        let mut pos = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 1.0, 0.0],
+            [0.5, -1.0, 0.0],
+            [0.5, 0.5, 1.0],
+            [0.5, -0.5, 1.0],
+        ];
+        let mut tris = vec![[0, 1, 2], [1, 0, 3], [1, 0, 4], [0, 1, 5]];
+        let mut kind = vec![Kind::Face(0), Kind::Face(0), Kind::Cell(0), Kind::Cell(0)];
+        let mut moved = Vec::new();
+        assert_eq!(
+            split_mixed_edges(&mut pos, &mut tris, &mut kind, &mut moved),
+            1
+        );
+        assert_eq!((tris.len(), kind.len()), (8, 8));
+        let mut uses: HashMap<(u32, u32), usize> = HashMap::new();
+        for t in &tris {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                *uses.entry((a.min(b), a.max(b))).or_default() += 1;
+            }
+        }
+        assert!(uses.values().all(|&c| c <= 2), "{uses:?}");
+        // the section keeps the exact midpoint, the crease's copy moved up into its cell
+        assert_eq!(pos[6], [0.5, 0.0, 0.0]);
+        assert!(pos[7][2] > 0.0 && moved == vec![(7, [0.5, 0.0, 0.0])]);
+        // the split triangles cover the same area as before
+        let area: f64 = tris[..].iter().map(|&t| tri_area(&pos, t)).sum();
+        assert!(
+            (area - (0.5 + 0.5 + 2.0 * 0.5 * (1.25f64).sqrt())).abs() < 1e-3,
+            "{area}"
+        );
+    }
 
     fn empty_arrangement() -> Arrangement {
         Arrangement {
