@@ -38,7 +38,6 @@
 mod build;
 mod cells;
 pub(crate) mod exact;
-mod fxhash;
 mod pieces;
 mod reconcile;
 
@@ -226,7 +225,8 @@ impl Arrangement {
                 corner[v as usize] = true;
             }
         }
-        let mut on_line: fxhash::FxHashMap<(PlaneId, PlaneId), Vec<VertexId>> = Default::default();
+        let mut on_line: crate::fxhash::FxHashMap<(PlaneId, PlaneId), Vec<VertexId>> =
+            Default::default();
         for (v, tags) in self.pool.tags.iter().enumerate() {
             if tags.len() < 2 || corner[v] {
                 continue;

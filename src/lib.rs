@@ -9,6 +9,7 @@ pub mod bm;
 pub mod delaunay;
 pub mod error;
 pub mod eval;
+pub mod fxhash;
 pub mod geom;
 pub mod implicit;
 pub mod io;

@@ -1,11 +1,11 @@
 //! Assembly of the `Arrangement`: box, duplicate check, cells, shared faces, pool, pieces.
 use super::cells::CellBuilder;
 use super::exact::same_plane;
-use super::fxhash::FxHashMap as HashMap;
 use super::{
     ArrPlane, Arrangement, ArrangementOptions, Cell, CellFace, Face, PlaneTags, VertexPool,
 };
 use crate::error::{Error, Result};
+use crate::fxhash::FxHashMap as HashMap;
 use crate::sections::{Plane, Sections};
 use smallvec::SmallVec;
 

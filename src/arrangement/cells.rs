@@ -7,8 +7,8 @@
 //! Vertices created on an edge (a,b) by plane h are keyed by (a,b,h), so the cells around an
 //! edge share them; faces are shared because both cells split them identically.
 use super::exact::{sign_det3, sign_det4};
-use super::fxhash::FxHashMap as HashMap;
 use super::PlaneTags;
+use crate::fxhash::FxHashMap as HashMap;
 
 /// A face of a cell during construction: counter-clockwise seen from outside the cell.
 #[derive(Clone, Debug)]

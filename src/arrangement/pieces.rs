@@ -12,9 +12,9 @@
 //! traced: contour runs, joined along the face boundary (counter-clockwise, through corners and every
 //! section point on the boundary) from where a run leaves the face to where the next one enters.
 use super::exact::{dot_plus, sign_dot_plus};
-use super::fxhash::FxHashMap as HashMap;
 use super::{polygon_area, Arrangement, ArrangementOptions, PlaneTags, SectionPiece, VertexId};
 use crate::error::Result;
+use crate::fxhash::FxHashMap as HashMap;
 use crate::sections::{Contour, Region, Sections};
 use smallvec::SmallVec;
 use std::cmp::Ordering;

@@ -11,8 +11,8 @@
 //! * Unmatched points are kept by their own section (no section is altered beyond the tolerance),
 //!   and every section point lying on an edge of another plane's piece along L is inserted into that
 //!   piece's boundary, so the pieces of both planes share all their vertices along L (no T-junctions).
-use super::fxhash::FxHashMap as HashMap;
 use super::{Arrangement, ArrangementOptions, VertexId};
+use crate::fxhash::FxHashMap as HashMap;
 use crate::sections::{cross, dot};
 use smallvec::SmallVec;
 

@@ -10,60 +10,8 @@ use std::collections::{HashMap, HashSet};
 
 pub type Mask = u128;
 
-/// Multiplicative hasher for the cells' id-keyed maps (vertex ids, edges, faces): much cheaper than
-/// SipHash, and no result depends on these maps' iteration order.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct IdHash;
-
-impl std::hash::BuildHasher for IdHash {
-    type Hasher = IdHasher;
-    fn build_hasher(&self) -> IdHasher {
-        IdHasher(0)
-    }
-}
-
-pub struct IdHasher(u64);
-
-impl IdHasher {
-    #[inline(always)]
-    fn add(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
-
-impl std::hash::Hasher for IdHasher {
-    #[inline]
-    fn finish(&self) -> u64 {
-        // fold the well-mixed high bits into the low ones the table indexes with
-        self.0 ^ (self.0 >> 29)
-    }
-    #[inline]
-    fn write(&mut self, bytes: &[u8]) {
-        let mut c = bytes.chunks_exact(8);
-        for ch in &mut c {
-            self.add(u64::from_le_bytes(ch.try_into().expect("8 bytes")));
-        }
-        let r = c.remainder();
-        if !r.is_empty() {
-            let mut buf = [0u8; 8];
-            buf[..r.len()].copy_from_slice(r);
-            self.add(u64::from_le_bytes(buf));
-        }
-    }
-    #[inline]
-    fn write_u32(&mut self, i: u32) {
-        self.add(i as u64);
-    }
-    #[inline]
-    fn write_u64(&mut self, i: u64) {
-        self.add(i);
-    }
-    #[inline]
-    fn write_usize(&mut self, i: usize) {
-        self.add(i as u64);
-    }
-}
-
+/// The cells' id-keyed maps use the crate's Fx hasher.
+pub type IdHash = crate::fxhash::FxBuild;
 pub type IdMap<K, V> = HashMap<K, V, IdHash>;
 pub type IdSet<K> = HashSet<K, IdHash>;
 pub const MAX_SLOTS: usize = 128;
