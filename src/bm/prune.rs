@@ -201,12 +201,27 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
 /// that are not kept, not flat, and whose every face is shared with a kept tet, with the group, or is
 /// a grounded triangle. Returns (groups filled, tets added).
 pub fn fill_cavities(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> (u64, u64) {
+    let voids = enclosed_groups(cx, cl, alive, |t| r1[t] && cl.ty[t] != TetType::Flat);
+    let tets = voids.iter().map(|g| g.len() as u64).sum();
+    for &t in voids.iter().flatten() {
+        alive[t as usize] = true;
+    }
+    (voids.len() as u64, tets)
+}
+
+/// Face-connected groups of tets that are not `alive` but `member`, closed off from everything
+/// else by kept tets and grounded triangles (no face to a non-member removed tet or the hull).
+fn enclosed_groups(
+    cx: &Complex,
+    cl: &Classified,
+    alive: &[bool],
+    member: impl Fn(usize) -> bool,
+) -> Vec<Vec<u32>> {
     let n = cx.len();
     let mut seen = vec![false; n];
-    let fillable = |t: usize| r1[t] && cl.ty[t] != TetType::Flat;
-    let (mut groups, mut tets) = (0, 0);
+    let mut out = Vec::new();
     for s in 0..n {
-        if seen[s] || alive[s] || !fillable(s) {
+        if seen[s] || alive[s] || !member(s) {
             continue;
         }
         let mut group = vec![s as u32];
@@ -220,7 +235,7 @@ pub fn fill_cavities(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bo
                 if nb != NONE && alive[nb as usize] {
                     continue;
                 }
-                if nb != NONE && fillable(nb as usize) {
+                if nb != NONE && member(nb as usize) {
                     if !seen[nb as usize] {
                         seen[nb as usize] = true;
                         group.push(nb);
@@ -231,14 +246,10 @@ pub fn fill_cavities(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bo
             }
         }
         if enclosed {
-            tets += group.len() as u64;
-            groups += 1;
-            for t in group {
-                alive[t as usize] = true;
-            }
+            out.push(group);
         }
     }
-    (groups, tets)
+    out
 }
 
 /// The cell's surface around vertex `v`, as the gluing makes it when the other side of every face
@@ -504,49 +515,21 @@ fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32, strict: bool) 
 /// triangles close off (voids of the solid), with each tet's type, removal reason (see
 /// `prune_why`), masks and neighbours. Should be empty after `fill_cavities`.
 pub fn debug_voids(cx: &Complex, cl: &Classified, alive: &[bool], why: &[u8]) -> Vec<String> {
-    let n = cx.len();
-    let mut seen = vec![false; n];
     let mut out = Vec::new();
-    for s in 0..n {
-        if seen[s] || alive[s] || cl.ty[s] == TetType::Flat || why[s] == 1 {
-            continue;
-        }
-        let mut group = vec![s as u32];
-        seen[s] = true;
-        let mut closed = true;
-        let mut k = 0;
-        while k < group.len() {
-            let t = group[k] as usize;
-            k += 1;
-            for (i, &nb) in cx.nbr[t].iter().enumerate() {
-                if nb != NONE && alive[nb as usize] {
-                    continue;
-                }
-                if nb != NONE && cl.ty[nb as usize] != TetType::Flat && why[nb as usize] != 1 {
-                    if !seen[nb as usize] {
-                        seen[nb as usize] = true;
-                        group.push(nb);
-                    }
-                } else if cl.grounded_faces[t] >> i & 1 == 0 {
-                    closed = false;
-                }
-            }
-        }
-        if closed {
-            out.push(format!("void of {} tets", group.len()));
-            for &t in &group {
-                out.push(format!(
-                    "   tet {t} {:?}/{} piv {:06b} nbr {:?}",
-                    cl.ty[t as usize],
-                    why[t as usize],
-                    cl.pivot_edges[t as usize],
-                    cx.nbr[t as usize].map(|nb| if nb == NONE {
-                        "hull".to_string()
-                    } else {
-                        format!("{}:{:?}/{}", nb, cl.ty[nb as usize], why[nb as usize])
-                    })
-                ));
-            }
+    for group in enclosed_groups(cx, cl, alive, |t| cl.ty[t] != TetType::Flat && why[t] != 1) {
+        out.push(format!("void of {} tets", group.len()));
+        for &t in &group {
+            out.push(format!(
+                "   tet {t} {:?}/{} piv {:06b} nbr {:?}",
+                cl.ty[t as usize],
+                why[t as usize],
+                cl.pivot_edges[t as usize],
+                cx.nbr[t as usize].map(|nb| if nb == NONE {
+                    "hull".to_string()
+                } else {
+                    format!("{}:{:?}/{}", nb, cl.ty[nb as usize], why[nb as usize])
+                })
+            ));
         }
     }
     out
