@@ -140,6 +140,7 @@ fn overlay_inner(
     }
     // chains of the original edges; bits on the CDT edges
     let mut bits = vec![0u8; cdt.num_undirected_edges()];
+    let mut chains: HashMap<(u32, u32), Vec<FixedVertexHandle>> = HashMap::new();
     for &((x, y), bit) in &edge_list {
         let chain = follow(&cdt, handle[&x], handle[&y])?;
         for w in chain.windows(2) {
@@ -155,6 +156,7 @@ fn overlay_inner(
                 .collect();
             out.splits.push(((x, y), inner));
         }
+        chains.insert((x, y), chain);
     }
     // flood fill from each side's triangles across the edges not on that side's edges
     let nf = cdt.num_all_faces();
@@ -169,9 +171,18 @@ fn overlay_inner(
             }
             // walk the first edge counter-clockwise: the triangle is on its left
             let (x, y) = if ccw { (t[0], t[1]) } else { (t[1], t[0]) };
-            let chain = follow(&cdt, handle[&x], handle[&y])?;
+            // the first CDT edge from x along the original edge; chains were followed from the
+            // smaller id, and the walk is greedy, so the other direction is followed anew
+            let reverse;
+            let chain = if x < y {
+                &chains[&(x, y)]
+            } else {
+                reverse = follow(&cdt, handle[&x], handle[&y])?;
+                &reverse
+            };
+            let (c0, c1) = (chain[0], chain[1]);
             let e = cdt
-                .get_edge_from_neighbors(chain[0], chain[1])
+                .get_edge_from_neighbors(c0, c1)
                 .ok_or("chain edge missing")?;
             let f = e
                 .face()
