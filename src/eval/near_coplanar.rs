@@ -63,25 +63,23 @@ pub fn edge_in_other_plane(
     tol: f64,
 ) -> bool {
     let near = |t: [P3; 3], n: Option<(P3, f64)>, q: [P3; 3]| {
-        let Some((n, len)) = n else { return false };
-        let o = t[0];
-        let close = q.map(|p| {
-            let d = n[0] * (p[0] - o[0]) + n[1] * (p[1] - o[1]) + n[2] * (p[2] - o[2]);
-            d.abs() <= tol * len
-        });
+        let Some(n) = n else { return false };
+        let close = q.map(|p| close_to_plane(t, n, p, tol));
         (0..3).any(|i| close[i] && close[(i + 1) % 3])
     };
     near(a, na, b) || near(b, nb, a)
 }
 
 /// Every point of `q` is within `tol` of the plane of `t` (float normal `n` of length `len`).
-fn within_plane(t: [P3; 3], (n, len): (P3, f64), q: [P3; 3], tol: f64) -> bool {
-    let bound = tol * len;
+fn within_plane(t: [P3; 3], n: (P3, f64), q: [P3; 3], tol: f64) -> bool {
+    q.iter().all(|&p| close_to_plane(t, n, p, tol))
+}
+
+/// Is `p` within `tol` of the plane of `t` (with its unnormalised normal `n` of length `len`)?
+fn close_to_plane(t: [P3; 3], (n, len): (P3, f64), p: P3, tol: f64) -> bool {
     let o = t[0];
-    q.iter().all(|&p| {
-        let d = n[0] * (p[0] - o[0]) + n[1] * (p[1] - o[1]) + n[2] * (p[2] - o[2]);
-        d.abs() <= bound
-    })
+    let d = n[0] * (p[0] - o[0]) + n[1] * (p[1] - o[1]) + n[2] * (p[2] - o[2]);
+    d.abs() <= tol * len
 }
 
 /// Float normal (cross product of two edges) and its length; `None` for a zero or non-finite one.
