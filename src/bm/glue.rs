@@ -315,13 +315,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         ));
     }
     if std::env::var("BM_DEBUG").is_ok() {
-        let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-        for (i, t) in tris.iter().enumerate() {
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                edges.entry((a.min(b), a.max(b))).or_default().push(i);
-            }
-        }
+        let edges = edge_triangles(&tris);
         let mut hist: std::collections::BTreeMap<String, u32> = Default::default();
         for (e, l) in &edges {
             if l.len() != 2 {
@@ -519,6 +513,18 @@ fn split_at_edges(
     }
 }
 
+/// The triangles (indices, ascending) on each undirected edge, keyed `(min, max)`.
+fn edge_triangles(tris: &[[u32; 3]]) -> HashMap<(u32, u32), Vec<usize>> {
+    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_default().push(i);
+        }
+    }
+    edges
+}
+
 fn sorted(mut t: [u32; 3]) -> [u32; 3] {
     t.sort_unstable();
     t
@@ -570,14 +576,12 @@ fn unpinch(
     copies: &mut Vec<(u32, u32)>,
 ) -> std::collections::HashSet<u32> {
     let mut at: HashMap<u32, Vec<usize>> = HashMap::new();
-    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
     for (i, t) in tris.iter().enumerate() {
-        for k in 0..3 {
-            at.entry(t[k]).or_default().push(i);
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            edges.entry((a.min(b), a.max(b))).or_default().push(i);
+        for &v in t {
+            at.entry(v).or_default().push(i);
         }
     }
+    let edges = edge_triangles(tris);
     let partners = pair_around_edges(positions, tris);
     // per edge with more than two triangles: its sheets (groups of triangles that stay together)
     #[derive(Clone, Copy, PartialEq)]
@@ -824,13 +828,7 @@ fn split_mixed_edges(
     kind: &mut Vec<Kind>,
     moved: &mut Vec<(u32, [f64; 3])>,
 ) -> usize {
-    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    for (i, t) in tris.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            edges.entry((a.min(b), a.max(b))).or_default().push(i);
-        }
-    }
+    let edges = edge_triangles(tris);
     let mut todo: Vec<((u32, u32), Vec<usize>)> = edges
         .into_iter()
         .filter(|(_, l)| {
