@@ -1,10 +1,7 @@
 //! `slice2solid delaunay` end to end: JSON keys, the tets file, errors, and the TetGen oracle switch.
+mod common;
+use common::{bin, json_of_success};
 use slice2solid::delaunay::{gen, xyz};
-use std::process::Command;
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_slice2solid"))
-}
 
 #[test]
 fn delaunay_cli_json_and_tets_file() {
@@ -19,12 +16,7 @@ fn delaunay_cli_json_and_tets_file() {
         .arg(&tets_path)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = json_of_success(&out);
     assert_eq!(j["points"], 201);
     assert_eq!(j["vertices"], 200);
     assert!(j["seconds"].as_f64().unwrap() >= 0.0);

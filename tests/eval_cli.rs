@@ -1,13 +1,8 @@
 //! The `check` and `compare` subcommands: JSON keys, exit status.
 mod common;
-use common::shared_dir;
+use common::{bin, json_of_success, shared_dir};
 use slice2solid::eval::shapes::{icosphere, translated, unit_cube};
 use slice2solid::io::mesh::write_trimesh;
-use std::process::Command;
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_slice2solid"))
-}
 
 #[test]
 fn check_json_and_exit_status() {
@@ -15,12 +10,7 @@ fn check_json_and_exit_status() {
     let good = dir.path().join("cube.obj");
     write_trimesh(&good, &unit_cube()).unwrap();
     let out = bin().args(["check", "--json"]).arg(&good).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = json_of_success(&out);
     for key in [
         "closed",
         "manifold",
@@ -74,12 +64,7 @@ fn compare_json() {
         .arg(&b)
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = json_of_success(&out);
     for key in ["iou", "chamfer_l1", "chamfer_l2", "hausdorff", "samples"] {
         assert!(j.get(key).is_some(), "missing {key}");
     }
@@ -97,12 +82,7 @@ fn check_with_sections_json() {
         .arg(data.join("reference/eight_15.stl"))
         .output()
         .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let j = json_of_success(&out);
     let planes = j["sections"].as_array().unwrap();
     assert_eq!(planes.len(), 15);
     for p in planes {

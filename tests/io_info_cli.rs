@@ -1,12 +1,9 @@
 //! `slice2solid info` on a shipped example and on a broken file.
-use std::process::Command;
+mod common;
+use common::bin;
 
 fn info(args: &[&str]) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_slice2solid"))
-        .arg("info")
-        .args(args)
-        .output()
-        .unwrap();
+    let out = bin().arg("info").args(args).output().unwrap();
     (
         out.status.success(),
         String::from_utf8_lossy(&out.stdout).into_owned(),

@@ -1,13 +1,8 @@
 //! The `slice` command end to end: errors name the file; written sections load back with the same areas.
 mod common;
-use common::shared_dir;
+use common::{bin, shared_dir};
 use slice2solid::io::mesh::{read_trimesh, write_trimesh};
 use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
-use std::process::Command;
-
-fn slice2solid() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_slice2solid"))
-}
 
 #[test]
 fn open_mesh_is_rejected_naming_the_file() {
@@ -16,7 +11,7 @@ fn open_mesh_is_rejected_naming_the_file() {
     mesh.triangles.truncate(mesh.triangles.len() - 3);
     let input = dir.path().join("open.obj");
     write_trimesh(&input, &mesh).unwrap();
-    let out = slice2solid()
+    let out = bin()
         .arg("slice")
         .arg(&input)
         .arg("-o")
@@ -43,7 +38,7 @@ fn sliced_reference_meshes_load_back_with_the_same_areas() {
         let input = shared_dir().join(format!("data/reference/{name}.stl"));
         for ext in ["csl", "json"] {
             let output = dir.path().join(format!("{name}.{ext}"));
-            let out = slice2solid()
+            let out = bin()
                 .args([
                     "slice",
                     input.to_str().unwrap(),

@@ -1,6 +1,22 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// The command-line binary under test.
+pub fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_slice2solid"))
+}
+
+/// The JSON a successful run printed (the test fails with the run's stderr otherwise).
+pub fn json_of_success(out: &Output) -> serde_json::Value {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
 
 /// The shared data directory: `$SLICE2SOLID_SHARED`, else `$CARGO_MANIFEST_DIR/../shared` if it
 /// exists, else `/work/shared`.
