@@ -115,16 +115,20 @@ impl Contour {
     }
     /// Signed area in (u,v): positive for counter-clockwise.
     pub fn signed_area(&self) -> f64 {
-        let p = &self.points2;
-        let n = p.len();
-        let mut a = 0.0;
-        for i in 0..n {
-            let (x0, y0) = (p[i][0], p[i][1]);
-            let (x1, y1) = (p[(i + 1) % n][0], p[(i + 1) % n][1]);
-            a += x0 * y1 - x1 * y0;
-        }
-        0.5 * a
+        polygon_signed_area(&self.points2)
     }
+}
+
+/// Signed area of a closed polygon (shoelace formula): positive for counter-clockwise.
+pub fn polygon_signed_area(p: &[[f64; 2]]) -> f64 {
+    let n = p.len();
+    let mut a = 0.0;
+    for i in 0..n {
+        let (x0, y0) = (p[i][0], p[i][1]);
+        let (x1, y1) = (p[(i + 1) % n][0], p[(i + 1) % n][1]);
+        a += x0 * y1 - x1 * y0;
+    }
+    0.5 * a
 }
 
 impl Region {

@@ -21,7 +21,7 @@
 use super::mvc::{self, Edge};
 use crate::arrangement::Arrangement;
 use crate::error::{Error, Result};
-use crate::sections::Plane;
+use crate::sections::{polygon_signed_area, Plane};
 use smallvec::SmallVec;
 use std::collections::HashMap;
 
@@ -67,17 +67,6 @@ pub struct Indicator {
     on_plane_eps: f64,
     /// Interior point per cell (fallback location).
     cell_halfspaces: Vec<Vec<(Plane, f64)>>,
-}
-
-fn polygon_area(p: &[[f64; 2]]) -> f64 {
-    let n = p.len();
-    let mut a = 0.0;
-    for i in 0..n {
-        let (x0, y0) = (p[i][0], p[i][1]);
-        let (x1, y1) = (p[(i + 1) % n][0], p[(i + 1) % n][1]);
-        a += x0 * y1 - x1 * y0;
-    }
-    0.5 * a
 }
 
 impl Indicator {
@@ -127,18 +116,18 @@ impl Indicator {
                     .iter()
                     .map(|&v| uv_of(v, f.plane))
                     .collect::<Result<_>>()?;
-                piece_area += polygon_area(&outer);
+                piece_area += polygon_signed_area(&outer);
                 piece_loops.push(outer);
                 for h in &p.holes {
                     let hole: Vec<[f64; 2]> = h
                         .iter()
                         .map(|&v| uv_of(v, f.plane))
                         .collect::<Result<_>>()?;
-                    piece_area += polygon_area(&hole);
+                    piece_area += polygon_signed_area(&hole);
                     piece_loops.push(hole);
                 }
             }
-            let face_area = polygon_area(&polygon);
+            let face_area = polygon_signed_area(&polygon);
             let kind = if piece_loops.is_empty() {
                 FaceKind::Empty
             } else if f.pieces.len() == 1
