@@ -306,20 +306,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .chain(copies.iter().map(|&(c, v)| (c, before_lift[v as usize])))
         .chain(crease_mids.iter().copied())
         .collect();
-    // the fan that kept a split vertex's id may retreat instead of its copy
-    let mut anchors: HashMap<u32, f64> = HashMap::new();
-    for &(c, v) in &copies {
-        let d = crate::sections::sub(positions[c as usize], before_lift[v as usize]);
-        let l = crate::sections::dot(d, d).sqrt();
-        let e = anchors.entry(v).or_insert(0.0);
-        *e = e.max(l);
-    }
-    let mut anchors: Vec<(u32, f64)> = anchors
-        .into_iter()
-        .filter(|a| positions[a.0 as usize] == before_lift[a.0 as usize])
-        .collect();
-    anchors.sort_by_key(|a| a.0);
-    let untangled = super::untangle::untangle(&mut positions, &tris, &moved, &anchors);
+    let untangled = super::untangle::untangle(&mut positions, &tris, &moved);
     if std::env::var_os("BM_DEBUG_CROSS").is_some() {
         debug_crossings(
             pool,
