@@ -424,8 +424,8 @@ fn debug_crossings(
     copies: &[(u32, u32)],
     crease_mids: &[(u32, [f64; 3])],
 ) {
-    use crate::eval::bvh::{triangle_boxes, Bvh};
-    use crate::eval::tri_tri::mesh_triangles_intersect;
+    use crate::geom::bvh::{triangle_boxes, Bvh};
+    use crate::geom::tri_tri::mesh_triangles_intersect;
     let bvh = Bvh::build(triangle_boxes(positions, tris));
     let what = |v: u32| -> String {
         let vu = v as usize;
@@ -454,7 +454,7 @@ fn debug_crossings(
     };
     let mut n = 0;
     for (i, t) in tris.iter().enumerate() {
-        let bb = crate::eval::bvh::Aabb::of_points(&t.map(|w| positions[w as usize]));
+        let bb = crate::geom::bvh::Aabb::of_points(&t.map(|w| positions[w as usize]));
         bvh.for_each_overlap(&bb, |j| {
             let j = j as usize;
             if j > i && mesh_triangles_intersect(*t, tris[j], positions) {

@@ -17,8 +17,8 @@
 //! Elephant (a main surface crossing its plane at a contour vertex where a pocket above a section
 //! wedge touches it) and Armadillo (a crack ending on a section under a wall rising from the same
 //! contour vertex) both needed the outward step.
-use crate::eval::bvh::{triangle_boxes, Aabb, Bvh};
-use crate::eval::tri_tri::mesh_triangles_intersect;
+use crate::geom::bvh::{triangle_boxes, Aabb, Bvh};
+use crate::geom::tri_tri::mesh_triangles_intersect;
 use crate::sections::{cross, dot, sub};
 use std::collections::HashMap;
 
