@@ -470,6 +470,32 @@ fn debug_crossings(
         });
     }
     eprintln!("crossings: {n}");
+    // vertices a welding consumer (rounding to 1e-8) would merge: pinches again
+    let mut used: Vec<u32> = tris.iter().flatten().copied().collect();
+    used.sort_unstable();
+    used.dedup();
+    let mut by_key: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    for &v in &used {
+        let key = positions[v as usize].map(|x| (x * 1e8).round() as i64);
+        by_key.entry(key).or_default().push(v);
+    }
+    for l in by_key.values().filter(|l| l.len() > 1) {
+        let ks: Vec<String> = l
+            .iter()
+            .map(|&v| {
+                let mut k: Vec<String> = tris
+                    .iter()
+                    .zip(kind)
+                    .filter(|(t, _)| t.contains(&v))
+                    .map(|(_, k)| format!("{k:?}"))
+                    .collect();
+                k.sort();
+                k.dedup();
+                format!("{} {:?}", what(v), k)
+            })
+            .collect();
+        eprintln!("near-coincident: {}", ks.join(" ~ "));
+    }
     if let Ok(path) = std::env::var("BM_DEBUG_CROSS_DUMP") {
         // the whole glued surface, for offline inspection: positions, triangles with kinds
         let mut out = String::new();
