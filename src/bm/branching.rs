@@ -21,6 +21,61 @@ fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
     dot(d, d)
 }
 
+/// The internal grounded triangles on slot `s` standing under a `Vf` tet, each (outward from its
+/// tet) with that tet's apex, the vertex off the slot: the Delaunay picture of the Moebius diagram.
+pub(super) fn apex_triangles(
+    input: &CellInput,
+    cx: &Complex,
+    ty: &[TetType],
+    cl: &Classifier,
+    s: usize,
+) -> Vec<([u32; 3], u32)> {
+    let bit = 1u128 << s;
+    let mut tri_apex = Vec::new();
+    for (t, tv) in cx.tets.iter().enumerate() {
+        if ty[t] != TetType::Vf {
+            continue;
+        }
+        for i in 0..4 {
+            let f = outward_face(tv, i);
+            if f.iter().all(|&v| input.mask[v as usize] & bit != 0)
+                && input.mask[tv[i] as usize] & bit == 0
+                && !cl.triangle_external(f[0], f[1], f[2])
+            {
+                tri_apex.push((f, tv[i]));
+            }
+        }
+    }
+    tri_apex
+}
+
+/// The median length of slot `s`'s contour edges (0 without contour): the sampling density the
+/// diagram samples are thinned to.
+pub(super) fn contour_spacing(input: &CellInput, s: usize) -> f64 {
+    let mut lens: Vec<f64> = input.slots[s]
+        .contour_edges
+        .iter()
+        .map(|&(a, b)| dist2(input.points[a as usize], input.points[b as usize]).sqrt())
+        .collect();
+    lens.sort_by(f64::total_cmp);
+    if lens.is_empty() {
+        0.0
+    } else {
+        lens[lens.len() / 2]
+    }
+}
+
+/// Unit normal of slot `s`'s plane pointing into the cell (sites have positive height along it).
+pub(super) fn into_cell_normal(input: &CellInput, s: usize) -> [f64; 3] {
+    let slot = &input.slots[s];
+    let n = slot.geom.normal;
+    if slot.outward_is_plane_normal {
+        [-n[0], -n[1], -n[2]]
+    } else {
+        n
+    }
+}
+
 /// Branching samples: (slot, (u,v) in the slot's plane, 3D position).
 pub fn samples(
     input: &CellInput,
@@ -30,44 +85,12 @@ pub fn samples(
     let mut cl = Classifier::new(input);
     let mut out = Vec::new();
     for (s, slot) in input.slots.iter().enumerate() {
-        let bit = 1u128 << s;
-        // grounded internal triangles on s with their Vf apex
-        let mut tri_apex: Vec<([u32; 3], u32)> = Vec::new();
-        for (t, tv) in cx.tets.iter().enumerate() {
-            if ty[t] != TetType::Vf {
-                continue;
-            }
-            for i in 0..4 {
-                let f = outward_face(tv, i);
-                if f.iter().all(|&v| input.mask[v as usize] & bit != 0)
-                    && input.mask[tv[i] as usize] & bit == 0
-                    && !cl.triangle_external(f[0], f[1], f[2])
-                {
-                    tri_apex.push((f, tv[i]));
-                }
-            }
-        }
+        let tri_apex = apex_triangles(input, cx, ty, &cl, s);
         if tri_apex.is_empty() {
             continue;
         }
-        // spacing of the contour
-        let mut lens: Vec<f64> = slot
-            .contour_edges
-            .iter()
-            .map(|&(a, b)| dist2(input.points[a as usize], input.points[b as usize]).sqrt())
-            .collect();
-        lens.sort_by(f64::total_cmp);
-        let h = if lens.is_empty() {
-            0.0
-        } else {
-            lens[lens.len() / 2]
-        };
-        let plane = slot.geom;
-        let n = if slot.outward_is_plane_normal {
-            [-plane.normal[0], -plane.normal[1], -plane.normal[2]]
-        } else {
-            plane.normal
-        };
+        let h = contour_spacing(input, s);
+        let n = into_cell_normal(input, s);
         // edges → (triangle apexes)
         let mut by_edge: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
         for &(f, apex) in &tri_apex {
