@@ -127,6 +127,24 @@ pub fn samples(
     out
 }
 
+/// A site of slot `s`'s Moebius diagram: (local vertex, position, height h_b above the plane).
+pub(super) type Site = (u32, [f64; 3], f64);
+
+/// The sites of slot `s`'s Moebius diagram: the cell's section vertices off the slot (not the
+/// cell-local samples) strictly on the cell's side of its plane (`n` into the cell).
+pub(super) fn moebius_sites(input: &CellInput, s: usize, n: [f64; 3]) -> Vec<Site> {
+    let bit = 1u128 << s;
+    let origin = input.slots[s].geom.origin;
+    (0..input.points.len() as u32)
+        .filter(|&v| input.mask[v as usize] & bit == 0 && input.global[v as usize] != u32::MAX)
+        .filter_map(|v| {
+            let x = input.points[v as usize];
+            let hb = dot(n, sub(x, origin));
+            (hb > 0.0).then_some((v, x, hb))
+        })
+        .collect()
+}
+
 /// Sample the section on a grid of spacing `h`, find each grid point's minimiser of r_b, and on every
 /// grid edge whose two minimisers are discontinuous place a point where r_b1 = r_b2 (bisection on the
 /// segment). Points closer than h/2 to a contour vertex or to another sample are dropped.
@@ -140,14 +158,7 @@ fn grid_samples(
     let slot = &input.slots[s];
     let bit = 1u128 << s;
     let plane = slot.geom;
-    let sites: Vec<(u32, [f64; 3], f64)> = (0..input.points.len() as u32)
-        .filter(|&v| input.mask[v as usize] & bit == 0 && input.global[v as usize] != u32::MAX)
-        .filter_map(|v| {
-            let x = input.points[v as usize];
-            let hb = dot(n, sub(x, plane.origin));
-            (hb > 0.0).then_some((v, x, hb))
-        })
-        .collect();
+    let sites = moebius_sites(input, s, n);
     if sites.len() < 2 {
         return Vec::new();
     }
@@ -283,7 +294,7 @@ fn grid_samples(
 /// since |a − b|² = h_b² + d² (d the in-plane distance), r_b(a) = h_b / 2 + d² / (2 h_b), at least
 /// `lower_bound(D, h range)` for a bucket at distance D whose sites' heights lie in that range; a
 /// bucket whose bound exceeds the best r found so far cannot hold a better site.
-struct SiteIndex {
+pub(super) struct SiteIndex {
     lo: [f64; 2],
     cell: f64,
     nx: i64,
@@ -299,7 +310,7 @@ struct SiteIndex {
 }
 
 impl SiteIndex {
-    fn new(plane: &crate::sections::Plane, sites: &[(u32, [f64; 3], f64)]) -> SiteIndex {
+    pub(super) fn new(plane: &crate::sections::Plane, sites: &[Site]) -> SiteIndex {
         let uv: Vec<[f64; 2]> = sites.iter().map(|s| plane.to_2d(s.1)).collect();
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         let mut scale: f64 = 1.0;
@@ -361,7 +372,7 @@ impl SiteIndex {
 
     /// Call `f(site)` for every site that may have r below the current best, ring by ring of buckets
     /// around `q`; `f` returns the best r so far.
-    fn visit(&self, q: [f64; 2], mut f: impl FnMut(usize) -> f64) {
+    pub(super) fn visit(&self, q: [f64; 2], mut f: impl FnMut(usize) -> f64) {
         let fx = ((q[0] - self.lo[0]) / self.cell).floor();
         let fy = ((q[1] - self.lo[1]) / self.cell).floor();
         // far outside the buckets (or not finite): plain scan

@@ -6,10 +6,14 @@
 //! triangles of f whose `Vf` apex is a. If a and a' are neighbours along their contour, M(a) is
 //! connected and M(a') is not, then M(a) ∩ M(a') lies on the cutting diagram: pruning keeps only
 //! one piece of φ⁻¹(a') attached, the others become flat, and their border with M(a) is where the
-//! flat zone ends. We place a sample on every grounded edge separating an apex-a triangle from an
-//! apex-a' triangle, where r_a = r_a' (a quadratic in the edge parameter), thin the samples to the
-//! face's contour density like the branching samples, and the caller inserts them and
-//! re-triangulates with the branching samples, so the flat zone's border follows the diagram.
+//! flat zone ends. Every grounded edge separating an apex-a triangle from an
+//! apex-a' triangle approximates a piece of that border, running roughly along it (not across it:
+//! the edge and a a' are the two grounded edges of a `Tee` tet), so its sample is the point where
+//! r_a = r_a' (a quadratic) on the line through the edge's midpoint perpendicular to the edge,
+//! nearest to the midpoint and within the edge's length, kept only if no other site has a smaller
+//! radius there (it is on M(a) ∩ M(a')). The samples are thinned to the face's contour density like
+//! the branching samples; the caller inserts them with the branching samples and re-triangulates,
+//! so the flat zone's border follows the diagram.
 //!
 //! Decisions are combinatorial: triangles are internal by the exact point-in-section test
 //! (`Classifier`), connectivity of M(a) is through shared grounded edges that are neither contour
@@ -18,7 +22,9 @@
 //!
 //! Not done: consecutive cutting samples are not forced to be Delaunay edges (the branching samples
 //! are not either); the samples only refine the triangulation along the diagram.
-use super::branching::{apex_triangles, contour_spacing, into_cell_normal};
+use super::branching::{
+    apex_triangles, contour_spacing, into_cell_normal, moebius_sites, Site, SiteIndex,
+};
 use super::cell_input::{edge_key, CellInput, IdMap, IdSet, Where};
 use super::classify::{Classifier, TetType};
 use super::complex::Complex;
@@ -67,11 +73,16 @@ pub fn samples(input: &CellInput, cx: &Complex, ty: &[TetType], taken: &[Sample]
             }
         }
         let n = into_cell_normal(input, s);
+        let sites = moebius_sites(input, s, n);
+        let index = SiteIndex::new(&slot.geom, &sites);
         for ((p, q), (a, b)) in edges {
-            let Some(uv) = equal_radius_point(input, s, n, (p, q), (a, b)) else {
+            let Some(uv) = diagram_point_near_edge(input, s, n, (p, q), (a, b)) else {
                 continue;
             };
-            if slot.locator.locate(uv) != Where::Inside || thin.near(uv) {
+            if slot.locator.locate(uv) != Where::Inside
+                || thin.near(uv)
+                || !not_dominated(input, s, n, &sites, &index, uv, a)
+            {
                 continue;
             }
             thin.occupy(uv);
@@ -149,11 +160,12 @@ fn cutting_edges(
         .collect()
 }
 
-/// The point of grounded edge (p, q) of slot `s` where the tangent-sphere radii of sites a and b are
-/// equal, in the slot's (u,v); `None` when r_a − r_b does not change sign strictly inside the edge.
-/// On the plane r_x(t) = h_x / 2 + |p + t (q − p) − x'|² / (2 h_x), x' the projection of site x and
-/// h_x its height along `n` (constant over the plane), so r_a − r_b is a quadratic in t.
-fn equal_radius_point(
+/// A point of M(a) ∩ M(b) near grounded edge (p, q) of slot `s`, in the slot's (u,v): the root of
+/// r_a = r_b nearest to the edge's midpoint on the line through it perpendicular to the edge, within
+/// the edge's length. (The edge separating an apex-a triangle from an apex-b one approximates the
+/// diagram and runs roughly along it, so the diagram is found across the edge, not on it.) `None`
+/// when there is no root there.
+fn diagram_point_near_edge(
     input: &CellInput,
     s: usize,
     n: [f64; 3],
@@ -163,24 +175,35 @@ fn equal_radius_point(
     let slot = &input.slots[s];
     let plane = slot.geom;
     let (p2, q2) = (slot.uv[p as usize], slot.uv[q as usize]);
+    let m = [0.5 * (p2[0] + q2[0]), 0.5 * (p2[1] + q2[1])];
+    // perpendicular of the edge, as long as the edge
+    let d = [q2[1] - p2[1], p2[0] - q2[0]];
+    let (from, to) = ([m[0] - d[0], m[1] - d[1]], [m[0] + d[0], m[1] + d[1]]);
     let site = |x: u32| {
         let x3 = input.points[x as usize];
         (plane.to_2d(x3), dot(n, sub(x3, plane.origin)))
     };
-    let t = equal_radius_parameter(p2, q2, site(a), site(b))?;
-    Some([p2[0] + t * (q2[0] - p2[0]), p2[1] + t * (q2[1] - p2[1])])
+    let t = equal_radius_parameters(from, to, site(a), site(b))
+        .into_iter()
+        .min_by(|x, y| (x - 0.5).abs().total_cmp(&(y - 0.5).abs()))?;
+    Some([
+        from[0] + t * (to[0] - from[0]),
+        from[1] + t * (to[1] - from[1]),
+    ])
 }
 
-/// Parameter t in (0, 1) on segment p→q (in a plane) where r_a(t) = r_b(t), sites given by their
-/// projection and height (> 0); `None` without a strict sign change of r_a − r_b over [0, 1].
-fn equal_radius_parameter(
+/// Parameters t in [0, 1] on segment p→q (in a plane) where r_a(t) = r_b(t), sites given by their
+/// projection and height (> 0). On the plane r_x(t) = h_x / 2 + |p + t (q − p) − x'|² / (2 h_x),
+/// x' the projection of site x and h_x its height (constant over the plane): r_a − r_b is a
+/// quadratic in t, solved in closed form (the cancellation-free variant).
+fn equal_radius_parameters(
     p: [f64; 2],
     q: [f64; 2],
     (a, ha): ([f64; 2], f64),
     (b, hb): ([f64; 2], f64),
-) -> Option<f64> {
+) -> Vec<f64> {
     if !(ha > 0.0 && hb > 0.0) {
-        return None;
+        return Vec::new();
     }
     let e = [q[0] - p[0], q[1] - p[1]];
     let ee = e[0] * e[0] + e[1] * e[1];
@@ -196,24 +219,58 @@ fn equal_radius_parameter(
     let (aa, ba, ca) = coef(a, ha);
     let (ab, bb, cb) = coef(b, hb);
     let (qa, qb, qc) = (aa - ab, ba - bb, ca - cb);
-    let g = |t: f64| (qa * t + qb) * t + qc;
-    let (g0, g1) = (g(0.0), g(1.0));
-    if !(g0 < 0.0 && g1 > 0.0 || g0 > 0.0 && g1 < 0.0) {
-        return None;
+    let scale = qa.abs().max(qb.abs()).max(qc.abs());
+    let mut roots = Vec::new();
+    if !(scale > 0.0 && scale.is_finite()) {
+        return roots;
     }
-    // exactly one root in (0, 1): bisection on the sign change (robust for any qa, also tiny)
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    let up = g0 < 0.0;
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if (g(mid) < 0.0) == up {
-            lo = mid;
-        } else {
-            hi = mid;
+    if qa.abs() <= 1e-12 * scale {
+        // equal heights in effect: a line (the bisector)
+        if qb != 0.0 {
+            roots.push(-qc / qb);
+        }
+    } else {
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc >= 0.0 {
+            let k = -0.5 * (qb + qb.signum() * disc.sqrt());
+            roots.push(k / qa);
+            if k != 0.0 {
+                roots.push(qc / k);
+            }
         }
     }
-    let t = 0.5 * (lo + hi);
-    (t > 0.0 && t < 1.0).then_some(t)
+    roots.retain(|t| (0.0..=1.0).contains(t));
+    roots
+}
+
+/// Is `uv` (on slot `s`) on the boundary of M(a): no site has a smaller tangent-sphere radius there
+/// than a (up to rounding)?
+fn not_dominated(
+    input: &CellInput,
+    s: usize,
+    n: [f64; 3],
+    sites: &[Site],
+    index: &SiteIndex,
+    uv: [f64; 2],
+    a: u32,
+) -> bool {
+    let plane = input.slots[s].geom;
+    let x = plane.to_3d(uv);
+    let r = |p: [f64; 3]| {
+        let h = dot(n, sub(p, x));
+        if h > 0.0 {
+            dot(sub(p, x), sub(p, x)) / (2.0 * h)
+        } else {
+            f64::INFINITY
+        }
+    };
+    let ra = r(input.points[a as usize]);
+    let mut best = f64::INFINITY;
+    index.visit(uv, |k| {
+        best = best.min(r(sites[k].1));
+        best
+    });
+    ra <= best * (1.0 + 1e-9)
 }
 
 /// Points in a plane bucketed by cells of size `r`: is a new point closer than `r` to one of them?
@@ -282,5 +339,195 @@ impl UnionFind {
         if ra != rb {
             self.parent[ra.max(rb) as usize] = ra.min(rb);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bm::cell::delaunay_tets;
+    use crate::bm::cell_input::{SectionLocator, Slot};
+    use crate::bm::classify::tet_type;
+    use crate::sections::Plane;
+
+    /// The slab cell between z = 0 (slot 0, below) and z = 1 (slot 1, above) with the given contour
+    /// loops (x, y) on each plane.
+    fn slab(bottom: &[Vec<[f64; 2]>], top: &[Vec<[f64; 2]>]) -> CellInput {
+        let mut input = CellInput {
+            cell: 0,
+            global: Vec::new(),
+            points: Vec::new(),
+            mask: Vec::new(),
+            slots: Vec::new(),
+        };
+        let mut per_slot = Vec::new();
+        for (s, (z, loops)) in [(0.0, bottom), (1.0, top)].into_iter().enumerate() {
+            let geom = Plane::from_equation([0.0, 0.0, 1.0], -z).unwrap();
+            let mut ids = Vec::new();
+            for l in loops {
+                let mut li = Vec::new();
+                for p in l {
+                    li.push(input.points.len() as u32);
+                    input.global.push(input.points.len() as u32);
+                    input.points.push([p[0], p[1], z]);
+                    input.mask.push(1 << s);
+                }
+                ids.push(li);
+            }
+            per_slot.push((geom, ids, s == 1));
+        }
+        let n = input.points.len();
+        for (s, (geom, loops, outward)) in per_slot.into_iter().enumerate() {
+            let uv: Vec<[f64; 2]> = (0..n)
+                .map(|v| {
+                    if input.mask[v] >> s & 1 == 1 {
+                        geom.to_2d(input.points[v])
+                    } else {
+                        [f64::NAN; 2]
+                    }
+                })
+                .collect();
+            let mut contour_edges = IdSet::default();
+            for l in &loops {
+                for i in 0..l.len() {
+                    contour_edges.insert(edge_key(l[i], l[(i + 1) % l.len()]));
+                }
+            }
+            let uv_loops: Vec<Vec<[f64; 2]>> = loops
+                .iter()
+                .map(|l| l.iter().map(|&v| uv[v as usize]).collect())
+                .collect();
+            input.slots.push(Slot {
+                face: s as u32,
+                plane: s as u32,
+                geom,
+                outward_is_plane_normal: outward,
+                locator: SectionLocator::new(&uv_loops),
+                loops,
+                uv,
+                contour_edges,
+                beyond_may_attach: false,
+            });
+        }
+        input
+    }
+
+    /// Counter-clockwise rectangle [x0, x1] × [y0, y1] sampled every `step` along its sides.
+    fn rectangle(x0: f64, x1: f64, y0: f64, y1: f64, step: f64) -> Vec<[f64; 2]> {
+        let mut out = Vec::new();
+        let corners = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+        for k in 0..4 {
+            let (a, b) = (corners[k], corners[(k + 1) % 4]);
+            let len = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+            let m = (len / step).round().max(1.0) as usize;
+            for i in 0..m {
+                let t = i as f64 / m as f64;
+                out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+            }
+        }
+        out
+    }
+
+    /// The top contour: a diamond of radius 0.3 around the origin, vertices on the axes.
+    fn diamond() -> Vec<[f64; 2]> {
+        vec![[0.3, 0.0], [0.0, 0.3], [-0.3, 0.0], [0.0, -0.3]]
+    }
+
+    fn run(input: &CellInput) -> (Complex, Vec<TetType>, Vec<Sample>) {
+        let cx = Complex::new(input.points.len(), delaunay_tets(&input.points).unwrap());
+        let ty: Vec<TetType> = cx
+            .tets
+            .iter()
+            .map(|t| tet_type(t.map(|v| input.mask[v as usize])).0)
+            .collect();
+        let samples = samples(input, &cx, &ty, &[]);
+        (cx, ty, samples)
+    }
+
+    #[test]
+    fn equal_radius_parameters_solve_the_quadratic() {
+        // equal heights (parallel planes): the bisector of the projections, x = 0.25 here
+        let t =
+            equal_radius_parameters([0.0, 0.0], [1.0, 0.0], ([0.0, 1.0], 2.0), ([0.5, 1.0], 2.0));
+        assert_eq!(t.len(), 1);
+        assert!((t[0] - 0.25).abs() < 1e-12);
+        // heights differ: r_a(x) = 1/2 + x²/2 (a over 0 at height 1), r_b(x) = 1 + (x − 1/2)²/4
+        // (b over 1/2 at height 2): a circle of the Moebius diagram, crossed twice by the x axis
+        let a = ([0.0, 0.0], 1.0);
+        let b = ([0.5, 0.0], 2.0);
+        let ts = equal_radius_parameters([-3.0, 0.0], [3.0, 0.0], a, b);
+        assert_eq!(ts.len(), 2, "{ts:?}");
+        for t in ts {
+            let x = -3.0 + 6.0 * t;
+            let r = |(c, h): ([f64; 2], f64)| 0.5 * h + (x - c[0]).powi(2) / (2.0 * h);
+            assert!((r(a) - r(b)).abs() < 1e-12, "{} {}", r(a), r(b));
+        }
+        // the segment stays inside the circle: none
+        assert!(equal_radius_parameters([0.0, 0.0], [0.5, 0.0], a, b).is_empty());
+    }
+
+    /// Paper Fig. 4e/4f: the bottom section is two rectangles with a gap; the top contour is a small
+    /// diamond over the gap. The Moebius (here Voronoi) cells on the bottom of the diamond's vertices
+    /// (0, ±0.3) reach across the gap into both rectangles (disconnected), those of (±0.3, 0) stay in
+    /// one rectangle (connected): the cutting diagram is M(±0.3, 0) ∩ M(0, ±0.3), the diagonals
+    /// |y| = |x| inside the rectangles.
+    #[test]
+    fn samples_on_the_border_of_a_disconnected_moebius_cell() {
+        let bottom = vec![
+            rectangle(0.2, 3.0, -1.0, 1.0, 0.2),
+            rectangle(-3.0, -0.2, -1.0, 1.0, 0.2),
+        ];
+        let input = slab(&bottom, &[diamond()]);
+        let (cx, ty, samples) = run(&input);
+        // the separating edges: between the triangles of a connected cell (apex (±0.3, 0)) and of a
+        // disconnected one (apex (0, ±0.3)), one per quadrant here
+        let mut cl = Classifier::new(&input);
+        let tri_apex = apex_triangles(&input, &cx, &ty, &cl, 0);
+        let pairs: Vec<(u32, u32)> = input.slots[1].contour_edges.iter().copied().collect();
+        let edges = cutting_edges(&input, &mut cl, 0, &tri_apex, &pairs);
+        assert_eq!(edges.len(), 4, "{edges:?}");
+        for (_, (a, b)) in &edges {
+            let (pa, pb) = (input.points[*a as usize], input.points[*b as usize]);
+            assert!(pa[1] == 0.0 && pb[0] == 0.0, "{pa:?} {pb:?}");
+        }
+        let on_bottom: Vec<&Sample> = samples.iter().filter(|s| s.0 == 0).collect();
+        eprintln!(
+            "{} samples, {} on the bottom",
+            samples.len(),
+            on_bottom.len()
+        );
+        for s in &on_bottom {
+            eprintln!("{:?}", s.2);
+        }
+        // every bottom sample is on a diagonal (bisector of two diamond vertices), inside a rectangle
+        for s in &on_bottom {
+            let [x, y, z] = s.2;
+            assert_eq!(z, 0.0);
+            assert!(
+                (x.abs() - y.abs()).abs() < 1e-9,
+                "{:?} is off the diagram",
+                s.2
+            );
+            assert!(x.abs() > 0.2 && x.abs() < 1.0, "{:?}", s.2);
+        }
+        // on all four arcs (one per quadrant)
+        for (sx, sy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+            assert!(
+                on_bottom
+                    .iter()
+                    .any(|s| s.2[0] * sx > 0.0 && s.2[1] * sy > 0.0),
+                "no sample in quadrant ({sx}, {sy})"
+            );
+        }
+    }
+
+    /// One rectangle under the diamond: every Moebius cell on the bottom is connected, and the
+    /// bottom rectangles' vertices see one convex contour above: no cutting sample anywhere.
+    #[test]
+    fn no_samples_when_every_moebius_cell_is_connected() {
+        let bottom = vec![rectangle(-3.0, 3.0, -1.0, 1.0, 0.2)];
+        let input = slab(&bottom, &[diamond()]);
+        let (_, _, samples) = run(&input);
+        assert!(samples.is_empty(), "{samples:?}");
     }
 }
