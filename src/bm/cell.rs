@@ -51,6 +51,12 @@ pub struct CellResult {
     pub flat_tets: u64,
     pub branching_samples: u64,
     pub cutting_samples: u64,
+    /// Cutting samples that end on the border of a flat zone of this cell (a vertex of a section
+    /// triangle the cell attaches to and of one it leaves flat).
+    pub cutting_on_flat_border: u64,
+    /// Area of the internal section triangles this cell leaves unattached (its flat zones, whether
+    /// or not the other side attaches there).
+    pub flat_area: f64,
     /// CPU seconds spent in this run's sub-phases.
     pub timing: CellTiming,
 }
@@ -179,6 +185,7 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
     timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
     let mut n_cut = 0;
+    let mut cut_ids: Vec<u32> = Vec::new();
     if sampling.branching || sampling.cutting {
         for _round in 0..BRANCHING_ROUNDS {
             let cx = Complex::new(input.points.len(), tets.clone());
@@ -213,7 +220,19 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
             }
             n_branch += samples.len() as u64;
             n_cut += cuts.len() as u64;
+            if !cuts.is_empty() && std::env::var("BM_DEBUG").is_ok() {
+                for (s, slot) in input.slots.iter().enumerate() {
+                    let k = cuts.iter().filter(|c| c.0 == s).count();
+                    if k > 0 {
+                        eprintln!(
+                            "cell {}: face {}: {k} cutting samples",
+                            input.cell, slot.face
+                        );
+                    }
+                }
+            }
             // inserted into the triangulation we have (same result as re-triangulating everything)
+            let first_cut = input.points.len() + samples.len();
             for (s, q, p3) in samples.into_iter().chain(cuts) {
                 if !p3.iter().all(|c| c.is_finite()) {
                     return Err(crate::Error::input(
@@ -224,6 +243,9 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
                 let l = input.add_local_vertex(s, q, p3);
                 let id = dt.insert(p3);
                 debug_assert!(id <= l);
+                if l as usize >= first_cut {
+                    cut_ids.push(l);
+                }
             }
             tets = finite_tets(&dt);
             timing.delaunay += lap(&mut clock);
@@ -328,7 +350,7 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
             }
         }
     }
-    let faces = (0..n_slots)
+    let faces: Vec<FaceSide> = (0..n_slots)
         .map(|s| {
             let mut triangles: Vec<([u32; 3], bool)> = top[s]
                 .values()
@@ -342,6 +364,29 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
             }
         })
         .collect();
+    // the paper's flat zones of this cell, and whether the cutting samples ended on their border
+    let mut flat_area = 0.0;
+    let mut sides: IdMap<u32, (bool, bool)> = IdMap::default();
+    for side in &faces {
+        for &(f, attached) in &side.triangles {
+            if !attached {
+                let p = f.map(|v| input.points[v as usize]);
+                let w = crate::sections::cross(
+                    crate::sections::sub(p[1], p[0]),
+                    crate::sections::sub(p[2], p[0]),
+                );
+                flat_area += 0.5 * crate::sections::dot(w, w).sqrt();
+            }
+            for v in f {
+                if cut_ids.binary_search(&v).is_ok() {
+                    let e = sides.entry(v).or_default();
+                    e.0 |= attached;
+                    e.1 |= !attached;
+                }
+            }
+        }
+    }
+    let cutting_on_flat_border = sides.values().filter(|&&(a, f)| a && f).count() as u64;
     timing.output += lap(&mut clock);
     Ok(CellResult {
         input: Some(input),
@@ -354,6 +399,8 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
         flat_tets,
         branching_samples: n_branch,
         cutting_samples: n_cut,
+        cutting_on_flat_border,
+        flat_area,
         timing,
     })
 }

@@ -229,6 +229,8 @@ pub fn reconstruct(
         report.count("tets_kept", r.kept.len() as u64);
         report.count("branching_samples", r.branching_samples);
         report.count("cutting_samples", r.cutting_samples);
+        report.count("cutting_samples_on_flat_border", r.cutting_on_flat_border);
+        *report.values.entry("cell_flat_area".into()).or_insert(0.0) += r.flat_area;
     }
     let glued = report.time("glue", || glue::glue(arr, &pool, &results));
     report.count("flat_zone_faces", glued.flat_zone_faces);
