@@ -21,32 +21,37 @@ fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
     dot(d, d)
 }
 
-/// The internal grounded triangles on slot `s` standing under a `Vf` tet, each (outward from its
-/// tet) with that tet's apex, the vertex off the slot: the Delaunay picture of the Moebius diagram.
-pub(super) fn apex_triangles(
+/// Per slot, the internal grounded triangles on it standing under a `Vf` tet, each (outward from
+/// its tet) with that tet's apex, the vertex off the slot: the Delaunay picture of the Moebius
+/// diagram. One pass over the tets, in tet order.
+pub fn apex_triangles(
     input: &CellInput,
     cx: &Complex,
     ty: &[TetType],
     cl: &Classifier,
-    s: usize,
-) -> Vec<([u32; 3], u32)> {
-    let bit = 1u128 << s;
-    let mut tri_apex = Vec::new();
+) -> Vec<Vec<([u32; 3], u32)>> {
+    let mut out = vec![Vec::new(); input.slots.len()];
     for (t, tv) in cx.tets.iter().enumerate() {
         if ty[t] != TetType::Vf {
             continue;
         }
         for i in 0..4 {
             let f = outward_face(tv, i);
-            if f.iter().all(|&v| input.mask[v as usize] & bit != 0)
-                && input.mask[tv[i] as usize] & bit == 0
-                && !cl.triangle_external(f[0], f[1], f[2])
-            {
-                tri_apex.push((f, tv[i]));
+            let on = input.mask[f[0] as usize]
+                & input.mask[f[1] as usize]
+                & input.mask[f[2] as usize]
+                & !input.mask[tv[i] as usize];
+            if on == 0 || cl.triangle_external(f[0], f[1], f[2]) {
+                continue;
+            }
+            for (s, list) in out.iter_mut().enumerate() {
+                if on >> s & 1 == 1 {
+                    list.push((f, tv[i]));
+                }
             }
         }
     }
-    tri_apex
+    out
 }
 
 /// The median length of slot `s`'s contour edges (0 without contour): the sampling density the
@@ -77,15 +82,15 @@ pub(super) fn into_cell_normal(input: &CellInput, s: usize) -> [f64; 3] {
 }
 
 /// Branching samples: (slot, (u,v) in the slot's plane, 3D position).
+/// `apex` is [`apex_triangles`] of the same triangulation.
 pub fn samples(
     input: &CellInput,
-    cx: &Complex,
-    ty: &[TetType],
+    cl: &mut Classifier,
+    apex: &[Vec<([u32; 3], u32)>],
 ) -> Vec<(usize, [f64; 2], [f64; 3])> {
-    let mut cl = Classifier::new(input);
     let mut out = Vec::new();
     for (s, slot) in input.slots.iter().enumerate() {
-        let tri_apex = apex_triangles(input, cx, ty, &cl, s);
+        let tri_apex = &apex[s];
         if tri_apex.is_empty() {
             continue;
         }
@@ -93,7 +98,7 @@ pub fn samples(
         let n = into_cell_normal(input, s);
         // edges → (triangle apexes)
         let mut by_edge: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
-        for &(f, apex) in &tri_apex {
+        for &(f, apex) in tri_apex {
             for k in 0..3 {
                 let (a, b) = (f[k], f[(k + 1) % 3]);
                 by_edge.entry((a.min(b), a.max(b))).or_default().push(apex);
@@ -119,7 +124,7 @@ pub fn samples(
             continue;
         }
         out.extend(
-            grid_samples(input, &mut cl, s, n, h)
+            grid_samples(input, cl, s, n, h)
                 .into_iter()
                 .map(|(uv, p3)| (s, uv, p3)),
         );

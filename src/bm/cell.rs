@@ -202,19 +202,22 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
                     .0
                 })
                 .collect();
+            let mut cl = Classifier::new(&input);
+            let apex = super::branching::apex_triangles(&input, &cx, &ty, &cl);
             let samples = if sampling.branching {
-                super::branching::samples(&input, &cx, &ty)
+                super::branching::samples(&input, &mut cl, &apex)
             } else {
                 Vec::new()
             };
             timing.branching += lap(&mut clock);
             // from the same triangulation, kept apart from the branching samples
             let cuts = if sampling.cutting {
-                super::cutting::samples(&input, &cx, &ty, &samples)
+                super::cutting::samples(&input, &cx, &ty, &mut cl, &apex, &samples)
             } else {
                 Vec::new()
             };
             timing.cutting += lap(&mut clock);
+            drop(cl);
             if samples.is_empty() && cuts.is_empty() {
                 break;
             }

@@ -30,9 +30,7 @@
 //!
 //! Not done: consecutive cutting samples are not forced to be Delaunay edges (the branching samples
 //! are not either); the samples only refine the triangulation along the diagram.
-use super::branching::{
-    apex_triangles, contour_spacing, into_cell_normal, moebius_sites, Site, SiteIndex,
-};
+use super::branching::{contour_spacing, into_cell_normal, moebius_sites, Site, SiteIndex};
 use super::cell_input::{edge_key, CellInput, IdMap, IdSet, Where};
 use super::classify::{tet_type, Classifier, TetType};
 use super::complex::{Complex, NONE};
@@ -43,8 +41,15 @@ pub type Sample = (usize, [f64; 2], [f64; 3]);
 
 /// Cutting-diagram samples of every slot of the cell. `taken` are samples already placed this round
 /// (the branching samples): new samples keep half the contour spacing away from them too.
-pub fn samples(input: &CellInput, cx: &Complex, ty: &[TetType], taken: &[Sample]) -> Vec<Sample> {
-    let mut cl = Classifier::new(input);
+/// `apex` is `branching::apex_triangles` of the triangulation `cx` (tet types `ty`).
+pub fn samples(
+    input: &CellInput,
+    cx: &Complex,
+    ty: &[TetType],
+    cl: &mut Classifier,
+    apex: &[Vec<([u32; 3], u32)>],
+    taken: &[Sample],
+) -> Vec<Sample> {
     // neighbours along a contour: the contour edges of every slot (an apex on slot g is a contour
     // vertex of g; its neighbours are the ends of its contour edges)
     let mut contour_pairs: Vec<(u32, u32)> = input
@@ -56,11 +61,11 @@ pub fn samples(input: &CellInput, cx: &Complex, ty: &[TetType], taken: &[Sample]
     contour_pairs.dedup();
     let mut out = Vec::new();
     for s in 0..input.slots.len() {
-        let tri_apex = apex_triangles(input, cx, ty, &cl, s);
+        let tri_apex = &apex[s];
         if tri_apex.is_empty() {
             continue;
         }
-        let edges = cutting_edges(input, cx, ty, &mut cl, s, &tri_apex, &contour_pairs);
+        let edges = cutting_edges(input, cx, ty, cl, s, tri_apex, &contour_pairs);
         if edges.is_empty() {
             continue;
         }
@@ -129,11 +134,11 @@ fn cutting_edges(
         .filter(|&(e, _, _)| !slot.contour_edges.contains(&e))
         .collect();
     inner.sort_unstable();
-    inner.retain(|&((p, q), _, _)| !cl.edge_external(p, q));
-    // connected components of each apex's triangles, through shared inner edges
+    // connected components of each apex's triangles, through shared inner edges (the point location
+    // of an edge only where it matters: same apex here, the cutting edges below)
     let mut uf = UnionFind::new(tri_apex.len());
-    for &(_, t1, t2) in &inner {
-        if tri_apex[t1 as usize].1 == tri_apex[t2 as usize].1 {
+    for &((p, q), t1, t2) in &inner {
+        if tri_apex[t1 as usize].1 == tri_apex[t2 as usize].1 && !cl.edge_external(p, q) {
             uf.union(t1, t2);
         }
     }
@@ -185,6 +190,7 @@ fn cutting_edges(
                 None
             }
         })
+        .filter(|&((p, q), _)| !cl.edge_external(p, q))
         .collect()
 }
 
@@ -457,6 +463,7 @@ impl UnionFind {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bm::branching::apex_triangles;
     use crate::bm::cell::delaunay_tets;
     use crate::bm::cell_input::{SectionLocator, Slot};
     use crate::bm::classify::tet_type;
@@ -552,7 +559,9 @@ mod tests {
             .iter()
             .map(|t| tet_type(t.map(|v| input.mask[v as usize])).0)
             .collect();
-        let samples = samples(input, &cx, &ty, &[]);
+        let mut cl = Classifier::new(input);
+        let apex = apex_triangles(input, &cx, &ty, &cl);
+        let samples = samples(input, &cx, &ty, &mut cl, &apex, &[]);
         (cx, ty, samples)
     }
 
@@ -594,9 +603,9 @@ mod tests {
         // the separating edges: between the triangles of a connected cell (apex (±0.3, 0)) and of a
         // disconnected one (apex (0, ±0.3)), one per quadrant here
         let mut cl = Classifier::new(&input);
-        let tri_apex = apex_triangles(&input, &cx, &ty, &cl, 0);
+        let tri_apex = &apex_triangles(&input, &cx, &ty, &cl)[0];
         let pairs: Vec<(u32, u32)> = input.slots[1].contour_edges.iter().copied().collect();
-        let edges = cutting_edges(&input, &cx, &ty, &mut cl, 0, &tri_apex, &pairs);
+        let edges = cutting_edges(&input, &cx, &ty, &mut cl, 0, tri_apex, &pairs);
         assert_eq!(edges.len(), 4, "{edges:?}");
         for (_, (a, b)) in &edges {
             let (pa, pb) = (input.points[*a as usize], input.points[*b as usize]);
