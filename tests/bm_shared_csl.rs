@@ -22,10 +22,10 @@ const KNOWN_GOOD: &[&str] = &[
 
 /// Files whose surface is also free of self-intersections (exact crossings and overlapping
 /// near-coplanar pairs), has no two vertices at one position, and whose every section agrees with the
-/// input within 2% (the criterion). Elephant and Armadillo still have a few crossings where
-/// lifted crease samples meet (bm::untangle reports them), hand and Armadillo lose part of a section
-/// (flat zones), Horsers has extra components.
+/// input within 2% (the criterion). hand and Armadillo lose part of a section (flat zones),
+/// Horsers has extra components.
 const CLEAN: &[&str] = &[
+    "Elephant",
     "Heart-simplified",
     "ParallelEight",
     "ParallelEightMore",
@@ -35,6 +35,12 @@ const CLEAN: &[&str] = &[
     "eight_15",
     "eight_20",
 ];
+
+/// Files whose surface has no exactly crossing triangle pairs (a subset of the CLEAN criteria, for
+/// files that still fail another one: Armadillo loses part of a section to flat zones). Armadillo had 6
+/// crossings where a crease's copies, lifted off the section, pierced the wall at a contour vertex
+/// (bm::untangle now lets the fan that kept the vertex retreat instead).
+const NO_CROSSINGS: &[&str] = &["Armadillo-23-better"];
 
 /// Files whose solid is one connected piece (the reference meshes are) and that come out as one
 /// component today. eight_20 came out as 23 (one-tet voids left by pruning, prune::fill_cavities).
@@ -102,6 +108,12 @@ fn every_shared_csl_file_reconstructs() {
             failures.push(format!(
                 "{name}: self-intersections {} overlapping coplanar pairs {} coincident vertices {} worst section {worst:.4}",
                 c.self_intersections, c.overlapping_coplanar_pairs, c.coincident_vertices
+            ));
+        }
+        if NO_CROSSINGS.contains(&name.as_str()) && c.self_intersections != 0 {
+            failures.push(format!(
+                "{name}: {} crossing triangle pairs, expected none",
+                c.self_intersections
             ));
         }
         if ONE_PIECE.contains(&name.as_str()) && c.components != 1 {

@@ -306,7 +306,32 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .chain(copies.iter().map(|&(c, v)| (c, before_lift[v as usize])))
         .chain(crease_mids.iter().copied())
         .collect();
-    let untangled = super::untangle::untangle(&mut positions, &tris, &moved);
+    // the fan that kept a split vertex's id may retreat instead of its copy
+    let mut anchors: HashMap<u32, f64> = HashMap::new();
+    for &(c, v) in &copies {
+        let d = crate::sections::sub(positions[c as usize], before_lift[v as usize]);
+        let l = crate::sections::dot(d, d).sqrt();
+        let e = anchors.entry(v).or_insert(0.0);
+        *e = e.max(l);
+    }
+    let mut anchors: Vec<(u32, f64)> = anchors
+        .into_iter()
+        .filter(|a| positions[a.0 as usize] == before_lift[a.0 as usize])
+        .collect();
+    anchors.sort_by_key(|a| a.0);
+    let untangled = super::untangle::untangle(&mut positions, &tris, &moved, &anchors);
+    if std::env::var_os("BM_DEBUG_CROSS").is_some() {
+        debug_crossings(
+            pool,
+            &positions,
+            &before_lift,
+            &tris,
+            &kind,
+            &samples,
+            &copies,
+            &crease_mids,
+        );
+    }
     g.lifts_redirected = untangled.redirected;
     if untangled.unresolved > 0 {
         g.warnings.push(format!(
@@ -396,6 +421,85 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         tets,
     };
     g
+}
+
+/// Debug (`BM_DEBUG_CROSS`): every crossing pair of the glued surface with its triangles' kinds and
+/// where each vertex came from (pool tags, branching sample, unpinch copy, crease midpoint) and how far
+/// it was displaced.
+#[allow(clippy::too_many_arguments)]
+fn debug_crossings(
+    pool: &VertexPool,
+    positions: &[[f64; 3]],
+    before: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    kind: &[Kind],
+    samples: &[(u32, [f64; 3])],
+    copies: &[(u32, u32)],
+    crease_mids: &[(u32, [f64; 3])],
+) {
+    use crate::eval::bvh::{triangle_boxes, Bvh};
+    use crate::eval::tri_tri::mesh_triangles_intersect;
+    let bvh = Bvh::build(triangle_boxes(positions, tris));
+    let what = |v: u32| -> String {
+        let vu = v as usize;
+        let from = if let Some(&(_, o)) = copies.iter().find(|c| c.0 == v) {
+            format!("copy of {o}")
+        } else if let Some(&(_, o)) = crease_mids.iter().find(|c| c.0 == v) {
+            let d = crate::sections::sub(positions[vu], o);
+            format!(
+                "crease mid (moved {:.2e})",
+                crate::sections::dot(d, d).sqrt()
+            )
+        } else if samples.iter().any(|s| s.0 == v) {
+            "sample".to_string()
+        } else if vu < pool.tags.len() {
+            format!("pool tags {:?}", pool.tags[vu])
+        } else {
+            "other".to_string()
+        };
+        let moved = if vu < before.len() && before[vu] != positions[vu] {
+            let d = crate::sections::sub(positions[vu], before[vu]);
+            format!(" moved {:.2e}", crate::sections::dot(d, d).sqrt())
+        } else {
+            String::new()
+        };
+        format!("{v}[{from}{moved}]")
+    };
+    let mut n = 0;
+    for (i, t) in tris.iter().enumerate() {
+        let bb = crate::eval::bvh::Aabb::of_points(&t.map(|w| positions[w as usize]));
+        bvh.for_each_overlap(&bb, |j| {
+            let j = j as usize;
+            if j > i && mesh_triangles_intersect(*t, tris[j], positions) {
+                n += 1;
+                eprintln!(
+                    "cross {i} {:?} ({}) x {j} {:?} ({})",
+                    kind[i],
+                    t.map(what).join(", "),
+                    kind[j],
+                    tris[j].map(what).join(", ")
+                );
+            }
+        });
+    }
+    eprintln!("crossings: {n}");
+    if let Ok(path) = std::env::var("BM_DEBUG_CROSS_DUMP") {
+        // the whole glued surface, for offline inspection: positions, triangles with kinds
+        let mut out = String::new();
+        for p in positions {
+            out.push_str(&format!("v {:?} {:?} {:?}\n", p[0], p[1], p[2]));
+        }
+        for (t, k) in tris.iter().zip(kind) {
+            out.push_str(&format!("t {} {} {} {:?}\n", t[0], t[1], t[2], k));
+        }
+        for &(c, o) in copies {
+            out.push_str(&format!("c {c} {o}\n"));
+        }
+        for p in before {
+            out.push_str(&format!("b {:?} {:?} {:?}\n", p[0], p[1], p[2]));
+        }
+        let _ = std::fs::write(path, out);
+    }
 }
 
 /// The overlay of a face attached from both sides (`list`: its two (cell, slot) sides), plus the

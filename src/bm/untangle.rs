@@ -22,16 +22,39 @@ pub struct Untangled {
     pub unresolved: u64,
 }
 
-/// `moved`: (vertex, position it was displaced from). Positions are updated in place.
+/// `moved`: (vertex, position it was displaced from). `anchors`: vertices left in place whose star
+/// touched a displaced one (the fan that kept a split vertex's id), each with the displacement length
+/// its partner got: when the displaced side cannot be freed, moving the anchor off may be (the other
+/// fan of a pinch retreats instead). Positions are updated in place.
 pub fn untangle(
     positions: &mut [[f64; 3]],
     tris: &[[u32; 3]],
     moved: &[(u32, [f64; 3])],
+    anchors: &[(u32, f64)],
 ) -> Untangled {
     let mut out = Untangled::default();
     if moved.is_empty() || tris.is_empty() {
         return out;
     }
+    let step_len: HashMap<u32, f64> = moved
+        .iter()
+        .map(|&(v, o)| {
+            let d = sub(positions[v as usize], o);
+            (v, dot(d, d).sqrt())
+        })
+        .chain(anchors.iter().copied())
+        .collect();
+    let moved: Vec<(u32, [f64; 3])> = moved
+        .iter()
+        .copied()
+        .chain(
+            anchors
+                .iter()
+                .filter(|a| a.1 > 0.0)
+                .map(|&(v, _)| (v, positions[v as usize])),
+        )
+        .collect();
+    let moved = &moved[..];
     let mut star: HashMap<u32, Vec<u32>> = HashMap::new();
     let moved_set: std::collections::HashSet<u32> = moved.iter().map(|m| m.0).collect();
     for (i, t) in tris.iter().enumerate() {
@@ -92,25 +115,46 @@ pub fn untangle(
                 continue;
             }
             let step = sub(first[&v], origin);
-            let len = dot(step, step).sqrt();
+            let len = step_len[&v];
             let inward = star
                 .get(&v)
                 .map(|s| inward_normal(positions, tris, s))
                 .unwrap_or([0.0; 3]);
-            let candidates = [
+            let mut candidates = vec![
                 first[&v],
                 add(origin, scale(step, 0.1)),
                 sub(origin, step),
                 add(origin, scale(inward, len)),
                 add(origin, scale(inward, 0.1 * len)),
-                origin,
+                sub(origin, scale(inward, len)),
+                sub(origin, scale(inward, 0.1 * len)),
             ];
+            // Into the kernel of the star on either side (every incident triangle's plane is passed
+            // on the same side), at shrinking steps: the displaced star then stays within its own
+            // side of the old one, away from the sheets touching it.
+            if let Some(s) = star.get(&v) {
+                for side in [1.0, -1.0] {
+                    if let Some(d) = kernel_direction(positions, tris, s, origin, side) {
+                        for f in [1.0, 0.1, 0.01] {
+                            candidates.push(add(origin, scale(d, f * len)));
+                        }
+                    }
+                }
+            }
+            candidates.push(origin);
             for c in candidates {
                 if c == start || !c.iter().all(|x| x.is_finite()) {
                     continue;
                 }
                 positions[v as usize] = c;
                 let n = crossings(positions, v);
+                if std::env::var_os("BM_DEBUG_UNTANGLE").is_some() {
+                    eprintln!(
+                        "untangle {v}: candidate {:?} (from {:?}) crosses {n}",
+                        sub(c, origin),
+                        origin
+                    );
+                }
                 if n < best.0 {
                     best = (n, c);
                     if n == 0 {
@@ -179,6 +223,82 @@ fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 
+/// A unit direction `d` from `o` with `side · (n_t · d) > 0` for the unit normal `n_t` of every
+/// triangle of `star` (taken with `o` in place of the star's vertex), maximising the smallest margin
+/// over a few candidates (the mean normal, each triangle's normal, pairwise sums) refined by a few
+/// perceptron steps; `None` when no candidate has a positive margin. `side` = 1: outward (into the
+/// void the star faces), -1: into the solid.
+fn kernel_direction(
+    positions: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    star: &[u32],
+    o: [f64; 3],
+    side: f64,
+) -> Option<[f64; 3]> {
+    let mut normals: Vec<[f64; 3]> = Vec::new();
+    for &i in star {
+        let t = tris[i as usize];
+        // the star's vertex is the one displaced: evaluate the planes through its origin
+        let p = t.map(|w| positions[w as usize]);
+        let k = (0..3).min_by(|&a, &b| {
+            let da = sub(p[a], o);
+            let db = sub(p[b], o);
+            dot(da, da).total_cmp(&dot(db, db))
+        })?;
+        let mut q = p;
+        q[k] = o;
+        let n = cross(sub(q[1], q[0]), sub(q[2], q[0]));
+        let l = dot(n, n).sqrt();
+        if l > 0.0 {
+            normals.push(scale(n, side / l));
+        }
+    }
+    if normals.is_empty() {
+        return None;
+    }
+    let margin = |d: [f64; 3]| {
+        normals
+            .iter()
+            .map(|&n| dot(n, d))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let unit = |d: [f64; 3]| {
+        let l = dot(d, d).sqrt();
+        (l > 0.0).then(|| scale(d, 1.0 / l))
+    };
+    let mut cands: Vec<[f64; 3]> = Vec::new();
+    cands.extend(unit(normals.iter().fold([0.0; 3], |a, &n| add(a, n))));
+    cands.extend(normals.iter().copied());
+    for i in 0..normals.len() {
+        for j in i + 1..normals.len() {
+            cands.extend(unit(add(normals[i], normals[j])));
+        }
+    }
+    let mut best = cands
+        .into_iter()
+        .map(|d| (margin(d), d))
+        .max_by(|a, b| a.0.total_cmp(&b.0))?;
+    for _ in 0..50 {
+        if best.0 > 0.05 {
+            break;
+        }
+        // push away from the worst plane
+        let worst = normals
+            .iter()
+            .copied()
+            .min_by(|&a, &b| dot(a, best.1).total_cmp(&dot(b, best.1)))?;
+        let Some(d) = unit(add(best.1, scale(worst, 0.25))) else {
+            break;
+        };
+        let m = margin(d);
+        if m <= best.0 {
+            break;
+        }
+        best = (m, d);
+    }
+    (best.0 > 0.0).then_some(best.1)
+}
+
 /// Unit vector into the solid at `v`: minus the area-weighted sum of its star's outward normals.
 fn inward_normal(positions: &[[f64; 3]], tris: &[[u32; 3]], star: &[u32]) -> [f64; 3] {
     let mut n = [0.0; 3];
@@ -219,7 +339,7 @@ mod tests {
             mesh_triangles_intersect(tris[2], tris[0], &pos)
                 || mesh_triangles_intersect(tris[2], tris[1], &pos)
         );
-        let u = untangle(&mut pos, &tris, &[(4, origin)]);
+        let u = untangle(&mut pos, &tris, &[(4, origin)], &[]);
         assert_eq!(
             u,
             Untangled {
@@ -240,7 +360,7 @@ mod tests {
         ];
         let tris = vec![[0, 1, 2], [1, 3, 2]];
         let before = pos.clone();
-        let u = untangle(&mut pos, &tris, &[(3, [0.8, 0.8, 0.0])]);
+        let u = untangle(&mut pos, &tris, &[(3, [0.8, 0.8, 0.0])], &[]);
         assert_eq!(u, Untangled::default());
         assert_eq!(pos, before);
     }
