@@ -306,20 +306,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .chain(copies.iter().map(|&(c, v)| (c, before_lift[v as usize])))
         .chain(crease_mids.iter().copied())
         .collect();
-    // the fan that kept a split vertex's id may retreat instead of its copy
-    let mut anchors: HashMap<u32, f64> = HashMap::new();
-    for &(c, v) in &copies {
-        let d = crate::sections::sub(positions[c as usize], before_lift[v as usize]);
-        let l = crate::sections::dot(d, d).sqrt();
-        let e = anchors.entry(v).or_insert(0.0);
-        *e = e.max(l);
-    }
-    let mut anchors: Vec<(u32, f64)> = anchors
-        .into_iter()
-        .filter(|a| positions[a.0 as usize] == before_lift[a.0 as usize])
-        .collect();
-    anchors.sort_by_key(|a| a.0);
-    let untangled = super::untangle::untangle(&mut positions, &tris, &moved, &anchors);
+    let untangled = super::untangle::untangle(&mut positions, &tris, &moved);
     if std::env::var_os("BM_DEBUG_CROSS").is_some() {
         debug_crossings(
             pool,
@@ -437,8 +424,8 @@ fn debug_crossings(
     copies: &[(u32, u32)],
     crease_mids: &[(u32, [f64; 3])],
 ) {
-    use crate::eval::bvh::{triangle_boxes, Bvh};
-    use crate::eval::tri_tri::mesh_triangles_intersect;
+    use crate::geom::bvh::{triangle_boxes, Bvh};
+    use crate::geom::tri_tri::mesh_triangles_intersect;
     let bvh = Bvh::build(triangle_boxes(positions, tris));
     let what = |v: u32| -> String {
         let vu = v as usize;
@@ -467,7 +454,7 @@ fn debug_crossings(
     };
     let mut n = 0;
     for (i, t) in tris.iter().enumerate() {
-        let bb = crate::eval::bvh::Aabb::of_points(&t.map(|w| positions[w as usize]));
+        let bb = crate::geom::bvh::Aabb::of_points(&t.map(|w| positions[w as usize]));
         bvh.for_each_overlap(&bb, |j| {
             let j = j as usize;
             if j > i && mesh_triangles_intersect(*t, tris[j], positions) {

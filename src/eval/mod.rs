@@ -5,14 +5,15 @@
 //!   exact section with the input section.
 //! * [`compare::compare_meshes`]: volumetric IoU, Chamfer L1/L2 and Hausdorff distances against a
 //!   reference, normalised by the reference's bounding-box diagonal.
-pub mod bvh;
 pub mod check;
 pub mod compare;
 pub mod near_coplanar;
 pub mod section;
 pub mod shapes;
 pub mod topology;
-pub mod tri_tri;
+
+// moved to geom (the engine uses them too); kept reachable under their old paths
+pub use crate::geom::{bvh, tri_tri};
 
 pub use check::{check_mesh, CheckReport};
 pub use compare::{compare_meshes, CompareReport};
