@@ -84,13 +84,14 @@ fn every_shared_csl_file_reconstructs() {
         let c = check_mesh(&solid.surface, None);
         let worst = bm_common::worst_section(&solid.surface, &sections);
         eprintln!(
-            "{name}: {:.3}s {} tris closed {} manifold {} oriented {} comps {} genus {} self-int {} worst-section {:.4} flat-zone-faces {} nonconf {} steiner {} branching {}",
+            "{name}: {:.3}s {} tris closed {} manifold {} oriented {} comps {} genus {} self-int {} worst-section {:.4} flat-zone-faces {} nonconf {} steiner {} branching {} cutting {}",
             secs, c.triangles, c.closed, c.manifold, c.oriented, c.components, c.genus,
             c.self_intersections_vertex_disjoint, worst,
             solid.report.counts.get("flat_zone_faces").unwrap_or(&0),
             solid.report.counts.get("nonconforming_faces").unwrap_or(&0),
             solid.report.counts.get("steiner_points").unwrap_or(&0),
             solid.report.counts.get("branching_samples").unwrap_or(&0),
+            solid.report.counts.get("cutting_samples").unwrap_or(&0),
         );
         // Files that reconstruct into closed oriented manifolds today must keep doing so; the others
         // are reported (known failures: hand, non-manifold edges where pieces meet; Horsers, closed and

@@ -21,56 +21,84 @@ fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
     dot(d, d)
 }
 
-/// Branching samples: (slot, (u,v) in the slot's plane, 3D position).
-pub fn samples(
+/// Per slot, the internal grounded triangles on it standing under a `Vf` tet, each (outward from
+/// its tet) with that tet's apex, the vertex off the slot: the Delaunay picture of the Moebius
+/// diagram. One pass over the tets, in tet order.
+pub fn apex_triangles(
     input: &CellInput,
     cx: &Complex,
     ty: &[TetType],
-) -> Vec<(usize, [f64; 2], [f64; 3])> {
-    let mut cl = Classifier::new(input);
-    let mut out = Vec::new();
-    for (s, slot) in input.slots.iter().enumerate() {
-        let bit = 1u128 << s;
-        // grounded internal triangles on s with their Vf apex
-        let mut tri_apex: Vec<([u32; 3], u32)> = Vec::new();
-        for (t, tv) in cx.tets.iter().enumerate() {
-            if ty[t] != TetType::Vf {
+    cl: &Classifier,
+) -> Vec<Vec<([u32; 3], u32)>> {
+    let mut out = vec![Vec::new(); input.slots.len()];
+    for (t, tv) in cx.tets.iter().enumerate() {
+        if ty[t] != TetType::Vf {
+            continue;
+        }
+        for i in 0..4 {
+            let f = outward_face(tv, i);
+            let on = input.mask[f[0] as usize]
+                & input.mask[f[1] as usize]
+                & input.mask[f[2] as usize]
+                & !input.mask[tv[i] as usize];
+            if on == 0 || cl.triangle_external(f[0], f[1], f[2]) {
                 continue;
             }
-            for i in 0..4 {
-                let f = outward_face(tv, i);
-                if f.iter().all(|&v| input.mask[v as usize] & bit != 0)
-                    && input.mask[tv[i] as usize] & bit == 0
-                    && !cl.triangle_external(f[0], f[1], f[2])
-                {
-                    tri_apex.push((f, tv[i]));
+            for (s, list) in out.iter_mut().enumerate() {
+                if on >> s & 1 == 1 {
+                    list.push((f, tv[i]));
                 }
             }
         }
+    }
+    out
+}
+
+/// The median length of slot `s`'s contour edges (0 without contour): the sampling density the
+/// diagram samples are thinned to.
+pub(super) fn contour_spacing(input: &CellInput, s: usize) -> f64 {
+    let mut lens: Vec<f64> = input.slots[s]
+        .contour_edges
+        .iter()
+        .map(|&(a, b)| dist2(input.points[a as usize], input.points[b as usize]).sqrt())
+        .collect();
+    lens.sort_by(f64::total_cmp);
+    if lens.is_empty() {
+        0.0
+    } else {
+        lens[lens.len() / 2]
+    }
+}
+
+/// Unit normal of slot `s`'s plane pointing into the cell (sites have positive height along it).
+pub(super) fn into_cell_normal(input: &CellInput, s: usize) -> [f64; 3] {
+    let slot = &input.slots[s];
+    let n = slot.geom.normal;
+    if slot.outward_is_plane_normal {
+        [-n[0], -n[1], -n[2]]
+    } else {
+        n
+    }
+}
+
+/// Branching samples: (slot, (u,v) in the slot's plane, 3D position).
+/// `apex` is [`apex_triangles`] of the same triangulation.
+pub fn samples(
+    input: &CellInput,
+    cl: &mut Classifier,
+    apex: &[Vec<([u32; 3], u32)>],
+) -> Vec<(usize, [f64; 2], [f64; 3])> {
+    let mut out = Vec::new();
+    for (s, slot) in input.slots.iter().enumerate() {
+        let tri_apex = &apex[s];
         if tri_apex.is_empty() {
             continue;
         }
-        // spacing of the contour
-        let mut lens: Vec<f64> = slot
-            .contour_edges
-            .iter()
-            .map(|&(a, b)| dist2(input.points[a as usize], input.points[b as usize]).sqrt())
-            .collect();
-        lens.sort_by(f64::total_cmp);
-        let h = if lens.is_empty() {
-            0.0
-        } else {
-            lens[lens.len() / 2]
-        };
-        let plane = slot.geom;
-        let n = if slot.outward_is_plane_normal {
-            [-plane.normal[0], -plane.normal[1], -plane.normal[2]]
-        } else {
-            plane.normal
-        };
+        let h = contour_spacing(input, s);
+        let n = into_cell_normal(input, s);
         // edges → (triangle apexes)
         let mut by_edge: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
-        for &(f, apex) in &tri_apex {
+        for &(f, apex) in tri_apex {
             for k in 0..3 {
                 let (a, b) = (f[k], f[(k + 1) % 3]);
                 by_edge.entry((a.min(b), a.max(b))).or_default().push(apex);
@@ -96,12 +124,30 @@ pub fn samples(
             continue;
         }
         out.extend(
-            grid_samples(input, &mut cl, s, n, h)
+            grid_samples(input, cl, s, n, h)
                 .into_iter()
                 .map(|(uv, p3)| (s, uv, p3)),
         );
     }
     out
+}
+
+/// A site of slot `s`'s Moebius diagram: (local vertex, position, height h_b above the plane).
+pub(super) type Site = (u32, [f64; 3], f64);
+
+/// The sites of slot `s`'s Moebius diagram: the cell's section vertices off the slot (not the
+/// cell-local samples) strictly on the cell's side of its plane (`n` into the cell).
+pub(super) fn moebius_sites(input: &CellInput, s: usize, n: [f64; 3]) -> Vec<Site> {
+    let bit = 1u128 << s;
+    let origin = input.slots[s].geom.origin;
+    (0..input.points.len() as u32)
+        .filter(|&v| input.mask[v as usize] & bit == 0 && input.global[v as usize] != u32::MAX)
+        .filter_map(|v| {
+            let x = input.points[v as usize];
+            let hb = dot(n, sub(x, origin));
+            (hb > 0.0).then_some((v, x, hb))
+        })
+        .collect()
 }
 
 /// Sample the section on a grid of spacing `h`, find each grid point's minimiser of r_b, and on every
@@ -117,14 +163,7 @@ fn grid_samples(
     let slot = &input.slots[s];
     let bit = 1u128 << s;
     let plane = slot.geom;
-    let sites: Vec<(u32, [f64; 3], f64)> = (0..input.points.len() as u32)
-        .filter(|&v| input.mask[v as usize] & bit == 0 && input.global[v as usize] != u32::MAX)
-        .filter_map(|v| {
-            let x = input.points[v as usize];
-            let hb = dot(n, sub(x, plane.origin));
-            (hb > 0.0).then_some((v, x, hb))
-        })
-        .collect();
+    let sites = moebius_sites(input, s, n);
     if sites.len() < 2 {
         return Vec::new();
     }
@@ -260,7 +299,7 @@ fn grid_samples(
 /// since |a − b|² = h_b² + d² (d the in-plane distance), r_b(a) = h_b / 2 + d² / (2 h_b), at least
 /// `lower_bound(D, h range)` for a bucket at distance D whose sites' heights lie in that range; a
 /// bucket whose bound exceeds the best r found so far cannot hold a better site.
-struct SiteIndex {
+pub(super) struct SiteIndex {
     lo: [f64; 2],
     cell: f64,
     nx: i64,
@@ -276,7 +315,7 @@ struct SiteIndex {
 }
 
 impl SiteIndex {
-    fn new(plane: &crate::sections::Plane, sites: &[(u32, [f64; 3], f64)]) -> SiteIndex {
+    pub(super) fn new(plane: &crate::sections::Plane, sites: &[Site]) -> SiteIndex {
         let uv: Vec<[f64; 2]> = sites.iter().map(|s| plane.to_2d(s.1)).collect();
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
         let mut scale: f64 = 1.0;
@@ -338,7 +377,7 @@ impl SiteIndex {
 
     /// Call `f(site)` for every site that may have r below the current best, ring by ring of buckets
     /// around `q`; `f` returns the best r so far.
-    fn visit(&self, q: [f64; 2], mut f: impl FnMut(usize) -> f64) {
+    pub(super) fn visit(&self, q: [f64; 2], mut f: impl FnMut(usize) -> f64) {
         let fx = ((q[0] - self.lo[0]) / self.cell).floor();
         let fy = ((q[1] - self.lo[1]) / self.cell).floor();
         // far outside the buckets (or not finite): plain scan

@@ -4,8 +4,26 @@
 use super::cell_input::{CellInput, IdMap, IdSet, Mask};
 use super::classify::{classify, tet_type, Classifier, TetType};
 
-/// Rounds of branching sampling (sample, re-triangulate) per cell.
+/// Rounds of branching and cutting sampling (sample, re-triangulate) per cell.
 const BRANCHING_ROUNDS: usize = 1;
+
+/// Which samples of the Moebius diagram a cell adds to its contour vertices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sampling {
+    /// Samples of the branching diagram (`branching`).
+    pub branching: bool,
+    /// Samples of the cutting diagram (`cutting`).
+    pub cutting: bool,
+}
+
+impl Default for Sampling {
+    fn default() -> Self {
+        Sampling {
+            branching: true,
+            cutting: true,
+        }
+    }
+}
 use super::complex::{outward_face, Complex, NONE};
 use super::prune::{prune, PruneCounts};
 use crate::error::Result;
@@ -32,6 +50,13 @@ pub struct CellResult {
     pub tets: u64,
     pub flat_tets: u64,
     pub branching_samples: u64,
+    pub cutting_samples: u64,
+    /// Cutting samples that end on the border of a flat zone of this cell (a vertex of a section
+    /// triangle the cell attaches to and of one it leaves flat).
+    pub cutting_on_flat_border: u64,
+    /// Area of the internal section triangles this cell leaves unattached (its flat zones, whether
+    /// or not the other side attaches there).
+    pub flat_area: f64,
     /// CPU seconds spent in this run's sub-phases.
     pub timing: CellTiming,
 }
@@ -45,6 +70,8 @@ pub struct CellTiming {
     pub delaunay: f64,
     /// Branching-diagram samples (without the re-triangulation).
     pub branching: f64,
+    /// Cutting-diagram samples (without the re-triangulation).
+    pub cutting: f64,
     /// Section triangles per face and the contour-edge conformity check.
     pub conformity: f64,
     /// Simplex classification by plane tags.
@@ -60,6 +87,7 @@ impl CellTiming {
         self.input += o.input;
         self.delaunay += o.delaunay;
         self.branching += o.branching;
+        self.cutting += o.cutting;
         self.conformity += o.conformity;
         self.classify += o.classify;
         self.prune += o.prune;
@@ -67,11 +95,12 @@ impl CellTiming {
     }
 
     /// (name, seconds) pairs in pipeline order.
-    pub fn entries(&self) -> [(&'static str, f64); 7] {
+    pub fn entries(&self) -> [(&'static str, f64); 8] {
         [
             ("input", self.input),
             ("delaunay", self.delaunay),
             ("branching", self.branching),
+            ("cutting", self.cutting),
             ("conformity", self.conformity),
             ("classify", self.classify),
             ("prune", self.prune),
@@ -140,7 +169,7 @@ fn canonical_tet(t: [u32; 4]) -> [u32; 4] {
 type SectionTriangles = IdMap<[u32; 3], ([u32; 3], u32)>;
 
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
-pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Result<CellResult> {
+pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> Result<CellResult> {
     let all = input.mask.iter().fold(!0u128, |a, &m| a & m);
     if all != 0 || input.points.len() < 4 {
         // every vertex on one plane: no volume to reconstruct in this cell
@@ -155,7 +184,9 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
     let mut tets = finite_tets(&dt);
     timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
-    if branching {
+    let mut n_cut = 0;
+    let mut cut_ids: Vec<u32> = Vec::new();
+    if sampling.branching || sampling.cutting {
         for _round in 0..BRANCHING_ROUNDS {
             let cx = Complex::new(input.points.len(), tets.clone());
             let ty: Vec<TetType> = cx
@@ -171,23 +202,53 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
                     .0
                 })
                 .collect();
-            let samples = super::branching::samples(&input, &cx, &ty);
+            let mut cl = Classifier::new(&input);
+            let apex = super::branching::apex_triangles(&input, &cx, &ty, &cl);
+            let samples = if sampling.branching {
+                super::branching::samples(&input, &mut cl, &apex)
+            } else {
+                Vec::new()
+            };
             timing.branching += lap(&mut clock);
-            if samples.is_empty() {
+            // from the same triangulation, kept apart from the branching samples
+            let cuts = if sampling.cutting {
+                super::cutting::samples(&input, &cx, &ty, &mut cl, &apex, &samples)
+            } else {
+                Vec::new()
+            };
+            timing.cutting += lap(&mut clock);
+            drop(cl);
+            if samples.is_empty() && cuts.is_empty() {
                 break;
             }
+            n_branch += samples.len() as u64;
+            n_cut += cuts.len() as u64;
+            if !cuts.is_empty() && std::env::var("BM_DEBUG").is_ok() {
+                for (s, slot) in input.slots.iter().enumerate() {
+                    let k = cuts.iter().filter(|c| c.0 == s).count();
+                    if k > 0 {
+                        eprintln!(
+                            "cell {}: face {}: {k} cutting samples",
+                            input.cell, slot.face
+                        );
+                    }
+                }
+            }
             // inserted into the triangulation we have (same result as re-triangulating everything)
-            for (s, q, p3) in samples {
+            let first_cut = input.points.len() + samples.len();
+            for (s, q, p3) in samples.into_iter().chain(cuts) {
                 if !p3.iter().all(|c| c.is_finite()) {
                     return Err(crate::Error::input(
-                        format!("cell {} branching sample", input.cell),
+                        format!("cell {} diagram sample", input.cell),
                         "non-finite coordinate",
                     ));
                 }
                 let l = input.add_local_vertex(s, q, p3);
                 let id = dt.insert(p3);
                 debug_assert!(id <= l);
-                n_branch += 1;
+                if l as usize >= first_cut {
+                    cut_ids.push(l);
+                }
             }
             tets = finite_tets(&dt);
             timing.delaunay += lap(&mut clock);
@@ -292,7 +353,7 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
             }
         }
     }
-    let faces = (0..n_slots)
+    let faces: Vec<FaceSide> = (0..n_slots)
         .map(|s| {
             let mut triangles: Vec<([u32; 3], bool)> = top[s]
                 .values()
@@ -306,6 +367,29 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
             }
         })
         .collect();
+    // the paper's flat zones of this cell, and whether the cutting samples ended on their border
+    let mut flat_area = 0.0;
+    let mut sides: IdMap<u32, (bool, bool)> = IdMap::default();
+    for side in &faces {
+        for &(f, attached) in &side.triangles {
+            if !attached {
+                let p = f.map(|v| input.points[v as usize]);
+                let w = crate::sections::cross(
+                    crate::sections::sub(p[1], p[0]),
+                    crate::sections::sub(p[2], p[0]),
+                );
+                flat_area += 0.5 * crate::sections::dot(w, w).sqrt();
+            }
+            for v in f {
+                if cut_ids.binary_search(&v).is_ok() {
+                    let e = sides.entry(v).or_default();
+                    e.0 |= attached;
+                    e.1 |= !attached;
+                }
+            }
+        }
+    }
+    let cutting_on_flat_border = sides.values().filter(|&&(a, f)| a && f).count() as u64;
     timing.output += lap(&mut clock);
     Ok(CellResult {
         input: Some(input),
@@ -317,6 +401,9 @@ pub fn run_cell(mut input: CellInput, branching: bool, check_only: bool) -> Resu
         tets: cx.len() as u64,
         flat_tets,
         branching_samples: n_branch,
+        cutting_samples: n_cut,
+        cutting_on_flat_border,
+        flat_area,
         timing,
     })
 }

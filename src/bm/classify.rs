@@ -98,6 +98,30 @@ impl<'a> Classifier<'a> {
         ext
     }
 
+    /// Step 1 removes tet `t` (of type `ty`, grounded edge bits `g` from [`tet_type`]): it is flat,
+    /// or has an external grounded edge, or (a `Vf`) an external grounded face.
+    pub fn tet_external(&mut self, t: &[u32; 4], ty: TetType, g: u8) -> bool {
+        if ty == TetType::Flat {
+            return true;
+        }
+        for (k, &(i, j)) in TET_EDGES.iter().enumerate() {
+            if g >> k & 1 == 1 && self.edge_external(t[i], t[j]) {
+                return true;
+            }
+        }
+        if ty == TetType::Vf {
+            let mask = &self.input.mask;
+            for i in 0..4 {
+                let f = super::complex::outward_face(t, i);
+                let mf = mask[f[0] as usize] & mask[f[1] as usize] & mask[f[2] as usize];
+                if mf != 0 && self.triangle_external(f[0], f[1], f[2]) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
     pub fn triangle_external(&self, a: u32, b: u32, c: u32) -> bool {
         let inp = self.input;
         let m = inp.mask[a as usize] & inp.mask[b as usize] & inp.mask[c as usize];
@@ -175,27 +199,7 @@ pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
             input.mask[t[3] as usize],
         ];
         let (ty, g, p) = tet_type(m);
-        let mut ext = ty == TetType::Flat;
-        if !ext {
-            for (k, &(i, j)) in TET_EDGES.iter().enumerate() {
-                if g >> k & 1 == 1 && cl.edge_external(t[i], t[j]) {
-                    ext = true;
-                    break;
-                }
-            }
-        }
-        if !ext && ty == TetType::Vf {
-            for i in 0..4 {
-                let f = super::complex::outward_face(t, i);
-                let mf = input.mask[f[0] as usize]
-                    & input.mask[f[1] as usize]
-                    & input.mask[f[2] as usize];
-                if mf != 0 && cl.triangle_external(f[0], f[1], f[2]) {
-                    ext = true;
-                    break;
-                }
-            }
-        }
+        let ext = cl.tet_external(t, ty, g);
         out.ty.push(ty);
         out.external.push(ext);
         out.grounded_edges.push(g);

@@ -13,17 +13,21 @@
 //! (`glue`), flat zones are reported, pinched vertices are split and singular crossings of the two
 //! cells' branching diagrams avoided by displacing samples 1e-6 of an edge into their cell (Fig. 12b).
 //!
-//! Known limits: cutting-diagram samples are not computed; on a face attached from both sides the
+//! Cutting-diagram samples (`cutting`) are added beside the branching samples where a site's Moebius
+//! cell on a face is disconnected next to a connected one (the borders of flat zones).
+//!
+//! Known limits: consecutive branching or cutting samples are not forced to be Delaunay edges; on a face attached from both sides the
 //! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
 //! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
 //! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
-//! Set `SLICE2SOLID_NO_BRANCHING` to skip branching samples, `BM_DEBUG` for per-cell diagnostics.
+//! Set `SLICE2SOLID_NO_BRANCHING` / `SLICE2SOLID_NO_CUTTING` to skip branching / cutting samples, `BM_DEBUG` for per-cell diagnostics.
 pub mod branching;
 pub mod cell;
 pub mod cell_input;
 pub mod classify;
 pub mod complex;
 pub mod conform;
+pub mod cutting;
 pub mod face_overlay;
 pub mod glue;
 pub mod prune;
@@ -33,7 +37,7 @@ use crate::arrangement::Arrangement;
 use crate::error::Result;
 use crate::reconstruct::{Options, Report, Solid};
 use crate::sections::Sections;
-use cell::{run_cell, CellResult, CellTiming};
+use cell::{run_cell, CellResult, CellTiming, Sampling};
 use cell_input::CellInput;
 use rayon::prelude::*;
 
@@ -67,7 +71,7 @@ fn run_timed(
     pool: &crate::arrangement::VertexPool,
     loops: &[Vec<Vec<u32>>],
     c: u32,
-    branching: bool,
+    sampling: Sampling,
     check_only: bool,
 ) -> Result<Option<CellResult>> {
     let t = std::time::Instant::now();
@@ -75,7 +79,7 @@ fn run_timed(
         return Ok(None);
     };
     let build = t.elapsed().as_secs_f64();
-    let mut r = run_cell(input, branching, check_only)?;
+    let mut r = run_cell(input, sampling, check_only)?;
     r.timing.input += build;
     Ok(Some(r))
 }
@@ -94,7 +98,10 @@ pub fn reconstruct(
     let mut results: Vec<Option<CellResult>> = vec![None; n_cells];
     let mut dirty: Vec<bool> = vec![true; n_cells];
     let mut prev_loops: Vec<usize> = vec![usize::MAX; arr.faces.len()];
-    let branching = std::env::var("SLICE2SOLID_NO_BRANCHING").is_err();
+    let sampling = Sampling {
+        branching: std::env::var("SLICE2SOLID_NO_BRANCHING").is_err(),
+        cutting: std::env::var("SLICE2SOLID_NO_CUTTING").is_err(),
+    };
     let progress = if options.progress {
         let pb = indicatif::ProgressBar::new(n_cells as u64);
         pb.set_style(
@@ -137,7 +144,7 @@ pub fn reconstruct(
             .iter()
             .par_bridge()
             .map(|&c| {
-                let r = run_timed(arr, &pool, &loops, c as u32, branching, true);
+                let r = run_timed(arr, &pool, &loops, c as u32, sampling, true);
                 if let Some(pb) = &progress {
                     pb.inc(1);
                 }
@@ -181,7 +188,7 @@ pub fn reconstruct(
             .iter()
             .par_bridge()
             .map(|&c| {
-                let r = run_timed(arr, &pool, &loops, c as u32, branching, false);
+                let r = run_timed(arr, &pool, &loops, c as u32, sampling, false);
                 (c, r)
             })
             .collect();
@@ -221,6 +228,9 @@ pub fn reconstruct(
         report.count("step3_cavities_filled", r.counts.step3_cavities_filled);
         report.count("tets_kept", r.kept.len() as u64);
         report.count("branching_samples", r.branching_samples);
+        report.count("cutting_samples", r.cutting_samples);
+        report.count("cutting_samples_on_flat_border", r.cutting_on_flat_border);
+        *report.values.entry("cell_flat_area".into()).or_insert(0.0) += r.flat_area;
     }
     let glued = report.time("glue", || glue::glue(arr, &pool, &results));
     report.count("flat_zone_faces", glued.flat_zone_faces);
