@@ -17,7 +17,10 @@
 //! per-side output for that face.
 use crate::geom::predicates::orient2d;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
-use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
+use spade::{
+    ConstrainedDelaunayTriangulation, HasPosition, Intersection, LineIntersectionIterator, Point2,
+    Triangulation,
+};
 use std::collections::HashMap;
 
 /// Id of a vertex created by the overlay (before the caller numbers it).
@@ -65,8 +68,17 @@ pub fn overlay(
     first_new: u32,
 ) -> Result<Overlay, String> {
     // spade asserts on some inconsistent inputs: keep them from unwinding through the caller
-    std::panic::catch_unwind(|| overlay_inner(uv, a, b, ccw_a, first_new))
-        .unwrap_or_else(|_| Err("constrained triangulation panicked".into()))
+    let r = std::panic::catch_unwind(|| overlay_inner(uv, a, b, ccw_a, first_new))
+        .unwrap_or_else(|_| Err("constrained triangulation panicked".into()));
+    let dump = r.is_err() || std::env::var("SLICE2SOLID_OVERLAY_DUMP_ALL").is_ok();
+    if let (true, Ok(dir)) = (dump, std::env::var("SLICE2SOLID_OVERLAY_DUMP")) {
+        // debugging aid: the failing (or every) input, as JSON, for a unit test
+        let mut pts: Vec<(u32, [f64; 2])> = uv.iter().map(|(&k, &v)| (k, v)).collect();
+        pts.sort_by_key(|p| p.0);
+        let j = serde_json::json!({"uv": pts, "a": a, "b": b, "ccw_a": ccw_a});
+        let _ = std::fs::write(format!("{dir}/overlay_{first_new}.json"), j.to_string());
+    }
+    r
 }
 
 type Cdt = ConstrainedDelaunayTriangulation<Vx>;
@@ -83,15 +95,6 @@ fn overlay_inner(
             .copied()
             .ok_or_else(|| format!("vertex {v} has no (u,v)"))
     };
-    // sides' triangles, checked for orientation (a fold would make the flood fill meaningless)
-    for (tris, ccw) in [(a, ccw_a), (b, !ccw_a)] {
-        for t in tris {
-            let o = orient2d(q(t[0])?, q(t[1])?, q(t[2])?);
-            if o != 0.0 && (o > 0.0) != ccw {
-                return Err(format!("triangle {t:?} is folded in (u,v)"));
-            }
-        }
-    }
     let mut cdt = Cdt::new();
     let mut handle: HashMap<u32, FixedVertexHandle> = HashMap::new();
     let mut ids: Vec<u32> = a.iter().chain(b).flat_map(|t| t.iter().copied()).collect();
@@ -111,21 +114,15 @@ fn overlay_inner(
         }
         handle.insert(v, h);
     }
-    // constraints: every edge of both sides, with the sides it bounds
-    let mut edges: HashMap<(u32, u32), u8> = HashMap::new();
-    for (tris, bit) in [(a, 1u8), (b, 2u8)] {
-        for t in tris {
-            for k in 0..3 {
-                let (x, y) = (t[k], t[(k + 1) % 3]);
-                *edges.entry((x.min(y), x.max(y))).or_default() |= bit;
-            }
-        }
-    }
-    let mut edge_list: Vec<((u32, u32), u8)> = edges.into_iter().collect();
+    // every original edge once (key (min, max)), a constraint from min to max
+    let mut edge_list: Vec<(u32, u32)> = a
+        .iter()
+        .chain(b)
+        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+        .collect();
     edge_list.sort_unstable();
-    for &((x, y), _) in &edge_list {
-        cdt.add_constraint_and_split(handle[&x], handle[&y], |p| Vx { p, id: NEW });
-    }
+    edge_list.dedup();
+    let chains = insert_constraints(&mut cdt, &handle, &edge_list)?;
     // number the new vertices
     let mut out = Overlay::default();
     let mut vid: Vec<u32> = vec![NEW; cdt.num_vertices()];
@@ -138,182 +135,303 @@ fn overlay_inner(
         };
         vid[v.fix().index()] = id;
     }
-    // chains of the original edges; bits on the CDT edges
-    let mut bits = vec![0u8; cdt.num_undirected_edges()];
-    let mut chains: HashMap<(u32, u32), Vec<FixedVertexHandle>> = HashMap::new();
-    for &((x, y), bit) in &edge_list {
-        let chain = follow(&cdt, handle[&x], handle[&y])?;
-        for w in chain.windows(2) {
-            let e = cdt
-                .get_edge_from_neighbors(w[0], w[1])
-                .ok_or("chain edge missing")?;
-            bits[e.fix().as_undirected().index()] |= bit;
-        }
+    let mut chain_of: HashMap<(u32, u32), usize> = HashMap::new();
+    for (i, (&key, chain)) in edge_list.iter().zip(&chains).enumerate() {
+        chain_of.insert(key, i);
         if chain.len() > 2 {
             let inner = chain[1..chain.len() - 1]
                 .iter()
                 .map(|h| vid[h.index()])
                 .collect();
-            out.splits.push(((x, y), inner));
+            out.splits.push((key, inner));
         }
-        chains.insert((x, y), chain);
     }
-    // flood fill from each side's triangles across the edges not on that side's edges
-    let nf = cdt.num_all_faces();
-    let mut inside = [vec![false; nf], vec![false; nf]];
-    for (side, tris, ccw) in [(0usize, a, ccw_a), (1, b, !ccw_a)] {
-        let bit = 1u8 << side;
-        let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
+    // Winding numbers. Each side's triangles as given form a 2-chain; a CDT edge carries the net
+    // number of the side's directed triangle edges running along it (forward minus backward), and
+    // crossing it from its right to its left adds that number to the winding. From the outer face
+    // (winding 0) every CDT face gets its winding per side; reaching a face twice with different
+    // values means the chains are wrong (an exact, integer consistency check).
+    let mut delta = vec![[0i32; 2]; cdt.num_undirected_edges()];
+    for (side, tris) in [(0usize, a), (1, b)] {
         for t in tris {
-            let (p0, p1, p2) = (q(t[0])?, q(t[1])?, q(t[2])?);
-            if orient2d(p0, p1, p2) == 0.0 {
-                continue;
-            }
-            // walk the first edge counter-clockwise: the triangle is on its left
-            let (x, y) = if ccw { (t[0], t[1]) } else { (t[1], t[0]) };
-            // the first CDT edge from x along the original edge; chains were followed from the
-            // smaller id, and the walk is greedy, so the other direction is followed anew
-            let reverse;
-            let chain = if x < y {
-                &chains[&(x, y)]
-            } else {
-                reverse = follow(&cdt, handle[&x], handle[&y])?;
-                &reverse
-            };
-            let (c0, c1) = (chain[0], chain[1]);
-            let e = cdt
-                .get_edge_from_neighbors(c0, c1)
-                .ok_or("chain edge missing")?;
-            let f = e
-                .face()
-                .as_inner()
-                .ok_or("triangle side faces the outer face")?;
-            if !inside[side][f.fix().index()] {
-                inside[side][f.fix().index()] = true;
-                stack.push(f.fix());
-            }
-        }
-        while let Some(f) = stack.pop() {
-            for e in cdt.face(f).adjacent_edges() {
-                if bits[e.as_undirected().fix().index()] & bit != 0 {
-                    continue;
-                }
-                let g = e
-                    .rev()
-                    .face()
-                    .as_inner()
-                    .ok_or("flood fill leaked to the outer face")?;
-                if !inside[side][g.fix().index()] {
-                    inside[side][g.fix().index()] = true;
-                    stack.push(g.fix());
+            for k in 0..3 {
+                let (x, y) = (t[k], t[(k + 1) % 3]);
+                let chain = &chains[chain_of[&(x.min(y), x.max(y))]];
+                let sign = if x < y { 1 } else { -1 };
+                for w in chain.windows(2) {
+                    let e = cdt
+                        .get_edge_from_neighbors(w[0], w[1])
+                        .ok_or("chain edge missing")?;
+                    let d = e.fix();
+                    // the undirected edge's own direction is its even half
+                    let s = if d.index() & 1 == 0 { sign } else { -sign };
+                    delta[d.as_undirected().index()][side] += s;
                 }
             }
         }
     }
-    // areas: the fill must cover exactly each side's triangles
+    let along = |e: spade::handles::FixedDirectedEdgeHandle| -> [i32; 2] {
+        let d = delta[e.as_undirected().index()];
+        if e.index() & 1 == 0 {
+            d
+        } else {
+            [-d[0], -d[1]]
+        }
+    };
+    let nf = cdt.num_all_faces();
+    let mut wind: Vec<Option<[i32; 2]>> = vec![None; nf];
+    let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
+    wind[cdt.outer_face().fix().index()] = Some([0, 0]);
+    for e in cdt.directed_edges() {
+        if !e.face().is_outer() {
+            continue;
+        }
+        // e has the outer face on its left: its right side is w(outer) − δ(e)
+        let Some(g) = e.rev().face().as_inner() else {
+            continue;
+        };
+        let d = along(e.fix());
+        let w = [-d[0], -d[1]];
+        match wind[g.fix().index()] {
+            None => {
+                wind[g.fix().index()] = Some(w);
+                stack.push(g.fix());
+            }
+            Some(o) if o != w => return Err("winding numbers inconsistent".into()),
+            Some(_) => {}
+        }
+    }
+    while let Some(f) = stack.pop() {
+        let wf = wind[f.index()].unwrap();
+        for e in cdt.face(f).adjacent_edges() {
+            // f is on e's left; the face on its right has w(f) − δ(e)
+            let d = along(e.fix());
+            let w = [wf[0] - d[0], wf[1] - d[1]];
+            let g = e.rev().face();
+            match wind[g.fix().index()] {
+                None => {
+                    wind[g.fix().index()] = Some(w);
+                    if let Some(g) = g.as_inner() {
+                        stack.push(g.fix());
+                    }
+                }
+                Some(o) if o != w => return Err("winding numbers inconsistent".into()),
+                Some(_) => {}
+            }
+        }
+    }
+    // Output: the faces where the two sides' chains do not cancel. A's triangles are CCW when
+    // `ccw_a` and B's the other way, so the sum is ±1 on only-A and only-B, 0 where both attach.
     let pos = |v: spade::handles::VertexHandle<Vx, (), spade::CdtEdge<()>, ()>| {
         [v.position().x, v.position().y]
     };
-    let mut filled = [0.0f64; 2];
+    let side_sign = if ccw_a { [1, -1] } else { [-1, 1] };
+    let mut covered = [0.0f64; 2];
     let mut scale = 0.0f64;
     for f in cdt.inner_faces() {
         let [v0, v1, v2] = f.vertices();
-        let ar = 0.5 * area2(pos(v0), pos(v1), pos(v2)).abs();
-        scale += ar;
-        let (ia, ib) = (inside[0][f.fix().index()], inside[1][f.fix().index()]);
-        if ia {
-            filled[0] += ar;
+        let ar = 0.5 * area2(pos(v0), pos(v1), pos(v2));
+        scale += ar.abs();
+        let w = wind[f.fix().index()].ok_or("face not reached from the outer face")?;
+        covered[0] += w[0] as f64 * ar;
+        covered[1] += w[1] as f64 * ar;
+        if w[0] != 0 || w[1] != 0 {
+            out.attached_area += ar.abs();
         }
-        if ib {
-            filled[1] += ar;
+        if w[0] != 0 && w[0] != side_sign[0] || w[1] != 0 && w[1] != side_sign[1] {
+            return Err(format!("side windings {w:?}: a side's triangles overlap"));
         }
-        if ia || ib {
-            out.attached_area += ar;
+        let total = w[0] + w[1];
+        if total == 0 {
+            continue;
         }
-        if ia != ib {
-            out.output_area += ar;
-            let (i0, i1, i2) = (
-                vid[v0.fix().index()],
-                vid[v1.fix().index()],
-                vid[v2.fix().index()],
-            );
-            // spade's faces are counter-clockwise
-            let ccw = if ia { ccw_a } else { !ccw_a };
-            out.triangles
-                .push(if ccw { [i0, i1, i2] } else { [i0, i2, i1] });
+        if total.abs() > 1 {
+            return Err(format!("region covered {total} times"));
         }
+        out.output_area += ar.abs();
+        let (i0, i1, i2) = (
+            vid[v0.fix().index()],
+            vid[v1.fix().index()],
+            vid[v2.fix().index()],
+        );
+        // spade's faces are counter-clockwise
+        out.triangles.push(if total > 0 {
+            [i0, i1, i2]
+        } else {
+            [i0, i2, i1]
+        });
     }
+    // sanity: each side's signed covered area is its triangles' signed area (the chains are
+    // exact combinatorially; only the rounding of crossing points moves area)
     for (side, tris) in [(0usize, a), (1, b)] {
         let mut want = 0.0;
         for t in tris {
-            want += 0.5 * area2(q(t[0])?, q(t[1])?, q(t[2])?).abs();
+            want += 0.5 * area2(q(t[0])?, q(t[1])?, q(t[2])?);
         }
-        if (filled[side] - want).abs() > 1e-9 * scale.max(f64::MIN_POSITIVE) {
+        if (covered[side] - want).abs() > 1e-7 * scale.max(f64::MIN_POSITIVE) {
             return Err(format!(
-                "side {side}: fill covers {:.6e}, triangles {want:.6e}",
-                filled[side]
+                "side {side}: winding covers {:.6e}, triangles {want:.6e}",
+                covered[side]
             ));
         }
     }
     Ok(out)
 }
 
-/// The CDT vertices along the original segment from `x` to `y` (both included): from `x`, follow the
-/// constraint edge heading most nearly towards `y`, each step getting closer.
-fn follow(
+fn ukey(p: FixedVertexHandle, q: FixedVertexHandle) -> (usize, usize) {
+    (p.index().min(q.index()), p.index().max(q.index()))
+}
+
+/// Adds every original edge (`edges`, (min, max) ids) as a constraint and returns, per edge, its
+/// chain: the CDT vertices along it from min to max. The chain is what spade built for the edge
+/// (its returned sub-edges), kept up to date when a later constraint splits one of its sub-edges
+/// (a crossing vertex on it, or spade rerouting it through a nearby vertex): a sub-edge p–q that is
+/// no longer a constraint edge is replaced by p–w–q, w the common constraint neighbour of p and q
+/// created by that insertion, else the one nearest the line pq. The chain of an edge is therefore
+/// unique and the same whichever direction it is walked.
+fn insert_constraints(
+    cdt: &mut Cdt,
+    handle: &HashMap<u32, FixedVertexHandle>,
+    edges: &[(u32, u32)],
+) -> Result<Vec<Vec<FixedVertexHandle>>, String> {
+    let mut chains: Vec<Vec<FixedVertexHandle>> = Vec::with_capacity(edges.len());
+    let mut tracked: std::collections::HashSet<(usize, usize)> = Default::default();
+    // Input vertices lying exactly on an edge (spade's exact line walk, before any constraint):
+    // the edge is inserted as its pieces between them. Inserted whole, a constraint that is split
+    // at a crossing goes on from the rounded crossing point and can miss such a vertex by an ulp,
+    // making a new vertex next to it.
+    let pieces: Vec<Vec<FixedVertexHandle>> = edges
+        .iter()
+        .map(|&(x, y)| vertices_on_segment(cdt, handle[&x], handle[&y]))
+        .collect();
+    for (&(x, y), through) in edges.iter().zip(&pieces) {
+        let nv = cdt.num_vertices();
+        let mut chain = vec![through[0]];
+        for w in through.windows(2) {
+            let route = cdt.add_constraint_and_split(w[0], w[1], |p| Vx { p, id: NEW });
+            for e in &route {
+                let e = cdt.directed_edge(*e);
+                if e.from().fix() != *chain.last().unwrap() {
+                    return Err(format!("constraint {x}–{y}: spade's route is not a path"));
+                }
+                chain.push(e.to().fix());
+            }
+            if *chain.last().unwrap() != w[1] {
+                return Err(format!(
+                    "constraint {x}–{y}: spade's route does not reach its end"
+                ));
+            }
+        }
+        tracked.extend(chain.windows(2).map(|w| ukey(w[0], w[1])));
+        chains.push(chain);
+        if cdt.num_vertices() == nv && cdt.num_constraints() == tracked.len() {
+            continue;
+        }
+        // some sub-edges were split: repair every chain
+        for chain in chains.iter_mut() {
+            *chain = repair_chain(cdt, chain, nv)?;
+        }
+        tracked = chains
+            .iter()
+            .flat_map(|c| c.windows(2).map(|w| ukey(w[0], w[1])))
+            .collect();
+        if cdt.num_constraints() != tracked.len() {
+            return Err(format!(
+                "constraint {x}–{y}: {} constraint edges, {} on the chains",
+                cdt.num_constraints(),
+                tracked.len()
+            ));
+        }
+    }
+    Ok(chains)
+}
+
+/// The vertices of `cdt` on the segment from `x` to `y` (both included), in order: exact, from
+/// spade's line walk (robust orientation tests on the stored coordinates).
+fn vertices_on_segment(
     cdt: &Cdt,
     x: FixedVertexHandle,
     y: FixedVertexHandle,
-) -> Result<Vec<FixedVertexHandle>, String> {
-    let p = |h: FixedVertexHandle| {
-        let q = cdt.vertex(h).position();
-        [q.x, q.y]
-    };
-    let target = p(y);
-    let mut chain = vec![x];
-    let mut cur = x;
-    let mut dist = f64::INFINITY;
-    for _ in 0..cdt.num_vertices() {
-        if cur == y {
-            return Ok(chain);
+) -> Vec<FixedVertexHandle> {
+    let mut out = vec![x];
+    let mut push = |v: FixedVertexHandle| {
+        if *out.last().unwrap() != v {
+            out.push(v);
         }
-        let c = p(cur);
-        let d = [target[0] - c[0], target[1] - c[1]];
-        let dd = (d[0] * d[0] + d[1] * d[1]).sqrt();
-        let mut best: Option<(f64, FixedVertexHandle)> = None;
-        for e in cdt.vertex(cur).out_edges() {
+    };
+    for i in LineIntersectionIterator::new_from_handles(cdt, x, y) {
+        match i {
+            Intersection::VertexIntersection(v) => push(v.fix()),
+            Intersection::EdgeOverlap(e) => {
+                push(e.from().fix());
+                push(e.to().fix());
+            }
+            Intersection::EdgeIntersection(_) => {}
+        }
+    }
+    push(y);
+    out
+}
+
+/// `chain` with every sub-edge that is no longer a constraint edge replaced by the constraint path
+/// through a common constraint neighbour (see `insert_constraints`); `nv`: vertices before the last
+/// insertion (a vertex it created is preferred).
+fn repair_chain(
+    cdt: &Cdt,
+    chain: &[FixedVertexHandle],
+    nv: usize,
+) -> Result<Vec<FixedVertexHandle>, String> {
+    let is_constraint = |p: FixedVertexHandle, q: FixedVertexHandle| {
+        cdt.get_edge_from_neighbors(p, q)
+            .is_some_and(|e| e.is_constraint_edge())
+    };
+    if chain.windows(2).all(|w| is_constraint(w[0], w[1])) {
+        return Ok(chain.to_vec());
+    }
+    let pos = |h: FixedVertexHandle| {
+        let p = cdt.vertex(h).position();
+        [p.x, p.y]
+    };
+    let mut out = vec![chain[0]];
+    // pending sub-edges, last one first
+    let mut todo: Vec<FixedVertexHandle> = chain[1..].iter().rev().copied().collect();
+    let mut budget = 4 * cdt.num_vertices() + 16;
+    while let Some(qh) = todo.pop() {
+        let ph = *out.last().unwrap();
+        if is_constraint(ph, qh) {
+            out.push(qh);
+            continue;
+        }
+        budget = budget.checked_sub(1).ok_or("chain repair does not end")?;
+        let (p, q) = (pos(ph), pos(qh));
+        let mut best: Option<(bool, f64, FixedVertexHandle)> = None;
+        for e in cdt.vertex(ph).out_edges() {
             if !e.is_constraint_edge() {
                 continue;
             }
-            let t = e.to().fix();
-            if t == y {
-                best = Some((2.0, t));
-                break;
+            let w = e.to().fix();
+            if w == qh || !is_constraint(w, qh) {
+                continue;
             }
-            let w = p(t);
-            let s = [w[0] - c[0], w[1] - c[1]];
-            let ss = (s[0] * s[0] + s[1] * s[1]).sqrt();
-            let cos = (s[0] * d[0] + s[1] * d[1]) / (ss * dd);
-            if best.is_none_or(|b| cos > b.0) {
-                best = Some((cos, t));
+            let c = pos(w);
+            // w must lie between p and q along pq
+            let t = (c[0] - p[0]) * (q[0] - p[0]) + (c[1] - p[1]) * (q[1] - p[1]);
+            let l2 = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
+            if t <= 0.0 || t >= l2 {
+                continue;
+            }
+            let key = (w.index() < nv, orient2d(p, c, q).abs(), w);
+            if best.is_none_or(|b| (key.0, key.1) < (b.0, b.1)) {
+                best = Some(key);
             }
         }
-        let Some((cos, next)) = best else {
-            return Err("chain: no constraint edge out of a vertex".into());
+        let Some((_, _, w)) = best else {
+            return Err("a split sub-edge has no constraint path around it".into());
         };
-        if cos < 0.5 {
-            return Err("chain: no constraint edge towards the end".into());
-        }
-        let n = p(next);
-        let nd = ((target[0] - n[0]).powi(2) + (target[1] - n[1]).powi(2)).sqrt();
-        if next != y && nd >= dist.min(dd) {
-            return Err("chain: no progress".into());
-        }
-        dist = nd;
-        chain.push(next);
-        cur = next;
+        todo.push(qh);
+        todo.push(w);
     }
-    Err("chain: too long".into())
+    Ok(out)
 }
 
 #[cfg(test)]
