@@ -576,4 +576,163 @@ mod tests {
         // B's sample 6 lies on A's diagonal 0–4, which now passes through it
         assert!(o.splits.contains(&((0, 4), vec![6])));
     }
+
+    /// An input recorded from a real face (`SLICE2SOLID_OVERLAY_DUMP`): (u,v), A, B, ccw_a.
+    type Recorded = (HashMap<u32, [f64; 2]>, Vec<[u32; 3]>, Vec<[u32; 3]>, bool);
+
+    fn recorded(json: &str) -> Recorded {
+        let j: serde_json::Value = serde_json::from_str(json).unwrap();
+        let uv = serde_json::from_value::<Vec<(u32, [f64; 2])>>(j["uv"].clone())
+            .unwrap()
+            .into_iter()
+            .collect();
+        (
+            uv,
+            serde_json::from_value(j["a"].clone()).unwrap(),
+            serde_json::from_value(j["b"].clone()).unwrap(),
+            j["ccw_a"].as_bool().unwrap(),
+        )
+    }
+
+    /// Signed area of triangles (new vertices numbered from `first_new`).
+    fn signed_area(
+        uv: &HashMap<u32, [f64; 2]>,
+        o: &Overlay,
+        first_new: u32,
+        tris: &[[u32; 3]],
+    ) -> f64 {
+        let q = |v: u32| {
+            if v >= first_new {
+                o.new_vertices[(v - first_new) as usize]
+            } else {
+                uv[&v]
+            }
+        };
+        tris.iter()
+            .map(|t| 0.5 * area2(q(t[0]), q(t[1]), q(t[2])))
+            .sum()
+    }
+
+    /// The output as a 2-chain is A + B (both as given): same signed area, same boundary.
+    fn assert_output_is_a_plus_b(
+        uv: &HashMap<u32, [f64; 2]>,
+        a: &[[u32; 3]],
+        b: &[[u32; 3]],
+        o: &Overlay,
+        first_new: u32,
+    ) {
+        let want = signed_area(uv, o, first_new, a) + signed_area(uv, o, first_new, b);
+        let got = signed_area(uv, o, first_new, &o.triangles);
+        let scale = signed_area(uv, o, first_new, a).abs() + signed_area(uv, o, first_new, b).abs();
+        assert!(
+            (got - want).abs() <= 1e-9 * scale,
+            "output {got}, A + B {want}"
+        );
+        // boundary: every input edge split along its chain, then the directed edges summed
+        let chain = |x: u32, y: u32| -> Vec<u32> {
+            let key = (x.min(y), x.max(y));
+            let mut c = vec![key.0];
+            if let Some((_, inner)) = o.splits.iter().find(|s| s.0 == key) {
+                c.extend(inner);
+            }
+            c.push(key.1);
+            if x > y {
+                c.reverse();
+            }
+            c
+        };
+        let mut net: HashMap<(u32, u32), i32> = HashMap::new();
+        let mut add = |x: u32, y: u32, s: i32| {
+            *net.entry((x.min(y), x.max(y))).or_default() += if x < y { s } else { -s };
+        };
+        for t in a.iter().chain(b) {
+            for k in 0..3 {
+                for w in chain(t[k], t[(k + 1) % 3]).windows(2) {
+                    add(w[0], w[1], 1);
+                }
+            }
+        }
+        for t in &o.triangles {
+            for k in 0..3 {
+                add(t[k], t[(k + 1) % 3], -1);
+            }
+        }
+        net.retain(|_, c| *c != 0);
+        assert!(
+            net.is_empty(),
+            "boundaries differ on {:?}",
+            net.iter().take(5).collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn elephant_face_175_labels_by_winding() {
+        // The greedy chain walk of the flood fill lost part of side A here ("fill covers
+        // 2.779545e-2, triangles 2.781411e-2") and the face fell back to two sheets.
+        let (uv, a, b, ccw_a) = recorded(include_str!("testdata/overlay_elephant_face175.json"));
+        let o = overlay(&uv, &a, &b, ccw_a, 1_000_000).unwrap();
+        assert_output_is_a_plus_b(&uv, &a, &b, &o, 1_000_000);
+    }
+
+    #[test]
+    fn vertex_exactly_on_an_edge_gets_no_twin() {
+        // balloondog_box: an edge of B passes exactly through a vertex of A (orient2d == 0), but
+        // only after crossing other constraints; spade continued from a rounded crossing point and
+        // made a new vertex 4e-17 away from it (the surface then had two coplanar triangles
+        // overlapping along an ulp-wide sliver).
+        let (uv, a, b, ccw_a) = recorded(include_str!(
+            "testdata/overlay_balloondog_box_vertex_on_edge.json"
+        ));
+        let (p, q) = (uv[&4801], uv[&4819]);
+        assert_eq!(orient2d(p, q, uv[&4529]), 0.0);
+        let o = overlay(&uv, &a, &b, ccw_a, 1_000_000).unwrap();
+        assert_output_is_a_plus_b(&uv, &a, &b, &o, 1_000_000);
+        for n in &o.new_vertices {
+            for (v, p) in &uv {
+                let d = (n[0] - p[0]).abs() + (n[1] - p[1]).abs();
+                assert!(d > 1e-12, "new vertex {n:?} is {d:e} from vertex {v}");
+            }
+        }
+        let split = o.splits.iter().find(|s| s.0 == (4801, 4819)).unwrap();
+        assert!(split.1.contains(&4529), "{split:?}");
+    }
+
+    #[test]
+    fn horsers_face_608_snapped_crossing() {
+        // Vertex 3641 is a crossing snapped between two sections: its 3D point is the midpoint,
+        // while the pool keeps this plane's own (u,v), 0.018 lower; 5162 likewise. In the pool's
+        // (u,v) B's triangle [3641, 5317, 5316] is folded (the old overlay refused the face); in
+        // the (u,v) of the 3D points (what glue passes for a vertex on several planes) the
+        // triangulation is consistent and the overlay outputs B's region minus A's.
+        let mut uv: HashMap<u32, [f64; 2]> = uvmap(&[
+            (986, [-41.83683185902107, 44.86600000000001]),
+            (3641, [-41.83683185902105, 51.263048128342284]),
+            (5162, [-42.61811597849294, 45.63468193638729]),
+            (5316, [-41.89049749048106, 51.05]),
+            (5317, [-41.970995937671056, 50.71]),
+            (5318, [-42.530012932046006, 47.0]),
+            (5319, [-42.561317883731, 46.76]),
+        ]);
+        let a = [[986, 5318, 5317]];
+        let b = [
+            [3641, 5316, 986],
+            [3641, 5317, 5316],
+            [986, 5316, 5317],
+            [986, 5317, 5318],
+            [986, 5318, 5319],
+            [986, 5319, 5162],
+        ];
+        // B's triangles are counter-clockwise (ccw_a = false); [3641, 5317, 5316] is not
+        let folded = |uv: &HashMap<u32, [f64; 2]>| orient2d(uv[&3641], uv[&5317], uv[&5316]) < 0.0;
+        assert!(folded(&uv));
+        uv.insert(3641, [-41.83683185902105, 51.281201483525976]);
+        uv.insert(5162, [-42.61811597849294, 45.63581294717788]);
+        assert!(!folded(&uv));
+        let o = overlay(&uv, &a, &b, false, 1_000_000).unwrap();
+        assert_output_is_a_plus_b(&uv, &a, &b, &o, 1_000_000);
+        // A's triangle is inside B's region: only B's remainder is output
+        let area_a = signed_area(&uv, &o, 1_000_000, &a).abs();
+        let area_b = signed_area(&uv, &o, 1_000_000, &b).abs();
+        assert!((o.output_area - (area_b - area_a)).abs() < 1e-12 * area_b);
+    }
 }
