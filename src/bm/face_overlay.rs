@@ -6,15 +6,25 @@
 //! where only A attaches, the region oriented outward from A; only B: outward from B; both: interior;
 //! neither: a flat zone (nothing). To get it, a constrained Delaunay triangulation (spade) of all
 //! vertices of X_A and X_B with every edge of their triangles as a constraint gives a common
-//! refinement. Its triangles are labelled by flood fill: from each triangle of X_A, across every edge
-//! that is not on an edge of X_A (and likewise for B). Where two constraints cross, spade inserts a
-//! new vertex; every original edge that got vertices on it (crossings, or existing vertices lying
-//! exactly on it) is returned with its chain so that the caller can split the 3D triangles that use
-//! it (no T-junctions).
+//! refinement. Each original edge's chain (the CDT vertices along it) is tracked exactly through the
+//! insertions (`insert_constraints`), so it is unique and direction-independent. Its triangles are
+//! labelled by winding numbers: each side's triangles, as given, are a 2-chain; crossing a CDT edge
+//! changes a side's winding by the net number of its directed triangle edges running along it, so
+//! from the outer face (0) every face gets an integer winding per side, checked for consistency
+//! (exact: integers on the CDT's combinatorics). The output is where A + B does not cancel.
+//! Where two constraints cross, spade inserts a new vertex; every original edge that got vertices on
+//! it (crossings, or existing vertices lying exactly on it) is returned with its chain so that the
+//! caller can split the 3D triangles that use it (no T-junctions).
 //!
-//! Every inconsistency (two ids at one (u,v), a folded triangle, a flood fill that leaks, a chain that
-//! cannot be followed, a panic inside spade) is an `Err` with the reason: the caller then keeps its
-//! per-side output for that face.
+//! Decisions: spade's robust orient2d/incircle on the (u,v) it is given (constructed coordinates:
+//! the caller's frame coordinates, plus spade's rounded crossing points); our own orient2d only to
+//! choose the vertex nearest a split sub-edge when repairing a chain.
+//!
+//! Every inconsistency (two ids at one (u,v), a side whose windings are not 0/1 — overlapping or
+//! folded triangles —, inconsistent windings, a chain that cannot be tracked, a panic inside spade)
+//! is an `Err` with the reason: the caller then keeps its per-side output for that face.
+//! `SLICE2SOLID_OVERLAY_DUMP=dir` writes each failing input to `dir` as JSON (with
+//! `SLICE2SOLID_OVERLAY_DUMP_ALL` set, every input), the format of the tests' `testdata`.
 use crate::geom::predicates::orient2d;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
 use spade::{
