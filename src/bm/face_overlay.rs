@@ -6,18 +6,31 @@
 //! where only A attaches, the region oriented outward from A; only B: outward from B; both: interior;
 //! neither: a flat zone (nothing). To get it, a constrained Delaunay triangulation (spade) of all
 //! vertices of X_A and X_B with every edge of their triangles as a constraint gives a common
-//! refinement. Its triangles are labelled by flood fill: from each triangle of X_A, across every edge
-//! that is not on an edge of X_A (and likewise for B). Where two constraints cross, spade inserts a
-//! new vertex; every original edge that got vertices on it (crossings, or existing vertices lying
-//! exactly on it) is returned with its chain so that the caller can split the 3D triangles that use
-//! it (no T-junctions).
+//! refinement. Each original edge's chain (the CDT vertices along it) is tracked exactly through the
+//! insertions (`insert_constraints`), so it is unique and direction-independent. Its triangles are
+//! labelled by winding numbers: each side's triangles, as given, are a 2-chain; crossing a CDT edge
+//! changes a side's winding by the net number of its directed triangle edges running along it, so
+//! from the outer face (0) every face gets an integer winding per side, checked for consistency
+//! (exact: integers on the CDT's combinatorics). The output is where A + B does not cancel.
+//! Where two constraints cross, spade inserts a new vertex; every original edge that got vertices on
+//! it (crossings, or existing vertices lying exactly on it) is returned with its chain so that the
+//! caller can split the 3D triangles that use it (no T-junctions).
 //!
-//! Every inconsistency (two ids at one (u,v), a folded triangle, a flood fill that leaks, a chain that
-//! cannot be followed, a panic inside spade) is an `Err` with the reason: the caller then keeps its
-//! per-side output for that face.
+//! Decisions: spade's robust orient2d/incircle on the (u,v) it is given (constructed coordinates:
+//! the caller's frame coordinates, plus spade's rounded crossing points); our own orient2d only to
+//! choose the vertex nearest a split sub-edge when repairing a chain.
+//!
+//! Every inconsistency (two ids at one (u,v), a side whose windings are not 0/1 — overlapping or
+//! folded triangles —, inconsistent windings, a chain that cannot be tracked, a panic inside spade)
+//! is an `Err` with the reason: the caller then keeps its per-side output for that face.
+//! `SLICE2SOLID_OVERLAY_DUMP=dir` writes each failing input to `dir` as JSON (with
+//! `SLICE2SOLID_OVERLAY_DUMP_ALL` set, every input), the format of the tests' `testdata`.
 use crate::geom::predicates::orient2d;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
-use spade::{ConstrainedDelaunayTriangulation, HasPosition, Point2, Triangulation};
+use spade::{
+    ConstrainedDelaunayTriangulation, HasPosition, Intersection, LineIntersectionIterator, Point2,
+    Triangulation,
+};
 use std::collections::HashMap;
 
 /// Id of a vertex created by the overlay (before the caller numbers it).
@@ -65,8 +78,17 @@ pub fn overlay(
     first_new: u32,
 ) -> Result<Overlay, String> {
     // spade asserts on some inconsistent inputs: keep them from unwinding through the caller
-    std::panic::catch_unwind(|| overlay_inner(uv, a, b, ccw_a, first_new))
-        .unwrap_or_else(|_| Err("constrained triangulation panicked".into()))
+    let r = std::panic::catch_unwind(|| overlay_inner(uv, a, b, ccw_a, first_new))
+        .unwrap_or_else(|_| Err("constrained triangulation panicked".into()));
+    let dump = r.is_err() || std::env::var("SLICE2SOLID_OVERLAY_DUMP_ALL").is_ok();
+    if let (true, Ok(dir)) = (dump, std::env::var("SLICE2SOLID_OVERLAY_DUMP")) {
+        // debugging aid: the failing (or every) input, as JSON, for a unit test
+        let mut pts: Vec<(u32, [f64; 2])> = uv.iter().map(|(&k, &v)| (k, v)).collect();
+        pts.sort_by_key(|p| p.0);
+        let j = serde_json::json!({"uv": pts, "a": a, "b": b, "ccw_a": ccw_a});
+        let _ = std::fs::write(format!("{dir}/overlay_{first_new}.json"), j.to_string());
+    }
+    r
 }
 
 type Cdt = ConstrainedDelaunayTriangulation<Vx>;
@@ -83,15 +105,6 @@ fn overlay_inner(
             .copied()
             .ok_or_else(|| format!("vertex {v} has no (u,v)"))
     };
-    // sides' triangles, checked for orientation (a fold would make the flood fill meaningless)
-    for (tris, ccw) in [(a, ccw_a), (b, !ccw_a)] {
-        for t in tris {
-            let o = orient2d(q(t[0])?, q(t[1])?, q(t[2])?);
-            if o != 0.0 && (o > 0.0) != ccw {
-                return Err(format!("triangle {t:?} is folded in (u,v)"));
-            }
-        }
-    }
     let mut cdt = Cdt::new();
     let mut handle: HashMap<u32, FixedVertexHandle> = HashMap::new();
     let mut ids: Vec<u32> = a.iter().chain(b).flat_map(|t| t.iter().copied()).collect();
@@ -111,21 +124,15 @@ fn overlay_inner(
         }
         handle.insert(v, h);
     }
-    // constraints: every edge of both sides, with the sides it bounds
-    let mut edges: HashMap<(u32, u32), u8> = HashMap::new();
-    for (tris, bit) in [(a, 1u8), (b, 2u8)] {
-        for t in tris {
-            for k in 0..3 {
-                let (x, y) = (t[k], t[(k + 1) % 3]);
-                *edges.entry((x.min(y), x.max(y))).or_default() |= bit;
-            }
-        }
-    }
-    let mut edge_list: Vec<((u32, u32), u8)> = edges.into_iter().collect();
+    // every original edge once (key (min, max)), a constraint from min to max
+    let mut edge_list: Vec<(u32, u32)> = a
+        .iter()
+        .chain(b)
+        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+        .collect();
     edge_list.sort_unstable();
-    for &((x, y), _) in &edge_list {
-        cdt.add_constraint_and_split(handle[&x], handle[&y], |p| Vx { p, id: NEW });
-    }
+    edge_list.dedup();
+    let chains = insert_constraints(&mut cdt, &handle, &edge_list)?;
     // number the new vertices
     let mut out = Overlay::default();
     let mut vid: Vec<u32> = vec![NEW; cdt.num_vertices()];
@@ -138,182 +145,303 @@ fn overlay_inner(
         };
         vid[v.fix().index()] = id;
     }
-    // chains of the original edges; bits on the CDT edges
-    let mut bits = vec![0u8; cdt.num_undirected_edges()];
-    let mut chains: HashMap<(u32, u32), Vec<FixedVertexHandle>> = HashMap::new();
-    for &((x, y), bit) in &edge_list {
-        let chain = follow(&cdt, handle[&x], handle[&y])?;
-        for w in chain.windows(2) {
-            let e = cdt
-                .get_edge_from_neighbors(w[0], w[1])
-                .ok_or("chain edge missing")?;
-            bits[e.fix().as_undirected().index()] |= bit;
-        }
+    let mut chain_of: HashMap<(u32, u32), usize> = HashMap::new();
+    for (i, (&key, chain)) in edge_list.iter().zip(&chains).enumerate() {
+        chain_of.insert(key, i);
         if chain.len() > 2 {
             let inner = chain[1..chain.len() - 1]
                 .iter()
                 .map(|h| vid[h.index()])
                 .collect();
-            out.splits.push(((x, y), inner));
+            out.splits.push((key, inner));
         }
-        chains.insert((x, y), chain);
     }
-    // flood fill from each side's triangles across the edges not on that side's edges
-    let nf = cdt.num_all_faces();
-    let mut inside = [vec![false; nf], vec![false; nf]];
-    for (side, tris, ccw) in [(0usize, a, ccw_a), (1, b, !ccw_a)] {
-        let bit = 1u8 << side;
-        let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
+    // Winding numbers. Each side's triangles as given form a 2-chain; a CDT edge carries the net
+    // number of the side's directed triangle edges running along it (forward minus backward), and
+    // crossing it from its right to its left adds that number to the winding. From the outer face
+    // (winding 0) every CDT face gets its winding per side; reaching a face twice with different
+    // values means the chains are wrong (an exact, integer consistency check).
+    let mut delta = vec![[0i32; 2]; cdt.num_undirected_edges()];
+    for (side, tris) in [(0usize, a), (1, b)] {
         for t in tris {
-            let (p0, p1, p2) = (q(t[0])?, q(t[1])?, q(t[2])?);
-            if orient2d(p0, p1, p2) == 0.0 {
-                continue;
-            }
-            // walk the first edge counter-clockwise: the triangle is on its left
-            let (x, y) = if ccw { (t[0], t[1]) } else { (t[1], t[0]) };
-            // the first CDT edge from x along the original edge; chains were followed from the
-            // smaller id, and the walk is greedy, so the other direction is followed anew
-            let reverse;
-            let chain = if x < y {
-                &chains[&(x, y)]
-            } else {
-                reverse = follow(&cdt, handle[&x], handle[&y])?;
-                &reverse
-            };
-            let (c0, c1) = (chain[0], chain[1]);
-            let e = cdt
-                .get_edge_from_neighbors(c0, c1)
-                .ok_or("chain edge missing")?;
-            let f = e
-                .face()
-                .as_inner()
-                .ok_or("triangle side faces the outer face")?;
-            if !inside[side][f.fix().index()] {
-                inside[side][f.fix().index()] = true;
-                stack.push(f.fix());
-            }
-        }
-        while let Some(f) = stack.pop() {
-            for e in cdt.face(f).adjacent_edges() {
-                if bits[e.as_undirected().fix().index()] & bit != 0 {
-                    continue;
-                }
-                let g = e
-                    .rev()
-                    .face()
-                    .as_inner()
-                    .ok_or("flood fill leaked to the outer face")?;
-                if !inside[side][g.fix().index()] {
-                    inside[side][g.fix().index()] = true;
-                    stack.push(g.fix());
+            for k in 0..3 {
+                let (x, y) = (t[k], t[(k + 1) % 3]);
+                let chain = &chains[chain_of[&(x.min(y), x.max(y))]];
+                let sign = if x < y { 1 } else { -1 };
+                for w in chain.windows(2) {
+                    let e = cdt
+                        .get_edge_from_neighbors(w[0], w[1])
+                        .ok_or("chain edge missing")?;
+                    let d = e.fix();
+                    // the undirected edge's own direction is its even half
+                    let s = if d.index() & 1 == 0 { sign } else { -sign };
+                    delta[d.as_undirected().index()][side] += s;
                 }
             }
         }
     }
-    // areas: the fill must cover exactly each side's triangles
+    let along = |e: spade::handles::FixedDirectedEdgeHandle| -> [i32; 2] {
+        let d = delta[e.as_undirected().index()];
+        if e.index() & 1 == 0 {
+            d
+        } else {
+            [-d[0], -d[1]]
+        }
+    };
+    let nf = cdt.num_all_faces();
+    let mut wind: Vec<Option<[i32; 2]>> = vec![None; nf];
+    let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
+    wind[cdt.outer_face().fix().index()] = Some([0, 0]);
+    for e in cdt.directed_edges() {
+        if !e.face().is_outer() {
+            continue;
+        }
+        // e has the outer face on its left: its right side is w(outer) − δ(e)
+        let Some(g) = e.rev().face().as_inner() else {
+            continue;
+        };
+        let d = along(e.fix());
+        let w = [-d[0], -d[1]];
+        match wind[g.fix().index()] {
+            None => {
+                wind[g.fix().index()] = Some(w);
+                stack.push(g.fix());
+            }
+            Some(o) if o != w => return Err("winding numbers inconsistent".into()),
+            Some(_) => {}
+        }
+    }
+    while let Some(f) = stack.pop() {
+        let wf = wind[f.index()].unwrap();
+        for e in cdt.face(f).adjacent_edges() {
+            // f is on e's left; the face on its right has w(f) − δ(e)
+            let d = along(e.fix());
+            let w = [wf[0] - d[0], wf[1] - d[1]];
+            let g = e.rev().face();
+            match wind[g.fix().index()] {
+                None => {
+                    wind[g.fix().index()] = Some(w);
+                    if let Some(g) = g.as_inner() {
+                        stack.push(g.fix());
+                    }
+                }
+                Some(o) if o != w => return Err("winding numbers inconsistent".into()),
+                Some(_) => {}
+            }
+        }
+    }
+    // Output: the faces where the two sides' chains do not cancel. A's triangles are CCW when
+    // `ccw_a` and B's the other way, so the sum is ±1 on only-A and only-B, 0 where both attach.
     let pos = |v: spade::handles::VertexHandle<Vx, (), spade::CdtEdge<()>, ()>| {
         [v.position().x, v.position().y]
     };
-    let mut filled = [0.0f64; 2];
+    let side_sign = if ccw_a { [1, -1] } else { [-1, 1] };
+    let mut covered = [0.0f64; 2];
     let mut scale = 0.0f64;
     for f in cdt.inner_faces() {
         let [v0, v1, v2] = f.vertices();
-        let ar = 0.5 * area2(pos(v0), pos(v1), pos(v2)).abs();
-        scale += ar;
-        let (ia, ib) = (inside[0][f.fix().index()], inside[1][f.fix().index()]);
-        if ia {
-            filled[0] += ar;
+        let ar = 0.5 * area2(pos(v0), pos(v1), pos(v2));
+        scale += ar.abs();
+        let w = wind[f.fix().index()].ok_or("face not reached from the outer face")?;
+        covered[0] += w[0] as f64 * ar;
+        covered[1] += w[1] as f64 * ar;
+        if w[0] != 0 || w[1] != 0 {
+            out.attached_area += ar.abs();
         }
-        if ib {
-            filled[1] += ar;
+        if w[0] != 0 && w[0] != side_sign[0] || w[1] != 0 && w[1] != side_sign[1] {
+            return Err(format!("side windings {w:?}: a side's triangles overlap"));
         }
-        if ia || ib {
-            out.attached_area += ar;
+        let total = w[0] + w[1];
+        if total == 0 {
+            continue;
         }
-        if ia != ib {
-            out.output_area += ar;
-            let (i0, i1, i2) = (
-                vid[v0.fix().index()],
-                vid[v1.fix().index()],
-                vid[v2.fix().index()],
-            );
-            // spade's faces are counter-clockwise
-            let ccw = if ia { ccw_a } else { !ccw_a };
-            out.triangles
-                .push(if ccw { [i0, i1, i2] } else { [i0, i2, i1] });
+        if total.abs() > 1 {
+            return Err(format!("region covered {total} times"));
         }
+        out.output_area += ar.abs();
+        let (i0, i1, i2) = (
+            vid[v0.fix().index()],
+            vid[v1.fix().index()],
+            vid[v2.fix().index()],
+        );
+        // spade's faces are counter-clockwise
+        out.triangles.push(if total > 0 {
+            [i0, i1, i2]
+        } else {
+            [i0, i2, i1]
+        });
     }
+    // sanity: each side's signed covered area is its triangles' signed area (the chains are
+    // exact combinatorially; only the rounding of crossing points moves area)
     for (side, tris) in [(0usize, a), (1, b)] {
         let mut want = 0.0;
         for t in tris {
-            want += 0.5 * area2(q(t[0])?, q(t[1])?, q(t[2])?).abs();
+            want += 0.5 * area2(q(t[0])?, q(t[1])?, q(t[2])?);
         }
-        if (filled[side] - want).abs() > 1e-9 * scale.max(f64::MIN_POSITIVE) {
+        if (covered[side] - want).abs() > 1e-7 * scale.max(f64::MIN_POSITIVE) {
             return Err(format!(
-                "side {side}: fill covers {:.6e}, triangles {want:.6e}",
-                filled[side]
+                "side {side}: winding covers {:.6e}, triangles {want:.6e}",
+                covered[side]
             ));
         }
     }
     Ok(out)
 }
 
-/// The CDT vertices along the original segment from `x` to `y` (both included): from `x`, follow the
-/// constraint edge heading most nearly towards `y`, each step getting closer.
-fn follow(
+fn ukey(p: FixedVertexHandle, q: FixedVertexHandle) -> (usize, usize) {
+    (p.index().min(q.index()), p.index().max(q.index()))
+}
+
+/// Adds every original edge (`edges`, (min, max) ids) as a constraint and returns, per edge, its
+/// chain: the CDT vertices along it from min to max. The chain is what spade built for the edge
+/// (its returned sub-edges), kept up to date when a later constraint splits one of its sub-edges
+/// (a crossing vertex on it, or spade rerouting it through a nearby vertex): a sub-edge p–q that is
+/// no longer a constraint edge is replaced by p–w–q, w the common constraint neighbour of p and q
+/// created by that insertion, else the one nearest the line pq. The chain of an edge is therefore
+/// unique and the same whichever direction it is walked.
+fn insert_constraints(
+    cdt: &mut Cdt,
+    handle: &HashMap<u32, FixedVertexHandle>,
+    edges: &[(u32, u32)],
+) -> Result<Vec<Vec<FixedVertexHandle>>, String> {
+    let mut chains: Vec<Vec<FixedVertexHandle>> = Vec::with_capacity(edges.len());
+    let mut tracked: std::collections::HashSet<(usize, usize)> = Default::default();
+    // Input vertices lying exactly on an edge (spade's exact line walk, before any constraint):
+    // the edge is inserted as its pieces between them. Inserted whole, a constraint that is split
+    // at a crossing goes on from the rounded crossing point and can miss such a vertex by an ulp,
+    // making a new vertex next to it.
+    let pieces: Vec<Vec<FixedVertexHandle>> = edges
+        .iter()
+        .map(|&(x, y)| vertices_on_segment(cdt, handle[&x], handle[&y]))
+        .collect();
+    for (&(x, y), through) in edges.iter().zip(&pieces) {
+        let nv = cdt.num_vertices();
+        let mut chain = vec![through[0]];
+        for w in through.windows(2) {
+            let route = cdt.add_constraint_and_split(w[0], w[1], |p| Vx { p, id: NEW });
+            for e in &route {
+                let e = cdt.directed_edge(*e);
+                if e.from().fix() != *chain.last().unwrap() {
+                    return Err(format!("constraint {x}–{y}: spade's route is not a path"));
+                }
+                chain.push(e.to().fix());
+            }
+            if *chain.last().unwrap() != w[1] {
+                return Err(format!(
+                    "constraint {x}–{y}: spade's route does not reach its end"
+                ));
+            }
+        }
+        tracked.extend(chain.windows(2).map(|w| ukey(w[0], w[1])));
+        chains.push(chain);
+        if cdt.num_vertices() == nv && cdt.num_constraints() == tracked.len() {
+            continue;
+        }
+        // some sub-edges were split: repair every chain
+        for chain in chains.iter_mut() {
+            *chain = repair_chain(cdt, chain, nv)?;
+        }
+        tracked = chains
+            .iter()
+            .flat_map(|c| c.windows(2).map(|w| ukey(w[0], w[1])))
+            .collect();
+        if cdt.num_constraints() != tracked.len() {
+            return Err(format!(
+                "constraint {x}–{y}: {} constraint edges, {} on the chains",
+                cdt.num_constraints(),
+                tracked.len()
+            ));
+        }
+    }
+    Ok(chains)
+}
+
+/// The vertices of `cdt` on the segment from `x` to `y` (both included), in order: exact, from
+/// spade's line walk (robust orientation tests on the stored coordinates).
+fn vertices_on_segment(
     cdt: &Cdt,
     x: FixedVertexHandle,
     y: FixedVertexHandle,
-) -> Result<Vec<FixedVertexHandle>, String> {
-    let p = |h: FixedVertexHandle| {
-        let q = cdt.vertex(h).position();
-        [q.x, q.y]
-    };
-    let target = p(y);
-    let mut chain = vec![x];
-    let mut cur = x;
-    let mut dist = f64::INFINITY;
-    for _ in 0..cdt.num_vertices() {
-        if cur == y {
-            return Ok(chain);
+) -> Vec<FixedVertexHandle> {
+    let mut out = vec![x];
+    let mut push = |v: FixedVertexHandle| {
+        if *out.last().unwrap() != v {
+            out.push(v);
         }
-        let c = p(cur);
-        let d = [target[0] - c[0], target[1] - c[1]];
-        let dd = (d[0] * d[0] + d[1] * d[1]).sqrt();
-        let mut best: Option<(f64, FixedVertexHandle)> = None;
-        for e in cdt.vertex(cur).out_edges() {
+    };
+    for i in LineIntersectionIterator::new_from_handles(cdt, x, y) {
+        match i {
+            Intersection::VertexIntersection(v) => push(v.fix()),
+            Intersection::EdgeOverlap(e) => {
+                push(e.from().fix());
+                push(e.to().fix());
+            }
+            Intersection::EdgeIntersection(_) => {}
+        }
+    }
+    push(y);
+    out
+}
+
+/// `chain` with every sub-edge that is no longer a constraint edge replaced by the constraint path
+/// through a common constraint neighbour (see `insert_constraints`); `nv`: vertices before the last
+/// insertion (a vertex it created is preferred).
+fn repair_chain(
+    cdt: &Cdt,
+    chain: &[FixedVertexHandle],
+    nv: usize,
+) -> Result<Vec<FixedVertexHandle>, String> {
+    let is_constraint = |p: FixedVertexHandle, q: FixedVertexHandle| {
+        cdt.get_edge_from_neighbors(p, q)
+            .is_some_and(|e| e.is_constraint_edge())
+    };
+    if chain.windows(2).all(|w| is_constraint(w[0], w[1])) {
+        return Ok(chain.to_vec());
+    }
+    let pos = |h: FixedVertexHandle| {
+        let p = cdt.vertex(h).position();
+        [p.x, p.y]
+    };
+    let mut out = vec![chain[0]];
+    // pending sub-edges, last one first
+    let mut todo: Vec<FixedVertexHandle> = chain[1..].iter().rev().copied().collect();
+    let mut budget = 4 * cdt.num_vertices() + 16;
+    while let Some(qh) = todo.pop() {
+        let ph = *out.last().unwrap();
+        if is_constraint(ph, qh) {
+            out.push(qh);
+            continue;
+        }
+        budget = budget.checked_sub(1).ok_or("chain repair does not end")?;
+        let (p, q) = (pos(ph), pos(qh));
+        let mut best: Option<(bool, f64, FixedVertexHandle)> = None;
+        for e in cdt.vertex(ph).out_edges() {
             if !e.is_constraint_edge() {
                 continue;
             }
-            let t = e.to().fix();
-            if t == y {
-                best = Some((2.0, t));
-                break;
+            let w = e.to().fix();
+            if w == qh || !is_constraint(w, qh) {
+                continue;
             }
-            let w = p(t);
-            let s = [w[0] - c[0], w[1] - c[1]];
-            let ss = (s[0] * s[0] + s[1] * s[1]).sqrt();
-            let cos = (s[0] * d[0] + s[1] * d[1]) / (ss * dd);
-            if best.is_none_or(|b| cos > b.0) {
-                best = Some((cos, t));
+            let c = pos(w);
+            // w must lie between p and q along pq
+            let t = (c[0] - p[0]) * (q[0] - p[0]) + (c[1] - p[1]) * (q[1] - p[1]);
+            let l2 = (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
+            if t <= 0.0 || t >= l2 {
+                continue;
+            }
+            let key = (w.index() < nv, orient2d(p, c, q).abs(), w);
+            if best.is_none_or(|b| (key.0, key.1) < (b.0, b.1)) {
+                best = Some(key);
             }
         }
-        let Some((cos, next)) = best else {
-            return Err("chain: no constraint edge out of a vertex".into());
+        let Some((_, _, w)) = best else {
+            return Err("a split sub-edge has no constraint path around it".into());
         };
-        if cos < 0.5 {
-            return Err("chain: no constraint edge towards the end".into());
-        }
-        let n = p(next);
-        let nd = ((target[0] - n[0]).powi(2) + (target[1] - n[1]).powi(2)).sqrt();
-        if next != y && nd >= dist.min(dd) {
-            return Err("chain: no progress".into());
-        }
-        dist = nd;
-        chain.push(next);
-        cur = next;
+        todo.push(qh);
+        todo.push(w);
     }
-    Err("chain: too long".into())
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -457,5 +585,164 @@ mod tests {
         assert!((o.attached_area - 1.0).abs() < 1e-12);
         // B's sample 6 lies on A's diagonal 0–4, which now passes through it
         assert!(o.splits.contains(&((0, 4), vec![6])));
+    }
+
+    /// An input recorded from a real face (`SLICE2SOLID_OVERLAY_DUMP`): (u,v), A, B, ccw_a.
+    type Recorded = (HashMap<u32, [f64; 2]>, Vec<[u32; 3]>, Vec<[u32; 3]>, bool);
+
+    fn recorded(json: &str) -> Recorded {
+        let j: serde_json::Value = serde_json::from_str(json).unwrap();
+        let uv = serde_json::from_value::<Vec<(u32, [f64; 2])>>(j["uv"].clone())
+            .unwrap()
+            .into_iter()
+            .collect();
+        (
+            uv,
+            serde_json::from_value(j["a"].clone()).unwrap(),
+            serde_json::from_value(j["b"].clone()).unwrap(),
+            j["ccw_a"].as_bool().unwrap(),
+        )
+    }
+
+    /// Signed area of triangles (new vertices numbered from `first_new`).
+    fn signed_area(
+        uv: &HashMap<u32, [f64; 2]>,
+        o: &Overlay,
+        first_new: u32,
+        tris: &[[u32; 3]],
+    ) -> f64 {
+        let q = |v: u32| {
+            if v >= first_new {
+                o.new_vertices[(v - first_new) as usize]
+            } else {
+                uv[&v]
+            }
+        };
+        tris.iter()
+            .map(|t| 0.5 * area2(q(t[0]), q(t[1]), q(t[2])))
+            .sum()
+    }
+
+    /// The output as a 2-chain is A + B (both as given): same signed area, same boundary.
+    fn assert_output_is_a_plus_b(
+        uv: &HashMap<u32, [f64; 2]>,
+        a: &[[u32; 3]],
+        b: &[[u32; 3]],
+        o: &Overlay,
+        first_new: u32,
+    ) {
+        let want = signed_area(uv, o, first_new, a) + signed_area(uv, o, first_new, b);
+        let got = signed_area(uv, o, first_new, &o.triangles);
+        let scale = signed_area(uv, o, first_new, a).abs() + signed_area(uv, o, first_new, b).abs();
+        assert!(
+            (got - want).abs() <= 1e-9 * scale,
+            "output {got}, A + B {want}"
+        );
+        // boundary: every input edge split along its chain, then the directed edges summed
+        let chain = |x: u32, y: u32| -> Vec<u32> {
+            let key = (x.min(y), x.max(y));
+            let mut c = vec![key.0];
+            if let Some((_, inner)) = o.splits.iter().find(|s| s.0 == key) {
+                c.extend(inner);
+            }
+            c.push(key.1);
+            if x > y {
+                c.reverse();
+            }
+            c
+        };
+        let mut net: HashMap<(u32, u32), i32> = HashMap::new();
+        let mut add = |x: u32, y: u32, s: i32| {
+            *net.entry((x.min(y), x.max(y))).or_default() += if x < y { s } else { -s };
+        };
+        for t in a.iter().chain(b) {
+            for k in 0..3 {
+                for w in chain(t[k], t[(k + 1) % 3]).windows(2) {
+                    add(w[0], w[1], 1);
+                }
+            }
+        }
+        for t in &o.triangles {
+            for k in 0..3 {
+                add(t[k], t[(k + 1) % 3], -1);
+            }
+        }
+        net.retain(|_, c| *c != 0);
+        assert!(
+            net.is_empty(),
+            "boundaries differ on {:?}",
+            net.iter().take(5).collect::<Vec<_>>()
+        );
+    }
+
+    #[test]
+    fn elephant_face_175_labels_by_winding() {
+        // The greedy chain walk of the flood fill lost part of side A here ("fill covers
+        // 2.779545e-2, triangles 2.781411e-2") and the face fell back to two sheets.
+        let (uv, a, b, ccw_a) = recorded(include_str!("testdata/overlay_elephant_face175.json"));
+        let o = overlay(&uv, &a, &b, ccw_a, 1_000_000).unwrap();
+        assert_output_is_a_plus_b(&uv, &a, &b, &o, 1_000_000);
+    }
+
+    #[test]
+    fn vertex_exactly_on_an_edge_gets_no_twin() {
+        // balloondog_box: an edge of B passes exactly through a vertex of A (orient2d == 0), but
+        // only after crossing other constraints; spade continued from a rounded crossing point and
+        // made a new vertex 4e-17 away from it (the surface then had two coplanar triangles
+        // overlapping along an ulp-wide sliver).
+        let (uv, a, b, ccw_a) = recorded(include_str!(
+            "testdata/overlay_balloondog_box_vertex_on_edge.json"
+        ));
+        let (p, q) = (uv[&4801], uv[&4819]);
+        assert_eq!(orient2d(p, q, uv[&4529]), 0.0);
+        let o = overlay(&uv, &a, &b, ccw_a, 1_000_000).unwrap();
+        assert_output_is_a_plus_b(&uv, &a, &b, &o, 1_000_000);
+        for n in &o.new_vertices {
+            for (v, p) in &uv {
+                let d = (n[0] - p[0]).abs() + (n[1] - p[1]).abs();
+                assert!(d > 1e-12, "new vertex {n:?} is {d:e} from vertex {v}");
+            }
+        }
+        let split = o.splits.iter().find(|s| s.0 == (4801, 4819)).unwrap();
+        assert!(split.1.contains(&4529), "{split:?}");
+    }
+
+    #[test]
+    fn horsers_face_608_snapped_crossing() {
+        // Vertex 3641 is a crossing snapped between two sections: its 3D point is the midpoint,
+        // while the pool keeps this plane's own (u,v), 0.018 lower; 5162 likewise. In the pool's
+        // (u,v) B's triangle [3641, 5317, 5316] is folded (the old overlay refused the face); in
+        // the (u,v) of the 3D points (what glue passes for a vertex on several planes) the
+        // triangulation is consistent and the overlay outputs B's region minus A's.
+        let mut uv: HashMap<u32, [f64; 2]> = uvmap(&[
+            (986, [-41.83683185902107, 44.86600000000001]),
+            (3641, [-41.83683185902105, 51.263048128342284]),
+            (5162, [-42.61811597849294, 45.63468193638729]),
+            (5316, [-41.89049749048106, 51.05]),
+            (5317, [-41.970995937671056, 50.71]),
+            (5318, [-42.530012932046006, 47.0]),
+            (5319, [-42.561317883731, 46.76]),
+        ]);
+        let a = [[986, 5318, 5317]];
+        let b = [
+            [3641, 5316, 986],
+            [3641, 5317, 5316],
+            [986, 5316, 5317],
+            [986, 5317, 5318],
+            [986, 5318, 5319],
+            [986, 5319, 5162],
+        ];
+        // B's triangles are counter-clockwise (ccw_a = false); [3641, 5317, 5316] is not
+        let folded = |uv: &HashMap<u32, [f64; 2]>| orient2d(uv[&3641], uv[&5317], uv[&5316]) < 0.0;
+        assert!(folded(&uv));
+        uv.insert(3641, [-41.83683185902105, 51.281201483525976]);
+        uv.insert(5162, [-42.61811597849294, 45.63581294717788]);
+        assert!(!folded(&uv));
+        let o = overlay(&uv, &a, &b, false, 1_000_000).unwrap();
+        assert_output_is_a_plus_b(&uv, &a, &b, &o, 1_000_000);
+        // A's triangle is inside B's region: only B's remainder is output
+        let area_a = signed_area(&uv, &o, 1_000_000, &a).abs();
+        let area_b = signed_area(&uv, &o, 1_000_000, &b).abs();
+        assert!((o.output_area - (area_b - area_a)).abs() < 1e-12 * area_b);
     }
 }

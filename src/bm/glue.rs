@@ -213,7 +213,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             _ => {
                 let face = &arr.faces[f as usize];
                 let plane = &arr.planes[face.plane as usize].plane;
-                match overlay_face(results, &maps, list, positions.len() as u32) {
+                match overlay_face(pool, results, &maps, list, positions.len() as u32) {
                     Ok((o, section_area)) => {
                         g.overlay_faces += 1;
                         g.overlay_vertices += o.new_vertices.len() as u64;
@@ -518,6 +518,7 @@ fn debug_crossings(
 /// The overlay of a face attached from both sides (`list`: its two (cell, slot) sides), plus the
 /// section's area (the larger of the two sides' triangulated areas).
 fn overlay_face(
+    pool: &VertexPool,
     results: &[Option<CellResult>],
     maps: &[Vec<u32>],
     list: &[(usize, usize)],
@@ -537,9 +538,22 @@ fn overlay_face(
         if k == 0 {
             ccw_a = slot.outward_is_plane_normal;
         }
+        // A vertex on several planes takes the (u,v) of its 3D point (which the cells triangulated),
+        // not the pool's (u,v) in this plane: a crossing snapped between two sections (arrangement
+        // `reconcile`) sits at their 3D midpoint while each frame keeps its own section's (u,v), so
+        // the pool's (u,v) fold the triangles around it. Others keep the pool's (u,v), the exact
+        // input coordinates (projecting them would turn exact collinearities into near ones).
+        let proj = |l: u32| {
+            let g = inp.global[l as usize];
+            if g != u32::MAX && pool.tags[g as usize].len() > 1 {
+                slot.geom.to_2d(inp.points[l as usize])
+            } else {
+                slot.uv[l as usize]
+            }
+        };
         let mut area = 0.0;
         for &(t, att) in &r.faces[s].triangles {
-            let q = t.map(|l| slot.uv[l as usize]);
+            let q = t.map(proj);
             area += 0.5
                 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1])
                     - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]))
@@ -547,10 +561,9 @@ fn overlay_face(
             if !att {
                 continue;
             }
-            for l in t {
-                let p = slot.uv[l as usize];
+            for (l, p) in t.into_iter().zip(q) {
                 if !(p[0].is_finite() && p[1].is_finite()) {
-                    return Err(format!("local vertex {l} of cell {c} has no (u,v)"));
+                    return Err(format!("local vertex {l} of cell {c} has no position"));
                 }
                 uv.insert(maps[c][l as usize], p);
             }
