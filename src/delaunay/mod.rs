@@ -99,6 +99,11 @@ pub struct Delaunay {
     outside: Vec<u32>,
     newt: Vec<u32>,
     edge_table: Vec<(u64, u32, u8)>,
+    /// Bounding box of every point in `pts` and the static filter bounds it gives (predicates on
+    /// points inside the box only).
+    lo: P,
+    hi: P,
+    bounds: pred::Bounds,
     /// Whether insertions keep `vtet` up to date (off during the bulk build, which rebuilds it once).
     track_vtet: bool,
 }
@@ -123,6 +128,13 @@ impl Delaunay {
         let mut dt = Delaunay::empty();
         let order = sort::brio_order(points);
         dt.pts = order.iter().map(|&k| norm(points[k as usize])).collect();
+        for p in points {
+            for k in 0..3 {
+                dt.lo[k] = dt.lo[k].min(p[k]);
+                dt.hi[k] = dt.hi[k].max(p[k]);
+            }
+        }
+        dt.bounds = pred::Bounds::for_extent(pred::Bounds::extent(dt.lo, dt.hi));
         dt.ext = order;
         dt.vtet = vec![NONE; dt.pts.len()];
         // About 6.7 tetrahedra per point for most inputs: reserve once instead of regrowing
@@ -239,8 +251,23 @@ impl Delaunay {
             outside: Vec::new(),
             newt: Vec::new(),
             edge_table: Vec::new(),
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+            bounds: pred::Bounds::NONE,
             track_vtet: true,
         }
+    }
+
+    /// Grows the bounding box to `p` (and the static filter bounds with it).
+    fn cover(&mut self, p: P) {
+        if (0..3).all(|k| self.lo[k] <= p[k] && p[k] <= self.hi[k]) {
+            return;
+        }
+        for k in 0..3 {
+            self.lo[k] = self.lo[k].min(p[k]);
+            self.hi[k] = self.hi[k].max(p[k]);
+        }
+        self.bounds = pred::Bounds::for_extent(pred::Bounds::extent(self.lo, self.hi));
     }
 
     /// Lower-dimensional phase: keep distinct points, and start the 3D triangulation when internal
@@ -302,6 +329,7 @@ impl Delaunay {
         );
         let e = self.int.len() as u32;
         let k = self.pts.len() as u32;
+        self.cover(norm(p));
         self.pts.push(norm(p));
         self.ext.push(e);
         self.vtet.push(NONE);
@@ -417,7 +445,14 @@ impl Delaunay {
         }
         let q = norm(p);
         let mut rng = 0x1234_5678;
-        let t = insert::walk(&self.tds.tets, &self.pts, q, self.hint, &mut rng);
+        // the query may lie outside the box of the vertices: bounds for both
+        let (mut lo, mut hi) = (self.lo, self.hi);
+        for k in 0..3 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+        let sb = pred::Bounds::for_extent(pred::Bounds::extent(lo, hi));
+        let t = insert::walk(&self.tds.tets, &self.pts, q, self.hint, &mut rng, &sb);
         let tt = &self.tds.tets[t as usize];
         if tt.is_infinite() {
             return Location::Outside(t);
