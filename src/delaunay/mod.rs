@@ -31,11 +31,15 @@
 //! `pred` (filtered exact predicates and the perturbation), `sort` (BRIO + Hilbert), `validate`
 //! (`is_valid`), `xyz` (point files), `gen` (test point sets), `tetgen` (oracle, feature `tetgen`).
 //!
-//! Measured (release build, shared 2-core machine under load ~7, 10^6 points on 40 random planes,
-//! 6,600,878 tetrahedra): kernel CPU time about 0.9× that of CGAL 5.5's `Delaunay_triangulation_3`
-//! (Epick, range insertion) run interleaved on the same points (5.0–6.2 s vs 5.5–6.2 s); wall-clock
-//! ratios at that load scatter between 0.5 and 1.26. ~1.8× faster than TetGen 1.5; ~390 bytes per
-//! point (peak RSS of the CLI).
+//! Measured (release build, shared 2-core machine under load ~8, 10^6 points on 40 random planes,
+//! 6,600,878 tetrahedra; 6 interleaved pairs): kernel time 0.81× that of CGAL 5.5's
+//! `Delaunay_triangulation_3` (Epick, range insertion, g++ -O3) on the same points, median of the
+//! per-pair ratios of thread CPU time (range 0.74–0.88; ours 4.74–5.24 s, CGAL 5.70–7.00 s), 0.82×
+//! in wall time (range 0.74–0.97). Command: `S2S_TIME_XYZ=planes40_1000000.xyz cargo bench --bench
+//! delaunay` against a CGAL program timing the same way (see `benches/delaunay.rs`). ~1.8× faster
+//! than TetGen 1.5; ~390 bytes per point (peak RSS of the CLI). The hot path: static filter bounds
+//! from the bounding box (`pred::Bounds`) before the semi-static ones, the insphere determinant in
+//! two SSE2 lanes.
 pub mod gen;
 mod insert;
 #[allow(clippy::needless_range_loop)]
