@@ -133,10 +133,8 @@ impl Delaunay {
         let order = sort::brio_order(points);
         dt.pts = order.iter().map(|&k| norm(points[k as usize])).collect();
         for p in points {
-            for k in 0..3 {
-                dt.lo[k] = dt.lo[k].min(p[k]);
-                dt.hi[k] = dt.hi[k].max(p[k]);
-            }
+            dt.lo = std::array::from_fn(|k| dt.lo[k].min(p[k]));
+            dt.hi = std::array::from_fn(|k| dt.hi[k].max(p[k]));
         }
         dt.bounds = pred::Bounds::for_extent(pred::Bounds::extent(dt.lo, dt.hi));
         dt.ext = order;
@@ -267,10 +265,8 @@ impl Delaunay {
         if (0..3).all(|k| self.lo[k] <= p[k] && p[k] <= self.hi[k]) {
             return;
         }
-        for k in 0..3 {
-            self.lo[k] = self.lo[k].min(p[k]);
-            self.hi[k] = self.hi[k].max(p[k]);
-        }
+        self.lo = std::array::from_fn(|k| self.lo[k].min(p[k]));
+        self.hi = std::array::from_fn(|k| self.hi[k].max(p[k]));
         self.bounds = pred::Bounds::for_extent(pred::Bounds::extent(self.lo, self.hi));
     }
 

@@ -30,7 +30,7 @@ impl Bounds {
     /// differences may exceed ext by a rounding, covered by the 1.001 in the constants). Outside
     /// [1e-30, 1e30] (underflow could then matter, or overflow) it is `NONE`.
     pub fn for_extent(ext: f64) -> Bounds {
-        if !(ext >= 1e-30 && ext <= 1e30) {
+        if !(1e-30..=1e30).contains(&ext) {
             return Bounds::NONE;
         }
         let e3 = ext * ext * ext * (1.0 + 1e-12);
