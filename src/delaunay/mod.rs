@@ -36,7 +36,8 @@
 //! `Delaunay_triangulation_3` (Epick, range insertion, g++ -O3) on the same points, median of the
 //! per-pair ratios of thread CPU time (range 0.74–0.88; ours 4.74–5.24 s, CGAL 5.70–7.00 s), 0.82×
 //! in wall time (range 0.74–0.97). Command: `S2S_TIME_XYZ=planes40_1000000.xyz cargo bench --bench
-//! delaunay` against a CGAL program timing the same way (see `benches/delaunay.rs`). ~1.8× faster
+//! delaunay` against a CGAL program timing the same way (see `benches/delaunay.rs`); the CLI's
+//! `seconds` against CGAL's wall time, 8 more pairs under load 4–8: median 0.87 (0.73–1.00). ~1.8× faster
 //! than TetGen 1.5; ~390 bytes per point (peak RSS of the CLI). The hot path: static filter bounds
 //! from the bounding box (`pred::Bounds`) before the semi-static ones, the insphere determinant in
 //! two SSE2 lanes.
