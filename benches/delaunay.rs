@@ -4,6 +4,10 @@
 //! Also writes point files for comparisons with other tools:
 //! `S2S_WRITE_XYZ=out.xyz S2S_KIND=planes S2S_N=1000000 cargo bench --bench delaunay` writes the points
 //! and exits (kinds: uniform, planes).
+//!
+//! `S2S_TIME_XYZ=points.xyz cargo bench --bench delaunay` triangulates that file once and prints the
+//! kernel's wall and CPU seconds as JSON (CPU time of this thread, from /proc: on a shared, loaded
+//! machine it varies far less than wall time, for comparisons with other programs run alike).
 use criterion::{criterion_group, BenchmarkId, Criterion};
 use slice2solid::delaunay::{gen, xyz, Delaunay};
 
@@ -34,7 +38,26 @@ fn bench(c: &mut Criterion) {
 
 criterion_group!(benches, bench);
 
+/// CPU time of the calling thread in seconds (Linux), else None.
+fn thread_cpu_seconds() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = s.split_whitespace().next()?.parse().ok()?;
+    Some(ns * 1e-9)
+}
+
 fn main() {
+    if let Some(path) = std::env::var_os("S2S_TIME_XYZ") {
+        let pts = xyz::read_xyz(std::path::Path::new(&path)).expect("read points");
+        let (c0, t0) = (thread_cpu_seconds(), std::time::Instant::now());
+        let dt = Delaunay::new(&pts);
+        let (c1, wall) = (thread_cpu_seconds(), t0.elapsed().as_secs_f64());
+        let cpu = c0.zip(c1).map(|(a, b)| b - a);
+        println!(
+            "{}",
+            serde_json::json!({"points": pts.len(), "tets": dt.num_finite_tets(), "seconds": wall, "cpu": cpu})
+        );
+        return;
+    }
     if let Some(path) = std::env::var_os("S2S_WRITE_XYZ") {
         let kind = std::env::var("S2S_KIND").unwrap_or_else(|_| "planes".into());
         let n = std::env::var("S2S_N")

@@ -86,7 +86,14 @@ fn xorshift(mut x: u32) -> u32 {
 /// Stochastic visibility walk from `start` to a finite tetrahedron containing `q` (closed), or to the
 /// infinite tetrahedron whose hull facet sees `q` strictly. Terminates with probability 1.
 #[inline]
-pub(super) fn walk(tets: &[Tet], pts: &[P], q: P, start: u32, rng: &mut u32) -> u32 {
+pub(super) fn walk(
+    tets: &[Tet],
+    pts: &[P],
+    q: P,
+    start: u32,
+    rng: &mut u32,
+    sb: &pred::Bounds,
+) -> u32 {
     let mut t = start;
     {
         let tt = &tets[t as usize];
@@ -113,7 +120,7 @@ pub(super) fn walk(tets: &[Tet], pts: &[P], q: P, start: u32, rng: &mut u32) -> 
             }
             let mut s = p;
             s[i] = q;
-            if pred::orient(s[0], s[1], s[2], s[3]) < 0.0 {
+            if pred::orient_within(s[0], s[1], s[2], s[3], sb.orient) < 0.0 {
                 prev = t;
                 t = n;
                 if tet(tets, n).is_infinite() {
@@ -174,7 +181,7 @@ impl Delaunay {
         let v = tt.v;
         if !tt.is_infinite() {
             let p = |k: usize| pt(&self.pts, v[k]);
-            return pred::conflict_finite([p(0), p(1), p(2), p(3)], q);
+            return pred::conflict_finite([p(0), p(1), p(2), p(3)], q, &self.bounds);
         }
         self.conflict_infinite(t, q)
     }
@@ -192,14 +199,21 @@ impl Delaunay {
         }
         let n = &self.tds.tets[(tt.n[k] & ID_MASK) as usize];
         let d = self.pts[n.v[index_of_neighbor(n, t)] as usize];
-        pred::conflict_infinite(pts, k, d, q)
+        pred::conflict_infinite(pts, k, d, q, &self.bounds)
     }
 
     /// Locates internal point `q` from the hint.
     #[inline]
     pub(super) fn walk_from_hint(&mut self, q: P) -> u32 {
         let mut rng = self.rng;
-        let t = walk(&self.tds.tets, &self.pts, q, self.hint, &mut rng);
+        let t = walk(
+            &self.tds.tets,
+            &self.pts,
+            q,
+            self.hint,
+            &mut rng,
+            &self.bounds,
+        );
         self.rng = rng;
         t
     }
@@ -267,8 +281,9 @@ impl Delaunay {
                     outside.push(n);
                 }
                 let nt = tet(&self.tds.tets, n);
-                let mut vs = ct.v;
-                vs[i] = v;
+                // (built by selection: an indexed store followed by a wide load of the array
+                // stalls store-to-load forwarding)
+                let vs: [u32; 4] = std::array::from_fn(|k| if k == i { v } else { ct.v[k] });
                 boundary.push(BoundaryFacet {
                     v: vs,
                     nb: n,
@@ -287,8 +302,7 @@ impl Delaunay {
                 self.tds.alloc(b.v)
             };
             newt.push(nt);
-            let mut n = [NONE; 4];
-            n[b.i as usize] = b.nb;
+            let n: [u32; 4] = std::array::from_fn(|k| if k == b.i as usize { b.nb } else { NONE });
             *tet_mut(&mut self.tds.tets, nt) = Tet { v: b.v, n };
             tet_mut(&mut self.tds.tets, b.nb).n[b.j as usize] = nt;
             let rec = Tet { v: b.v, n };
@@ -308,8 +322,21 @@ impl Delaunay {
         }
         self.nfinite = self.nfinite + new_finite - cavity_finite;
         // Pass 2: glue the new tetrahedra to each other. Each edge {a,b} of the cavity boundary is
-        // shared by exactly two boundary facets, whose new tetrahedra meet across the face {v,a,b}:
-        // match them through a small open-addressing table keyed by the edge (stays in L1).
+        // shared by exactly two boundary facets, whose new tetrahedra meet across the face {v,a,b}.
+        self.glue_by_edge_table(&boundary, &newt);
+        for &n in &outside {
+            tet_mut(&mut self.tds.tets, n).n[1] &= ID_MASK;
+        }
+        self.hint = *newt.last().unwrap();
+        self.cavity = cavity;
+        self.boundary = boundary;
+        self.outside = outside;
+        self.newt = newt;
+        v
+    }
+
+    /// Gluing through an open-addressing table keyed by the boundary edge (any cavity size).
+    fn glue_by_edge_table(&mut self, boundary: &[BoundaryFacet], newt: &[u32]) {
         let bits = (usize::BITS - (4 * boundary.len()).leading_zeros()).max(4);
         let size = 1usize << bits;
         let mut table = std::mem::take(&mut self.edge_table);
@@ -343,14 +370,5 @@ impl Delaunay {
             }
         }
         self.edge_table = table;
-        for &n in &outside {
-            tet_mut(&mut self.tds.tets, n).n[1] &= ID_MASK;
-        }
-        self.hint = *newt.last().unwrap();
-        self.cavity = cavity;
-        self.boundary = boundary;
-        self.outside = outside;
-        self.newt = newt;
-        v
     }
 }

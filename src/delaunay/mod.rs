@@ -31,11 +31,16 @@
 //! `pred` (filtered exact predicates and the perturbation), `sort` (BRIO + Hilbert), `validate`
 //! (`is_valid`), `xyz` (point files), `gen` (test point sets), `tetgen` (oracle, feature `tetgen`).
 //!
-//! Measured (release build, shared 2-core machine under load ~7, 10^6 points on 40 random planes,
-//! 6,600,878 tetrahedra): kernel CPU time about 0.9× that of CGAL 5.5's `Delaunay_triangulation_3`
-//! (Epick, range insertion) run interleaved on the same points (5.0–6.2 s vs 5.5–6.2 s); wall-clock
-//! ratios at that load scatter between 0.5 and 1.26. ~1.8× faster than TetGen 1.5; ~390 bytes per
-//! point (peak RSS of the CLI).
+//! Measured (release build, shared 2-core machine under load ~8, 10^6 points on 40 random planes,
+//! 6,600,878 tetrahedra; 6 interleaved pairs): kernel time 0.81× that of CGAL 5.5's
+//! `Delaunay_triangulation_3` (Epick, range insertion, g++ -O3) on the same points, median of the
+//! per-pair ratios of thread CPU time (range 0.74–0.88; ours 4.74–5.24 s, CGAL 5.70–7.00 s), 0.82×
+//! in wall time (range 0.74–0.97). Command: `S2S_TIME_XYZ=planes40_1000000.xyz cargo bench --bench
+//! delaunay` against a CGAL program timing the same way (see `benches/delaunay.rs`); the CLI's
+//! `seconds` against CGAL's wall time, 8 more pairs under load 4–8: median 0.87 (0.73–1.00). ~1.8× faster
+//! than TetGen 1.5; ~390 bytes per point (peak RSS of the CLI). The hot path: static filter bounds
+//! from the bounding box (`pred::Bounds`) before the semi-static ones, the insphere determinant in
+//! two SSE2 lanes.
 pub mod gen;
 mod insert;
 #[allow(clippy::needless_range_loop)]
@@ -99,6 +104,11 @@ pub struct Delaunay {
     outside: Vec<u32>,
     newt: Vec<u32>,
     edge_table: Vec<(u64, u32, u8)>,
+    /// Bounding box of every point in `pts` and the static filter bounds it gives (predicates on
+    /// points inside the box only).
+    lo: P,
+    hi: P,
+    bounds: pred::Bounds,
     /// Whether insertions keep `vtet` up to date (off during the bulk build, which rebuilds it once).
     track_vtet: bool,
 }
@@ -123,6 +133,11 @@ impl Delaunay {
         let mut dt = Delaunay::empty();
         let order = sort::brio_order(points);
         dt.pts = order.iter().map(|&k| norm(points[k as usize])).collect();
+        for p in points {
+            dt.lo = std::array::from_fn(|k| dt.lo[k].min(p[k]));
+            dt.hi = std::array::from_fn(|k| dt.hi[k].max(p[k]));
+        }
+        dt.bounds = pred::Bounds::for_extent(pred::Bounds::extent(dt.lo, dt.hi));
         dt.ext = order;
         dt.vtet = vec![NONE; dt.pts.len()];
         // About 6.7 tetrahedra per point for most inputs: reserve once instead of regrowing
@@ -239,8 +254,21 @@ impl Delaunay {
             outside: Vec::new(),
             newt: Vec::new(),
             edge_table: Vec::new(),
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+            bounds: pred::Bounds::NONE,
             track_vtet: true,
         }
+    }
+
+    /// Grows the bounding box to `p` (and the static filter bounds with it).
+    fn cover(&mut self, p: P) {
+        if (0..3).all(|k| self.lo[k] <= p[k] && p[k] <= self.hi[k]) {
+            return;
+        }
+        self.lo = std::array::from_fn(|k| self.lo[k].min(p[k]));
+        self.hi = std::array::from_fn(|k| self.hi[k].max(p[k]));
+        self.bounds = pred::Bounds::for_extent(pred::Bounds::extent(self.lo, self.hi));
     }
 
     /// Lower-dimensional phase: keep distinct points, and start the 3D triangulation when internal
@@ -302,6 +330,7 @@ impl Delaunay {
         );
         let e = self.int.len() as u32;
         let k = self.pts.len() as u32;
+        self.cover(norm(p));
         self.pts.push(norm(p));
         self.ext.push(e);
         self.vtet.push(NONE);
@@ -417,7 +446,14 @@ impl Delaunay {
         }
         let q = norm(p);
         let mut rng = 0x1234_5678;
-        let t = insert::walk(&self.tds.tets, &self.pts, q, self.hint, &mut rng);
+        // the query may lie outside the box of the vertices: bounds for both
+        let (mut lo, mut hi) = (self.lo, self.hi);
+        for k in 0..3 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+        let sb = pred::Bounds::for_extent(pred::Bounds::extent(lo, hi));
+        let t = insert::walk(&self.tds.tets, &self.pts, q, self.hint, &mut rng, &sb);
         let tt = &self.tds.tets[t as usize];
         if tt.is_infinite() {
             return Location::Outside(t);

@@ -10,11 +10,53 @@ use crate::geom::predicates as gp;
 
 pub type P = [f64; 3];
 
+/// Static error bounds of the orient and insphere filters, valid for points whose coordinates differ
+/// by at most `ext` on every axis (the largest side of their bounding box): a determinant beyond them
+/// has its exact sign without computing the per-call (semi-static) bound. `NONE` never decides.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bounds {
+    pub orient: f64,
+    pub insphere: f64,
+}
+
+impl Bounds {
+    pub const NONE: Bounds = Bounds {
+        orient: f64::INFINITY,
+        insphere: f64::INFINITY,
+    };
+
+    /// Bounds for points whose coordinate differences are at most `ext`. The semi-static bounds are
+    /// at most O3D_BOUND·mx·my·mz and ISP_BOUND·M²·mx·my·mz with every factor ≤ ext (computed
+    /// differences may exceed ext by a rounding, covered by the 1.001 in the constants). Outside
+    /// [1e-30, 1e30] (underflow could then matter, or overflow) it is `NONE`.
+    pub fn for_extent(ext: f64) -> Bounds {
+        if !(1e-30..=1e30).contains(&ext) {
+            return Bounds::NONE;
+        }
+        let e3 = ext * ext * ext * (1.0 + 1e-12);
+        Bounds {
+            orient: O3D_BOUND * e3,
+            insphere: ISP_BOUND * e3 * ext * ext * (1.0 + 1e-12),
+        }
+    }
+
+    /// Largest side of the bounding box [lo, hi].
+    pub fn extent(lo: P, hi: P) -> f64 {
+        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
+    }
+}
+
 /// Positive when (a,b,c,d) has positive volume, negative when negative, 0 when coplanar. Exact sign
 /// (the magnitude approximates 6 × volume).
 #[inline(always)]
 pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
-    let (det, bound) = orient3d_filter(a, b, c, d);
+    orient_within(a, b, c, d, f64::INFINITY)
+}
+
+/// [`orient`] for points within the extent of static bound `sb` (`Bounds::orient`).
+#[inline(always)]
+pub fn orient_within(a: P, b: P, c: P, d: P, sb: f64) -> f64 {
+    let (det, bound) = orient3d_filter(a, b, c, d, sb);
     if det > bound || -det > bound {
         return -det;
     }
@@ -29,7 +71,20 @@ pub fn orient(a: P, b: P, c: P, d: P) -> f64 {
 /// negative outside, 0 on it. Exact sign.
 #[inline(always)]
 pub fn insphere(a: P, b: P, c: P, d: P, e: P) -> f64 {
-    let (det, bound) = insphere_filter(a, b, c, d, e);
+    insphere_within(a, b, c, d, e, f64::INFINITY)
+}
+
+/// [`insphere`] for points within the extent of static bound `sb` (`Bounds::insphere`).
+#[inline(always)]
+pub fn insphere_within(a: P, b: P, c: P, d: P, e: P, sb: f64) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let det = insphere_det_packed(a, b, c, d, e);
+        if det > sb || -det > sb {
+            return -det;
+        }
+    }
+    let (det, bound) = insphere_filter(a, b, c, d, e, sb);
     if det > bound || -det > bound {
         return -det;
     }
@@ -180,13 +235,16 @@ fn in_safe_range(lo: f64, hi: f64) -> bool {
 }
 
 #[inline(always)]
-fn orient3d_filter(a: P, b: P, c: P, d: P) -> (f64, f64) {
+fn orient3d_filter(a: P, b: P, c: P, d: P, sb: f64) -> (f64, f64) {
     let (adx, ady, adz) = (a[0] - d[0], a[1] - d[1], a[2] - d[2]);
     let (bdx, bdy, bdz) = (b[0] - d[0], b[1] - d[1], b[2] - d[2]);
     let (cdx, cdy, cdz) = (c[0] - d[0], c[1] - d[1], c[2] - d[2]);
     let det = adz * (bdx * cdy - cdx * bdy)
         + bdz * (cdx * ady - adx * cdy)
         + cdz * (adx * bdy - bdx * ady);
+    if det > sb || -det > sb {
+        return (det, sb);
+    }
     let mx = adx.abs().max(bdx.abs()).max(cdx.abs());
     let my = ady.abs().max(bdy.abs()).max(cdy.abs());
     let mz = adz.abs().max(bdz.abs()).max(cdz.abs());
@@ -202,8 +260,70 @@ fn orient3d_filter(a: P, b: P, c: P, d: P) -> (f64, f64) {
     (det, O3D_BOUND * mx * my * mz)
 }
 
+/// The determinant of [`insphere_filter`], bit for bit (the same operations on the same operands, in
+/// the same order), with two lanes of SSE2 (baseline on x86_64) doing pairs of them: (x, y) of a
+/// point difference, pairs of 2×2 minors, of 3×3 minors and of lifts.
+#[cfg(target_arch = "x86_64")]
 #[inline(always)]
-fn insphere_filter(a: P, b: P, c: P, d: P, e: P) -> (f64, f64) {
+fn insphere_det_packed(a: P, b: P, c: P, d: P, e: P) -> f64 {
+    use std::arch::x86_64::*;
+    // SAFETY: SSE2 is part of the x86_64 baseline; the loads read two f64 of a [f64; 3].
+    unsafe {
+        let exy = _mm_loadu_pd(e.as_ptr());
+        let ez = _mm_set1_pd(e[2]);
+        let ad = _mm_sub_pd(_mm_loadu_pd(a.as_ptr()), exy); // [aex, aey]
+        let bd = _mm_sub_pd(_mm_loadu_pd(b.as_ptr()), exy);
+        let cd = _mm_sub_pd(_mm_loadu_pd(c.as_ptr()), exy);
+        let dd = _mm_sub_pd(_mm_loadu_pd(d.as_ptr()), exy);
+        let z_ab = _mm_sub_pd(_mm_set_pd(b[2], a[2]), ez); // [aez, bez]
+        let z_cd = _mm_sub_pd(_mm_set_pd(d[2], c[2]), ez); // [cez, dez]
+        let z_bc = _mm_shuffle_pd(z_ab, z_cd, 0b01); // [bez, cez]
+        let z_da = _mm_shuffle_pd(z_cd, z_ab, 0b01); // [dez, aez]
+        let x_ab = _mm_unpacklo_pd(ad, bd); // [aex, bex]
+        let y_ab = _mm_unpackhi_pd(ad, bd); // [aey, bey]
+        let x_bc = _mm_unpacklo_pd(bd, cd);
+        let y_bc = _mm_unpackhi_pd(bd, cd);
+        let x_cd = _mm_unpacklo_pd(cd, dd);
+        let y_cd = _mm_unpackhi_pd(cd, dd);
+        let x_da = _mm_unpacklo_pd(dd, ad);
+        let y_da = _mm_unpackhi_pd(dd, ad);
+        // [ab, bc], [cd, da], [ac, bd]
+        let m_abbc = _mm_sub_pd(_mm_mul_pd(x_ab, y_bc), _mm_mul_pd(x_bc, y_ab));
+        let m_cdda = _mm_sub_pd(_mm_mul_pd(x_cd, y_da), _mm_mul_pd(x_da, y_cd));
+        let m_acbd = _mm_sub_pd(_mm_mul_pd(x_ab, y_cd), _mm_mul_pd(x_cd, y_ab));
+        let m_bccd = _mm_shuffle_pd(m_abbc, m_cdda, 0b01); // [bc, cd]
+        let m_daab = _mm_shuffle_pd(m_cdda, m_abbc, 0b01); // [da, ab]
+                                                           // [abc, bcd] = [aez, bez]·[bc, cd] - [bez, cez]·[ac, bd] + [cez, dez]·[ab, bc]
+        let t1 = _mm_add_pd(
+            _mm_sub_pd(_mm_mul_pd(z_ab, m_bccd), _mm_mul_pd(z_bc, m_acbd)),
+            _mm_mul_pd(z_cd, m_abbc),
+        );
+        // [cda, dab] = [cez, dez]·[da, ab] + [dez, aez]·[ac, bd] + [aez, bez]·[cd, da]
+        let t2 = _mm_add_pd(
+            _mm_add_pd(_mm_mul_pd(z_cd, m_daab), _mm_mul_pd(z_da, m_acbd)),
+            _mm_mul_pd(z_ab, m_cdda),
+        );
+        // [alift, blift], [clift, dlift]
+        let l_ab = _mm_add_pd(
+            _mm_add_pd(_mm_mul_pd(x_ab, x_ab), _mm_mul_pd(y_ab, y_ab)),
+            _mm_mul_pd(z_ab, z_ab),
+        );
+        let l_cd = _mm_add_pd(
+            _mm_add_pd(_mm_mul_pd(x_cd, x_cd), _mm_mul_pd(y_cd, y_cd)),
+            _mm_mul_pd(z_cd, z_cd),
+        );
+        let l_db = _mm_shuffle_pd(l_cd, l_ab, 0b11); // [dlift, blift]
+        let l_ca = _mm_shuffle_pd(l_cd, l_ab, 0b00); // [clift, alift]
+        let t_abc_cda = _mm_shuffle_pd(t1, t2, 0b00); // [abc, cda]
+        let t_dab_bcd = _mm_shuffle_pd(t2, t1, 0b11); // [dab, bcd]
+                                                      // [dlift·abc - clift·dab, blift·cda - alift·bcd], then the sum of the two lanes
+        let h = _mm_sub_pd(_mm_mul_pd(l_db, t_abc_cda), _mm_mul_pd(l_ca, t_dab_bcd));
+        _mm_cvtsd_f64(h) + _mm_cvtsd_f64(_mm_unpackhi_pd(h, h))
+    }
+}
+
+#[inline(always)]
+fn insphere_filter(a: P, b: P, c: P, d: P, e: P, sb: f64) -> (f64, f64) {
     let (aex, aey, aez) = (a[0] - e[0], a[1] - e[1], a[2] - e[2]);
     let (bex, bey, bez) = (b[0] - e[0], b[1] - e[1], b[2] - e[2]);
     let (cex, cey, cez) = (c[0] - e[0], c[1] - e[1], c[2] - e[2]);
@@ -223,6 +343,9 @@ fn insphere_filter(a: P, b: P, c: P, d: P, e: P) -> (f64, f64) {
     let clift = cex * cex + cey * cey + cez * cez;
     let dlift = dex * dex + dey * dey + dez * dez;
     let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    if det > sb || -det > sb {
+        return (det, sb);
+    }
     let mx = aex.abs().max(bex.abs()).max(cex.abs()).max(dex.abs());
     let my = aey.abs().max(bey.abs()).max(cey.abs()).max(dey.abs());
     let mz = aez.abs().max(bez.abs()).max(cez.abs()).max(dez.abs());
@@ -269,8 +392,8 @@ pub fn collinear(a: P, b: P, c: P) -> bool {
 /// Perturbed conflict test of a positive finite tetrahedron `t` with `q`: true when `q` is inside the
 /// perturbed circumsphere. Never ties.
 #[inline(always)]
-pub fn conflict_finite(t: [P; 4], q: P) -> bool {
-    let s = insphere(t[0], t[1], t[2], t[3], q);
+pub fn conflict_finite(t: [P; 4], q: P, sb: &Bounds) -> bool {
+    let s = insphere_within(t[0], t[1], t[2], t[3], q, sb.insphere);
     if s != 0.0 {
         return s > 0.0;
     }
@@ -310,10 +433,10 @@ fn cmp_lex(a: &P, b: &P) -> std::cmp::Ordering {
 /// of the hull facet. True when `q` lies strictly outside the hull facet, or on its plane and inside its
 /// perturbed circumcircle.
 #[inline]
-pub fn conflict_infinite(t: [P; 4], k: usize, d: P, q: P) -> bool {
+pub fn conflict_infinite(t: [P; 4], k: usize, d: P, q: P, sb: &Bounds) -> bool {
     let mut r = t;
     r[k] = q;
-    let o = orient(r[0], r[1], r[2], r[3]);
+    let o = orient_within(r[0], r[1], r[2], r[3], sb.orient);
     if o != 0.0 {
         return o > 0.0;
     }
@@ -405,10 +528,32 @@ mod tests {
         assert!(answered > nonzero / 2, "{answered} of {nonzero}");
     }
 
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn packed_insphere_determinant_is_bit_identical() {
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        for k in 0..20000 {
+            let mut p: [P; 5] = [[0.0; 3]; 5];
+            for q in p.iter_mut() {
+                let s = if k % 2 == 0 { 1.0 } else { 1e-3 };
+                *q = [
+                    r.gen::<f64>() * s,
+                    r.gen::<f64>(),
+                    r.gen::<f64>() * 7.0 - 3.0,
+                ];
+            }
+            let (det, _) = insphere_filter(p[0], p[1], p[2], p[3], p[4], 0.0);
+            let packed = insphere_det_packed(p[0], p[1], p[2], p[3], p[4]);
+            assert_eq!(det.to_bits(), packed.to_bits(), "case {k}");
+        }
+    }
+
     #[test]
     fn filters_agree_with_exact_predicates() {
         let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(1);
         let mut decided = 0;
+        let sb = Bounds::for_extent(2.0);
+        let mut static_decided = 0;
         for k in 0..20000 {
             // mix of random and nearly degenerate inputs (points on a plane / sphere, rounded)
             let mut p: [P; 5] = [[0.0; 3]; 5];
@@ -432,7 +577,16 @@ mod tests {
             let s = insphere(p[0], p[1], p[2], p[3], p[4]);
             let rs = -gp::insphere(p[0], p[1], p[2], p[3], p[4]);
             assert_eq!(s.partial_cmp(&0.0), rs.partial_cmp(&0.0));
-            let (det, bound) = insphere_filter(p[0], p[1], p[2], p[3], p[4]);
+            // static bounds: every coordinate here is in [-1, 1]
+            let o = orient_within(p[0], p[1], p[2], p[3], sb.orient);
+            assert_eq!(o.partial_cmp(&0.0), ro.partial_cmp(&0.0));
+            let s = insphere_within(p[0], p[1], p[2], p[3], p[4], sb.insphere);
+            assert_eq!(s.partial_cmp(&0.0), rs.partial_cmp(&0.0));
+            let (det, _) = orient3d_filter(p[0], p[1], p[2], p[3], 0.0);
+            if det.abs() > sb.orient {
+                static_decided += 1;
+            }
+            let (det, bound) = insphere_filter(p[0], p[1], p[2], p[3], p[4], f64::INFINITY);
             if det.abs() > bound {
                 decided += 1;
                 assert_eq!((-det).partial_cmp(&0.0), rs.partial_cmp(&0.0));
@@ -442,6 +596,9 @@ mod tests {
             decided > 6000,
             "the filter decides the random cases: {decided}"
         );
+        assert!(static_decided > 5000, "{static_decided}");
+        assert_eq!(Bounds::for_extent(0.0), Bounds::NONE);
+        assert_eq!(Bounds::for_extent(f64::INFINITY), Bounds::NONE);
     }
     #[test]
     fn signs() {
@@ -458,6 +615,6 @@ mod tests {
         // about each other's apex in a consistent way (exactly one of them is Delaunay).
         let e = [1.0, 1.0, 1.0];
         assert_eq!(insphere(a, b, c, d, e), 0.0);
-        let _ = conflict_finite([a, b, c, d], e);
+        let _ = conflict_finite([a, b, c, d], e, &Bounds::NONE);
     }
 }

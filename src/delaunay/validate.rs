@@ -70,7 +70,7 @@ pub(super) fn check(dt: &Delaunay) -> Result<(), String> {
                 if pred::insphere(a, b, c, d, e) > 0.0 {
                     return Err(format!("facet {i} of tet {t} is not locally Delaunay"));
                 }
-                if pred::conflict_finite([a, b, c, d], e) {
+                if pred::conflict_finite([a, b, c, d], e, &pred::Bounds::NONE) {
                     return Err(format!(
                         "facet {i} of tet {t} is not locally Delaunay under the perturbation"
                     ));
