@@ -48,6 +48,9 @@ pub struct Overlay {
     pub attached_area: f64,
     /// Area of the output (only-A plus only-B).
     pub output_area: f64,
+    /// With a section layer ([`overlay_with_section`]): the triangles of the section attached from
+    /// neither side (flat zones), oriented like A's (outward from A).
+    pub flat: Vec<[u32; 3]>,
 }
 
 fn area2(p: [f64; 2], q: [f64; 2], r: [f64; 2]) -> f64 {
@@ -65,7 +68,22 @@ pub fn overlay(
     first_new: u32,
 ) -> Result<Overlay, String> {
     // spade asserts on some inconsistent inputs: keep them from unwinding through the caller
-    std::panic::catch_unwind(|| overlay_inner(uv, a, b, ccw_a, first_new))
+    std::panic::catch_unwind(|| overlay_inner(uv, a, b, None, ccw_a, first_new))
+        .unwrap_or_else(|_| Err("constrained triangulation panicked".into()))
+}
+
+/// [`overlay`] with a third layer `s`: A's triangulation of the whole section (attached or not,
+/// oriented like A's). Its edges are constraints too, and the triangles inside `s` but in neither
+/// X_A nor X_B are returned in [`Overlay::flat`] (the flat zones, for `thicken`).
+pub fn overlay_with_section(
+    uv: &HashMap<u32, [f64; 2]>,
+    a: &[[u32; 3]],
+    b: &[[u32; 3]],
+    s: &[[u32; 3]],
+    ccw_a: bool,
+    first_new: u32,
+) -> Result<Overlay, String> {
+    std::panic::catch_unwind(|| overlay_inner(uv, a, b, Some(s), ccw_a, first_new))
         .unwrap_or_else(|_| Err("constrained triangulation panicked".into()))
 }
 
@@ -75,6 +93,7 @@ fn overlay_inner(
     uv: &HashMap<u32, [f64; 2]>,
     a: &[[u32; 3]],
     b: &[[u32; 3]],
+    s: Option<&[[u32; 3]]>,
     ccw_a: bool,
     first_new: u32,
 ) -> Result<Overlay, String> {
@@ -83,8 +102,13 @@ fn overlay_inner(
             .copied()
             .ok_or_else(|| format!("vertex {v} has no (u,v)"))
     };
+    // layers: A, B and optionally the whole section (A's triangulation)
+    let mut layers: Vec<(&[[u32; 3]], bool)> = vec![(a, ccw_a), (b, !ccw_a)];
+    if let Some(s) = s {
+        layers.push((s, ccw_a));
+    }
     // sides' triangles, checked for orientation (a fold would make the flood fill meaningless)
-    for (tris, ccw) in [(a, ccw_a), (b, !ccw_a)] {
+    for &(tris, ccw) in &layers {
         for t in tris {
             let o = orient2d(q(t[0])?, q(t[1])?, q(t[2])?);
             if o != 0.0 && (o > 0.0) != ccw {
@@ -94,7 +118,11 @@ fn overlay_inner(
     }
     let mut cdt = Cdt::new();
     let mut handle: HashMap<u32, FixedVertexHandle> = HashMap::new();
-    let mut ids: Vec<u32> = a.iter().chain(b).flat_map(|t| t.iter().copied()).collect();
+    let mut ids: Vec<u32> = layers
+        .iter()
+        .flat_map(|l| l.0.iter())
+        .flat_map(|t| t.iter().copied())
+        .collect();
     ids.sort_unstable();
     ids.dedup();
     for &v in &ids {
@@ -113,7 +141,8 @@ fn overlay_inner(
     }
     // constraints: every edge of both sides, with the sides it bounds
     let mut edges: HashMap<(u32, u32), u8> = HashMap::new();
-    for (tris, bit) in [(a, 1u8), (b, 2u8)] {
+    for (side, &(tris, _)) in layers.iter().enumerate() {
+        let bit = 1u8 << side;
         for t in tris {
             for k in 0..3 {
                 let (x, y) = (t[k], t[(k + 1) % 3]);
@@ -160,8 +189,8 @@ fn overlay_inner(
     }
     // flood fill from each side's triangles across the edges not on that side's edges
     let nf = cdt.num_all_faces();
-    let mut inside = [vec![false; nf], vec![false; nf]];
-    for (side, tris, ccw) in [(0usize, a, ccw_a), (1, b, !ccw_a)] {
+    let mut inside = vec![vec![false; nf]; layers.len()];
+    for (side, &(tris, ccw)) in layers.iter().enumerate() {
         let bit = 1u8 << side;
         let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
         for t in tris {
@@ -214,7 +243,7 @@ fn overlay_inner(
     let pos = |v: spade::handles::VertexHandle<Vx, (), spade::CdtEdge<()>, ()>| {
         [v.position().x, v.position().y]
     };
-    let mut filled = [0.0f64; 2];
+    let mut filled = vec![0.0f64; layers.len()];
     let mut scale = 0.0f64;
     for f in cdt.inner_faces() {
         let [v0, v1, v2] = f.vertices();
@@ -230,6 +259,18 @@ fn overlay_inner(
         if ia || ib {
             out.attached_area += ar;
         }
+        if layers.len() > 2 && inside[2][f.fix().index()] {
+            filled[2] += ar;
+            if !ia && !ib {
+                let (i0, i1, i2) = (
+                    vid[v0.fix().index()],
+                    vid[v1.fix().index()],
+                    vid[v2.fix().index()],
+                );
+                out.flat
+                    .push(if ccw_a { [i0, i1, i2] } else { [i0, i2, i1] });
+            }
+        }
         if ia != ib {
             out.output_area += ar;
             let (i0, i1, i2) = (
@@ -243,7 +284,7 @@ fn overlay_inner(
                 .push(if ccw { [i0, i1, i2] } else { [i0, i2, i1] });
         }
     }
-    for (side, tris) in [(0usize, a), (1, b)] {
+    for (side, &(tris, _)) in layers.iter().enumerate() {
         let mut want = 0.0;
         for t in tris {
             want += 0.5 * area2(q(t[0])?, q(t[1])?, q(t[2])?).abs();
@@ -457,5 +498,30 @@ mod tests {
         assert!((o.attached_area - 1.0).abs() < 1e-12);
         // B's sample 6 lies on A's diagonal 0–4, which now passes through it
         assert!(o.splits.contains(&((0, 4), vec![6])));
+    }
+
+    #[test]
+    fn flat_zone_is_returned_with_the_section_layer() {
+        // as above, with A's whole triangulation of the square [0,2]x[0,1] as the section layer
+        let uv = uvmap(&[
+            (0, [0.0, 0.0]),
+            (1, [1.0, 0.0]),
+            (2, [2.0, 0.0]),
+            (3, [2.0, 1.0]),
+            (4, [1.0, 1.0]),
+            (5, [0.0, 1.0]),
+            (6, [0.5, 0.5]),
+        ]);
+        let a = [[0, 1, 4], [0, 4, 5]];
+        let b = [[0, 6, 1], [1, 6, 4], [4, 6, 5], [5, 6, 0]];
+        let s = [[0, 1, 4], [0, 4, 5], [1, 2, 4], [2, 3, 4]];
+        let o = overlay_with_section(&uv, &a, &b, &s, true, 1000).unwrap();
+        assert!(o.triangles.is_empty(), "{:?}", o.triangles);
+        let flat: f64 = o.flat.iter().map(|&t| area(&uv, &o, t)).sum();
+        // the right half, counter-clockwise like A's triangles
+        assert!((flat - 1.0).abs() < 1e-12, "{flat} {:?}", o.flat);
+        assert!(o.flat.iter().all(|&t| area(&uv, &o, t) > 0.0));
+        // without the layer nothing is returned as flat
+        assert!(overlay(&uv, &a, &b, true, 1000).unwrap().flat.is_empty());
     }
 }

@@ -27,6 +27,7 @@ pub mod conform;
 pub mod face_overlay;
 pub mod glue;
 pub mod prune;
+pub mod thicken;
 pub mod untangle;
 
 use crate::arrangement::Arrangement;
@@ -227,6 +228,12 @@ pub fn reconstruct(
     report
         .values
         .insert("flat_zone_area".into(), glued.flat_zone_area);
+    report.count("flat_zones_thickened", glued.flat_zones_thickened);
+    report.values.insert(
+        "flat_zone_area_thickened".into(),
+        glued.flat_zone_area_thickened,
+    );
+    report.count("flat_zones_left", glued.flat_zones_left);
     report.count("nonconforming_faces", glued.nonconforming_faces);
     report.count("pinched_vertices_lifted", glued.pinched_vertices);
     report.count("lifts_redirected", glued.lifts_redirected);
