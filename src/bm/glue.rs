@@ -331,41 +331,6 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         }
     }
     split_at_edges(&mut tris, &mut kind, &mut positions, &edge_splits);
-    if std::env::var("SLICE2SOLID_NO_THICKEN").is_ok() {
-        for z in &zones {
-            g.flat_zones_left += 1;
-            g.warnings.push(format!(
-                "face {} (plane {}): flat zone of area {:.4e} attached from neither side (not in the solid; thickening disabled)",
-                z.face, z.plane, z.area
-            ));
-        }
-    } else if !zones.is_empty() {
-        // the zones' triangles get the same splits as the faces' output
-        for z in &mut zones {
-            for l in &mut z.tris {
-                let mut k = vec![Kind::Face(z.face); l.len()];
-                split_at_edges(l, &mut k, &mut positions, &edge_splits);
-            }
-        }
-        let diag = bbox_diagonal(&positions);
-        for o in thicken(&mut positions, &mut tris, &mut kind, &zones, diag) {
-            for &(c, area, lo, hi) in &o.thickened {
-                g.flat_zones_thickened += 1;
-                g.flat_zone_area_thickened += area;
-                g.warnings.push(format!(
-                    "face {} (plane {}): flat zone of area {area:.4e} attached from neither side, thickened into cell {c} (paper Fig. 12c; slab {lo:.2e}..{hi:.2e} thick)",
-                    o.face, o.plane
-                ));
-            }
-            for (area, why) in &o.left {
-                g.flat_zones_left += 1;
-                g.warnings.push(format!(
-                    "face {} (plane {}): flat zone of area {area:.4e} attached from neither side, not thickened ({why}): not in the solid",
-                    o.face, o.plane
-                ));
-            }
-        }
-    }
     // Cancel coincident opposite triangles (flat-zone sheets triangulated alike on both sides).
     let mut by_key: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
     for (i, &t) in tris.iter().enumerate() {
@@ -396,12 +361,59 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .filter(|(_, d)| !d)
         .map(|(t, _)| t)
         .unzip();
+    let mut kind = kind;
+    let mut slab_vertices = 0..0u32;
+    if std::env::var("SLICE2SOLID_NO_THICKEN").is_ok() {
+        for z in &zones {
+            g.flat_zones_left += 1;
+            g.warnings.push(format!(
+                "face {} (plane {}): flat zone of area {:.4e} attached from neither side (not in the solid; thickening disabled)",
+                z.face, z.plane, z.area
+            ));
+        }
+    } else if !zones.is_empty() {
+        // the zones' triangles get the same splits as the faces' output
+        for z in &mut zones {
+            for l in &mut z.tris {
+                let mut k = vec![Kind::Face(z.face); l.len()];
+                split_at_edges(l, &mut k, &mut positions, &edge_splits);
+            }
+        }
+        let diag = bbox_diagonal(&positions);
+        slab_vertices = positions.len() as u32..u32::MAX;
+        for o in thicken(
+            arr,
+            pool,
+            &mut positions,
+            &mut tris,
+            &mut kind,
+            &zones,
+            diag,
+        ) {
+            for &(c, area, lo, hi) in &o.thickened {
+                g.flat_zones_thickened += 1;
+                g.flat_zone_area_thickened += area;
+                g.warnings.push(format!(
+                    "face {} (plane {}): flat zone of area {area:.4e} attached from neither side, thickened into cell {c} (paper Fig. 12c; slab {lo:.2e}..{hi:.2e} thick)",
+                    o.face, o.plane
+                ));
+            }
+            for (area, why) in &o.left {
+                g.flat_zones_left += 1;
+                g.warnings.push(format!(
+                    "face {} (plane {}): flat zone of area {area:.4e} attached from neither side, not thickened ({why}): not in the solid",
+                    o.face, o.plane
+                ));
+            }
+        }
+    }
+    slab_vertices.end = slab_vertices.end.min(positions.len() as u32);
+    let after_thicken = positions.len() as u32;
     let before_lift = positions.clone();
     let mut copies = Vec::new();
     let split = unpinch(arr, &mut positions, &mut tris, &kind, &mut copies);
     g.pinched_vertices = split.len() as u64;
     lift_samples(&mut positions, &tris, &samples, &split);
-    let mut kind = kind;
     let mut crease_mids = Vec::new();
     let n_split_edges = split_mixed_edges(&mut positions, &mut tris, &mut kind, &mut crease_mids);
     if n_split_edges > 0 {
@@ -423,6 +435,9 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             "{} displaced vertices still make their triangles cross others (no candidate position was free)",
             untangled.unresolved
         ));
+    }
+    if std::env::var("BM_DEBUG_CROSSINGS").is_ok() {
+        debug_crossings(&positions, &tris, &kind, &slab_vertices, after_thicken);
     }
     if std::env::var("BM_DEBUG").is_ok() {
         let edges = edge_triangles(&tris);
@@ -637,6 +652,44 @@ fn split_at_edges(
             tris.push(*p);
             kind.push(kind[i]);
         }
+    }
+}
+
+/// BM_DEBUG_CROSSINGS: every crossing pair of the glued surface, with kinds and which vertices
+/// are slab copies (`slab`) or were created after thickening.
+fn debug_crossings(
+    positions: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    kind: &[Kind],
+    slab: &std::ops::Range<u32>,
+    after: u32,
+) {
+    use crate::eval::bvh::{triangle_boxes, Bvh};
+    let boxes = triangle_boxes(positions, tris);
+    let bvh = Bvh::build(boxes.clone());
+    let tag = |v: u32| {
+        if slab.contains(&v) {
+            format!("{v}s")
+        } else if v >= after {
+            format!("{v}n")
+        } else {
+            format!("{v}")
+        }
+    };
+    for (i, t) in tris.iter().enumerate() {
+        bvh.for_each_overlap(&boxes[i], |j| {
+            let j = j as usize;
+            if j > i && crate::eval::tri_tri::mesh_triangles_intersect(*t, tris[j], positions) {
+                eprintln!(
+                    "crossing {:?} {:?} × {:?} {:?} at {:?}",
+                    kind[i],
+                    t.map(tag),
+                    kind[j],
+                    tris[j].map(tag),
+                    positions[t[0] as usize]
+                );
+            }
+        });
     }
 }
 

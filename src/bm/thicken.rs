@@ -27,6 +27,7 @@
 //! `eval::check` counts them); if one crosses, the component is rebuilt with a tenth of δ, and after
 //! three tries it is left flat (not in the solid, as before), with the reason.
 use super::glue::Kind;
+use crate::arrangement::{Arrangement, VertexPool};
 use crate::eval::bvh::{triangle_boxes, Aabb, Bvh};
 use crate::eval::near_coplanar::{overlapping_near_coplanar, NEAR_COPLANAR_RELATIVE_TOLERANCE};
 use crate::eval::tri_tri::mesh_triangles_intersect;
@@ -38,6 +39,11 @@ use std::collections::{HashMap, HashSet};
 const TARGET_RELATIVE_THICKNESS: f64 = 2e-5;
 /// Largest fraction of the height of C's neighbouring vertices a lifted vertex may rise.
 const HEIGHT_FRACTION: f64 = 0.25;
+/// A vertex on another plane too is lifted towards its cell's centre; below this height per unit
+/// step (the direction nearly in the face's plane) it stays where it is (the slab is pinched there).
+const MIN_RISE: f64 = 1e-2;
+/// Components below this area (relative to the squared diagonal) are slivers left as they are.
+const MIN_RELATIVE_AREA: f64 = 1e-12;
 /// Thickness factors tried in turn.
 const ATTEMPTS: [f64; 3] = [1.0, 0.1, 0.01];
 
@@ -69,14 +75,24 @@ pub struct ZoneOutcome {
 
 /// Thicken every zone (see the module doc). `diag`: the model's bounding-box diagonal.
 pub(super) fn thicken(
+    arr: &Arrangement,
+    pool: &VertexPool,
     positions: &mut Vec<[f64; 3]>,
     tris: &mut Vec<[u32; 3]>,
     kind: &mut Vec<Kind>,
     zones: &[Zone],
     diag: f64,
 ) -> Vec<ZoneOutcome> {
+    let mut centres: HashMap<u32, [f64; 3]> = HashMap::new();
     let mut out = Vec::new();
+    // debugging: BM_THICKEN_ONLY=f1,f2 thickens only those faces
+    let only: Option<Vec<u32>> = std::env::var("BM_THICKEN_ONLY")
+        .ok()
+        .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect());
     for z in zones {
+        if only.as_ref().is_some_and(|o| !o.contains(&z.face)) {
+            continue;
+        }
         let mut o = ZoneOutcome {
             face: z.face,
             plane: z.plane,
@@ -113,12 +129,38 @@ pub(super) fn thicken(
         }
         for (k, comp) in pieces {
             let (cell, into) = z.cells[k];
+            let centre = *centres
+                .entry(cell)
+                .or_insert_with(|| cell_centre(arr, pool, cell));
             let area: f64 = comp.iter().map(|&t| tri_area(positions, t)).sum();
+            // lift directions: along the normal, except for vertices on other planes too (on the
+            // face's rim), which move towards the cell's centre so as to stay inside the cell
+            let mut dirs: HashMap<u32, Option<[f64; 3]>> = HashMap::new();
+            for &v in comp.iter().flatten() {
+                dirs.entry(v).or_insert_with(|| {
+                    let on_other = pool
+                        .tags
+                        .get(v as usize)
+                        .is_some_and(|t| t.iter().any(|&p| p != z.plane));
+                    if !on_other {
+                        return Some(into);
+                    }
+                    let d = sub(centre, positions[v as usize]);
+                    let l = dot(d, d).sqrt();
+                    let d = d.map(|x| x / l);
+                    (l > 0.0 && dot(d, into) >= MIN_RISE).then_some(d)
+                });
+            }
+            if area <= MIN_RELATIVE_AREA * diag * diag {
+                // a sliver (rounding along an arrangement edge): nothing to give a thickness to
+                o.left.push((area, "degenerate".into()));
+                continue;
+            }
             let mut why = String::new();
             let mut done = None;
             for &scale in &ATTEMPTS {
                 match apply(
-                    positions, tris, kind, &comp, z.face, cell, into, scale, diag,
+                    positions, tris, kind, &comp, z.face, cell, into, &dirs, scale, diag,
                 ) {
                     Ok(d) => {
                         done = Some(d);
@@ -135,6 +177,22 @@ pub(super) fn thicken(
         out.push(o);
     }
     out
+}
+
+/// Mean of the corners of cell `c`'s faces (strictly inside the convex cell).
+fn cell_centre(arr: &Arrangement, pool: &VertexPool, c: u32) -> [f64; 3] {
+    let mut sum = [0.0; 3];
+    let mut n = 0.0f64;
+    for cf in &arr.cells[c as usize].faces {
+        for &v in &arr.faces[cf.face as usize].polygon {
+            let p = pool.positions[v as usize];
+            for k in 0..3 {
+                sum[k] += p[k];
+            }
+            n += 1.0;
+        }
+    }
+    sum.map(|x| x / n.max(1.0))
 }
 
 /// `comp` facing away from cell `k` of a shared triangulation (given facing away from cell 0).
@@ -305,9 +363,16 @@ fn apply(
     face: u32,
     cell: u32,
     into: [f64; 3],
+    dirs: &HashMap<u32, Option<[f64; 3]>>,
     scale: f64,
     diag: f64,
 ) -> Result<(f64, f64), String> {
+    if std::env::var("BM_DEBUG_THICKEN").is_ok() {
+        eprintln!(
+            "thicken face {face} into cell {cell}, {} triangles, δ × {scale}",
+            z.len()
+        );
+    }
     let mut vz: Vec<u32> = z.iter().flatten().copied().collect();
     vz.sort_unstable();
     vz.dedup();
@@ -337,6 +402,9 @@ fn apply(
     let mut copy: HashMap<u32, u32> = HashMap::new();
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
     for &v in &vz {
+        let Some(dir) = dirs.get(&v).copied().flatten() else {
+            continue; // pinned: the slab's top meets its bottom here
+        };
         let mut d = TARGET_RELATIVE_THICKNESS * diag;
         if let Some(&h) = height.get(&v) {
             d = d.min(HEIGHT_FRACTION * h);
@@ -345,7 +413,7 @@ fn apply(
         lo = lo.min(d);
         hi = hi.max(d);
         let p = positions[v as usize];
-        positions.push([p[0] + d * into[0], p[1] + d * into[1], p[2] + d * into[2]]);
+        positions.push([p[0] + d * dir[0], p[1] + d * dir[1], p[2] + d * dir[2]]);
         copy.insert(v, (positions.len() - 1) as u32);
     }
     let star = |v: u32| copy.get(&v).copied().unwrap_or(v);
@@ -416,6 +484,7 @@ fn crossings(positions: &[[f64; 3]], tris: &[[u32; 3]], changed: &[usize], diag:
     let bvh = Bvh::build(boxes.clone());
     let is_changed: HashSet<usize> = changed.iter().copied().collect();
     let pts = |t: [u32; 3]| t.map(|v| positions[v as usize]);
+    let debug = std::env::var("BM_DEBUG_THICKEN").is_ok();
     let mut n = 0;
     for &i in changed {
         let t = tris[i];
@@ -436,10 +505,18 @@ fn crossings(positions: &[[f64; 3]], tris: &[[u32; 3]], changed: &[usize], diag:
             if u[0] == u[1] || u[1] == u[2] || u[0] == u[2] {
                 return;
             }
-            if mesh_triangles_intersect(t, u, positions)
+            let cross = mesh_triangles_intersect(t, u, positions);
+            if cross
                 || (!t.iter().any(|v| u.contains(v))
                     && overlapping_near_coplanar(pts(t), pts(u), tol))
             {
+                if debug {
+                    eprintln!(
+                        "  thicken: {} {i} {t:?} × {j} {u:?} {:?}",
+                        if cross { "crossing" } else { "overlap" },
+                        pts(t)
+                    );
+                }
                 n += 1;
             }
         });
