@@ -34,6 +34,7 @@ const CLEAN: &[&str] = &[
     "balloondog_box",
     "eight_15",
     "eight_20",
+    "hand",
 ];
 
 /// Files whose solid is one connected piece (the reference meshes are) and that come out as one

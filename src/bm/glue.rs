@@ -667,6 +667,8 @@ fn debug_crossings(
     use crate::eval::bvh::{triangle_boxes, Bvh};
     let boxes = triangle_boxes(positions, tris);
     let bvh = Bvh::build(boxes.clone());
+    let tol =
+        crate::eval::near_coplanar::NEAR_COPLANAR_RELATIVE_TOLERANCE * bbox_diagonal(positions);
     let tag = |v: u32| {
         if slab.contains(&v) {
             format!("{v}s")
@@ -677,11 +679,23 @@ fn debug_crossings(
         }
     };
     for (i, t) in tris.iter().enumerate() {
-        bvh.for_each_overlap(&boxes[i], |j| {
+        let b = &boxes[i];
+        let grown = crate::eval::bvh::Aabb {
+            lo: b.lo.map(|x| x - 2.0 * tol),
+            hi: b.hi.map(|x| x + 2.0 * tol),
+        };
+        bvh.for_each_overlap(&grown, |j| {
             let j = j as usize;
-            if j > i && crate::eval::tri_tri::mesh_triangles_intersect(*t, tris[j], positions) {
+            let u = tris[j];
+            let pts = |t: [u32; 3]| t.map(|v| positions[v as usize]);
+            let cross = j > i && crate::eval::tri_tri::mesh_triangles_intersect(*t, u, positions);
+            let overlap = j > i
+                && !cross
+                && crate::eval::near_coplanar::overlapping_near_coplanar(pts(*t), pts(u), tol);
+            if cross || overlap {
                 eprintln!(
-                    "crossing {:?} {:?} × {:?} {:?} at {:?}",
+                    "{} {:?} {:?} × {:?} {:?} at {:?}",
+                    if cross { "crossing" } else { "overlap" },
                     kind[i],
                     t.map(tag),
                     kind[j],

@@ -42,6 +42,9 @@ const HEIGHT_FRACTION: f64 = 0.25;
 /// A vertex on another plane too is lifted towards its cell's centre; below this height per unit
 /// step (the direction nearly in the face's plane) it stays where it is (the slab is pinched there).
 const MIN_RISE: f64 = 1e-2;
+/// A vertex whose room above (a quarter of its lowest neighbour's height in C) is below this fraction
+/// of the wanted thickness stays pinned.
+const MIN_FRACTION_OF_TARGET: f64 = 0.1;
 /// Components below this area (relative to the squared diagonal) are slivers left as they are.
 const MIN_RELATIVE_AREA: f64 = 1e-12;
 /// Thickness factors tried in turn.
@@ -114,6 +117,33 @@ pub(super) fn thicken(
                         )
                     })
                     .fold((f64::NEG_INFINITY, 0), |a, b| if b.0 > a.0 { b } else { a });
+                if std::env::var("BM_DEBUG_THICKEN").is_ok() {
+                    let total: f64 = boundary(&comp)
+                        .iter()
+                        .map(|&(a, b)| {
+                            let d = sub(positions[a as usize], positions[b as usize]);
+                            dot(d, d).sqrt()
+                        })
+                        .sum();
+                    let ls: Vec<f64> = (0..z.cells.len())
+                        .map(|k| {
+                            let c = oriented(&comp, k);
+                            merge_length(positions, tris, kind, &edges, &c, z.cells[k].0)
+                        })
+                        .collect();
+                    for (a, b) in boundary(&comp) {
+                        let ks: Vec<Kind> = edges
+                            .get(&(a.min(b), a.max(b)))
+                            .map(|l| l.iter().map(|&i| kind[i]).collect())
+                            .unwrap_or_default();
+                        eprintln!("  rim edge {a}-{b}: {ks:?}");
+                    }
+                    eprintln!(
+                        "thicken face {}: component of {} triangles, rim {total:.3e}, merge lengths {ls:?}",
+                        z.face,
+                        comp.len()
+                    );
+                }
                 pieces.push((best.1, oriented(&comp, best.1)));
             }
         } else {
@@ -407,6 +437,9 @@ fn apply(
         };
         let mut d = TARGET_RELATIVE_THICKNESS * diag;
         if let Some(&h) = height.get(&v) {
+            if HEIGHT_FRACTION * h < MIN_FRACTION_OF_TARGET * d {
+                continue; // C's surface passes just above: pinned (no room for a slab here)
+            }
             d = d.min(HEIGHT_FRACTION * h);
         }
         let d = d * scale;
@@ -506,10 +539,7 @@ fn crossings(positions: &[[f64; 3]], tris: &[[u32; 3]], changed: &[usize], diag:
                 return;
             }
             let cross = mesh_triangles_intersect(t, u, positions);
-            if cross
-                || (!t.iter().any(|v| u.contains(v))
-                    && overlapping_near_coplanar(pts(t), pts(u), tol))
-            {
+            if cross || overlapping_near_coplanar(pts(t), pts(u), tol) {
                 if debug {
                     eprintln!(
                         "  thicken: {} {i} {t:?} × {j} {u:?} {:?}",
