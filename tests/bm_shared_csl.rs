@@ -23,8 +23,9 @@ const KNOWN_GOOD: &[&str] = &[
 /// Files whose surface is also free of self-intersections (exact crossings and overlapping
 /// near-coplanar pairs), has no two vertices at one position, and whose every section agrees with the
 /// input within 2% (the criterion). Elephant and Armadillo still have a few crossings where
-/// lifted crease samples meet (bm::untangle reports them), hand and Armadillo lose part of a section
-/// (flat zones), Horsers has extra components.
+/// lifted crease samples meet (bm::untangle reports them); flat zones attached from neither side are
+/// thickened (bm::thicken), so hand and Armadillo keep their sections; Horsers has overlapping
+/// near-coplanar pairs and extra components.
 const CLEAN: &[&str] = &[
     "Heart-simplified",
     "ParallelEight",
