@@ -159,9 +159,6 @@ pub(super) fn thicken(
         }
         for (k, comp) in pieces {
             let (cell, into) = z.cells[k];
-            let centre = *centres
-                .entry(cell)
-                .or_insert_with(|| cell_centre(arr, pool, cell));
             let area: f64 = comp.iter().map(|&t| tri_area(positions, t)).sum();
             // lift directions: along the normal, except for vertices on other planes too (on the
             // face's rim), which move towards the cell's centre so as to stay inside the cell
@@ -175,6 +172,9 @@ pub(super) fn thicken(
                     if !on_other {
                         return Some(into);
                     }
+                    let centre = *centres
+                        .entry(cell)
+                        .or_insert_with(|| cell_centre(arr, pool, cell));
                     let d = sub(centre, positions[v as usize]);
                     let l = dot(d, d).sqrt();
                     let d = d.map(|x| x / l);
@@ -213,7 +213,7 @@ pub(super) fn thicken(
 fn cell_centre(arr: &Arrangement, pool: &VertexPool, c: u32) -> [f64; 3] {
     let mut sum = [0.0; 3];
     let mut n = 0.0f64;
-    for cf in &arr.cells[c as usize].faces {
+    for cf in arr.cells.get(c as usize).map_or(&[][..], |c| &c.faces[..]) {
         for &v in &arr.faces[cf.face as usize].polygon {
             let p = pool.positions[v as usize];
             for k in 0..3 {
@@ -248,7 +248,6 @@ fn merge_length(
     for (a, b) in boundary(z) {
         if let Some(l) = edges.get(&(a.min(b), a.max(b))) {
             if l.iter().any(|&i| kind[i] == Kind::Cell(cell)) {
-                let _ = tris;
                 let d = sub(positions[a as usize], positions[b as usize]);
                 len += dot(d, d).sqrt();
             }
@@ -619,7 +618,25 @@ mod tests {
             tris: vec![vec![[1, 3, 2], [1, 4, 3]]],
         };
         let diag = 3.0;
-        let out = thicken(&mut pos, &mut tris, &mut kind, &[zone], diag);
+        let arr = Arrangement {
+            planes: Vec::new(),
+            n_input: 0,
+            pool: VertexPool::default(),
+            faces: Vec::new(),
+            cells: Vec::new(),
+            bbox: ([0.0; 3], [1.0; 3]),
+            max_disagreement: 0.0,
+            warnings: Vec::new(),
+        };
+        let out = thicken(
+            &arr,
+            &arr.pool,
+            &mut pos,
+            &mut tris,
+            &mut kind,
+            &[zone],
+            diag,
+        );
         assert_eq!(out[0].thickened.len(), 1, "{out:?}");
         assert!(out[0].left.is_empty());
         assert!(edge_balance_ok(&tris));
