@@ -10,7 +10,8 @@
 //! in step 1; tet types by the tag rule in `classify`; step 3 uses the paper's face-count rule plus
 //! filling of enclosed voids; branching samples are cell-local vertices placed on the Moebius diagram
 //! where the Delaunay apex map is discontinuous; gluing never matches section triangles across cells
-//! (`glue`), flat zones are reported, pinched vertices are split and singular crossings of the two
+//! (`glue`), flat zones attached from neither side are thickened into thin slabs merged into the cell
+//! whose surface borders them most (`thicken`, Fig. 12c), pinched vertices are split and singular crossings of the two
 //! cells' branching diagrams avoided by displacing samples 1e-6 of an edge into their cell (Fig. 12b).
 //!
 //! Known limits: cutting-diagram samples are not computed; on a face attached from both sides the
