@@ -117,3 +117,57 @@ fn two_non_parallel_planes() {
         assert_eq!((comps, genus), (1, 0));
     }
 }
+
+/// Sections with several regions (each a counter-clockwise circle) on one plane.
+fn circles_section(plane: Plane, circles: &[([f64; 3], f64, usize)], index: usize) -> Section {
+    let mut s = circle_section(plane, circles[0].0, circles[0].1, circles[0].2, index);
+    for &(c, r, n) in &circles[1..] {
+        s.regions
+            .extend(circle_section(plane, c, r, n, index).regions);
+    }
+    s
+}
+
+/// The paper's Fig. 13: on sparse planes a region of a section can be attached from neither side (a
+/// flat zone on both). Here the middle of three parallel planes carries, besides the disk that
+/// continues above and below, an island that nothing above or below faces. The island must still be
+/// in the solid's section (thickened into a thin slab, Fig. 12c), and the surface stay a closed
+/// oriented manifold without crossings.
+#[test]
+fn island_attached_from_neither_side_is_thickened() {
+    let planes: Vec<Plane> = (0..3)
+        .map(|k| Plane::from_equation([0.0, 0.0, 1.0], -(k as f64)).unwrap())
+        .collect();
+    let sections = Sections {
+        sections: vec![
+            circle_section(planes[0], [0.0, 0.0, 0.0], 1.0, 24, 0),
+            circles_section(
+                planes[1],
+                &[([0.0, 0.0, 1.0], 1.0, 24), ([3.0, 0.0, 1.0], 0.4, 16)],
+                1,
+            ),
+            circle_section(planes[2], [0.0, 0.0, 2.0], 1.0, 24, 2),
+        ],
+        n_labels: 1,
+        warnings: vec![],
+    };
+    let solid = match slice2solid::reconstruct(&sections, &Options::default()) {
+        Err(Error::Unavailable(m)) => {
+            eprintln!("island: skipped ({m})");
+            return;
+        }
+        r => r.expect("reconstruct"),
+    };
+    eprintln!("island: {:?}", solid.report.warnings);
+    let thickened = solid
+        .report
+        .counts
+        .get("flat_zones_thickened")
+        .copied()
+        .unwrap_or(0);
+    assert!(thickened >= 1, "{:?}", solid.report.counts);
+    if let Some((comps, genus, _)) = run("island", &sections) {
+        // the column of disks, and the island's slab (nothing above or below it to merge with)
+        assert_eq!((comps, genus), (2, 0));
+    }
+}

@@ -61,6 +61,9 @@ pub struct Overlay {
     pub attached_area: f64,
     /// Area of the output (only-A plus only-B).
     pub output_area: f64,
+    /// With a section layer ([`overlay_with_section`]): the triangles of the section attached from
+    /// neither side (flat zones), oriented like A's (outward from A).
+    pub flat: Vec<[u32; 3]>,
 }
 
 fn area2(p: [f64; 2], q: [f64; 2], r: [f64; 2]) -> f64 {
@@ -77,15 +80,40 @@ pub fn overlay(
     ccw_a: bool,
     first_new: u32,
 ) -> Result<Overlay, String> {
+    overlay_layers(uv, a, b, None, ccw_a, first_new)
+}
+
+/// [`overlay`] with a third layer `s`: A's triangulation of the whole section (attached or not,
+/// oriented like A's). Its edges are constraints too, and the triangles inside `s` but in neither
+/// X_A nor X_B are returned in [`Overlay::flat`] (the flat zones, for `thicken`).
+pub fn overlay_with_section(
+    uv: &HashMap<u32, [f64; 2]>,
+    a: &[[u32; 3]],
+    b: &[[u32; 3]],
+    s: &[[u32; 3]],
+    ccw_a: bool,
+    first_new: u32,
+) -> Result<Overlay, String> {
+    overlay_layers(uv, a, b, Some(s), ccw_a, first_new)
+}
+
+fn overlay_layers(
+    uv: &HashMap<u32, [f64; 2]>,
+    a: &[[u32; 3]],
+    b: &[[u32; 3]],
+    s: Option<&[[u32; 3]]>,
+    ccw_a: bool,
+    first_new: u32,
+) -> Result<Overlay, String> {
     // spade asserts on some inconsistent inputs: keep them from unwinding through the caller
-    let r = std::panic::catch_unwind(|| overlay_inner(uv, a, b, ccw_a, first_new))
+    let r = std::panic::catch_unwind(|| overlay_inner(uv, a, b, s, ccw_a, first_new))
         .unwrap_or_else(|_| Err("constrained triangulation panicked".into()));
     let dump = r.is_err() || std::env::var("SLICE2SOLID_OVERLAY_DUMP_ALL").is_ok();
     if let (true, Ok(dir)) = (dump, std::env::var("SLICE2SOLID_OVERLAY_DUMP")) {
         // debugging aid: the failing (or every) input, as JSON, for a unit test
         let mut pts: Vec<(u32, [f64; 2])> = uv.iter().map(|(&k, &v)| (k, v)).collect();
         pts.sort_by_key(|p| p.0);
-        let j = serde_json::json!({"uv": pts, "a": a, "b": b, "ccw_a": ccw_a});
+        let j = serde_json::json!({"uv": pts, "a": a, "b": b, "s": s, "ccw_a": ccw_a});
         let _ = std::fs::write(format!("{dir}/overlay_{first_new}.json"), j.to_string());
     }
     r
@@ -97,9 +125,15 @@ fn overlay_inner(
     uv: &HashMap<u32, [f64; 2]>,
     a: &[[u32; 3]],
     b: &[[u32; 3]],
+    s: Option<&[[u32; 3]]>,
     ccw_a: bool,
     first_new: u32,
 ) -> Result<Overlay, String> {
+    // layers: A, B and optionally the whole section (A's triangulation, oriented like A's)
+    let mut layers: Vec<&[[u32; 3]]> = vec![a, b];
+    if let Some(s) = s {
+        layers.push(s);
+    }
     let q = |v: u32| -> Result<[f64; 2], String> {
         uv.get(&v)
             .copied()
@@ -107,7 +141,11 @@ fn overlay_inner(
     };
     let mut cdt = Cdt::new();
     let mut handle: HashMap<u32, FixedVertexHandle> = HashMap::new();
-    let mut ids: Vec<u32> = a.iter().chain(b).flat_map(|t| t.iter().copied()).collect();
+    let mut ids: Vec<u32> = layers
+        .iter()
+        .flat_map(|l| l.iter())
+        .flat_map(|t| t.iter().copied())
+        .collect();
     ids.sort_unstable();
     ids.dedup();
     for &v in &ids {
@@ -125,9 +163,9 @@ fn overlay_inner(
         handle.insert(v, h);
     }
     // every original edge once (key (min, max)), a constraint from min to max
-    let mut edge_list: Vec<(u32, u32)> = a
+    let mut edge_list: Vec<(u32, u32)> = layers
         .iter()
-        .chain(b)
+        .flat_map(|l| l.iter())
         .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
         .collect();
     edge_list.sort_unstable();
@@ -161,8 +199,8 @@ fn overlay_inner(
     // crossing it from its right to its left adds that number to the winding. From the outer face
     // (winding 0) every CDT face gets its winding per side; reaching a face twice with different
     // values means the chains are wrong (an exact, integer consistency check).
-    let mut delta = vec![[0i32; 2]; cdt.num_undirected_edges()];
-    for (side, tris) in [(0usize, a), (1, b)] {
+    let mut delta = vec![[0i32; 3]; cdt.num_undirected_edges()];
+    for (side, &tris) in layers.iter().enumerate() {
         for t in tris {
             for k in 0..3 {
                 let (x, y) = (t[k], t[(k + 1) % 3]);
@@ -180,18 +218,18 @@ fn overlay_inner(
             }
         }
     }
-    let along = |e: spade::handles::FixedDirectedEdgeHandle| -> [i32; 2] {
+    let along = |e: spade::handles::FixedDirectedEdgeHandle| -> [i32; 3] {
         let d = delta[e.as_undirected().index()];
         if e.index() & 1 == 0 {
             d
         } else {
-            [-d[0], -d[1]]
+            d.map(|x| -x)
         }
     };
     let nf = cdt.num_all_faces();
-    let mut wind: Vec<Option<[i32; 2]>> = vec![None; nf];
+    let mut wind: Vec<Option<[i32; 3]>> = vec![None; nf];
     let mut stack: Vec<FixedFaceHandle<InnerTag>> = Vec::new();
-    wind[cdt.outer_face().fix().index()] = Some([0, 0]);
+    wind[cdt.outer_face().fix().index()] = Some([0; 3]);
     for e in cdt.directed_edges() {
         if !e.face().is_outer() {
             continue;
@@ -200,8 +238,7 @@ fn overlay_inner(
         let Some(g) = e.rev().face().as_inner() else {
             continue;
         };
-        let d = along(e.fix());
-        let w = [-d[0], -d[1]];
+        let w = along(e.fix()).map(|x| -x);
         match wind[g.fix().index()] {
             None => {
                 wind[g.fix().index()] = Some(w);
@@ -216,7 +253,7 @@ fn overlay_inner(
         for e in cdt.face(f).adjacent_edges() {
             // f is on e's left; the face on its right has w(f) − δ(e)
             let d = along(e.fix());
-            let w = [wf[0] - d[0], wf[1] - d[1]];
+            let w = [wf[0] - d[0], wf[1] - d[1], wf[2] - d[2]];
             let g = e.rev().face();
             match wind[g.fix().index()] {
                 None => {
@@ -236,23 +273,39 @@ fn overlay_inner(
         [v.position().x, v.position().y]
     };
     let side_sign = if ccw_a { [1, -1] } else { [-1, 1] };
-    let mut covered = [0.0f64; 2];
+    let mut covered = [0.0f64; 3];
     let mut scale = 0.0f64;
     for f in cdt.inner_faces() {
         let [v0, v1, v2] = f.vertices();
         let ar = 0.5 * area2(pos(v0), pos(v1), pos(v2));
         scale += ar.abs();
         let w = wind[f.fix().index()].ok_or("face not reached from the outer face")?;
-        covered[0] += w[0] as f64 * ar;
-        covered[1] += w[1] as f64 * ar;
+        for (c, &wi) in covered.iter_mut().zip(&w) {
+            *c += wi as f64 * ar;
+        }
         if w[0] != 0 || w[1] != 0 {
             out.attached_area += ar.abs();
         }
         if w[0] != 0 && w[0] != side_sign[0] || w[1] != 0 && w[1] != side_sign[1] {
             return Err(format!("side windings {w:?}: a side's triangles overlap"));
         }
+        if w[2] != 0 && w[2] != side_sign[0] {
+            return Err(format!(
+                "section windings {w:?}: the section's triangles overlap"
+            ));
+        }
         let total = w[0] + w[1];
         if total == 0 {
+            if w[2] != 0 && w[0] == 0 && w[1] == 0 {
+                // inside the section, attached from neither side: a flat zone, oriented like A's
+                let (i0, i1, i2) = (
+                    vid[v0.fix().index()],
+                    vid[v1.fix().index()],
+                    vid[v2.fix().index()],
+                );
+                out.flat
+                    .push(if ccw_a { [i0, i1, i2] } else { [i0, i2, i1] });
+            }
             continue;
         }
         if total.abs() > 1 {
@@ -273,7 +326,7 @@ fn overlay_inner(
     }
     // sanity: each side's signed covered area is its triangles' signed area (the chains are
     // exact combinatorially; only the rounding of crossing points moves area)
-    for (side, tris) in [(0usize, a), (1, b)] {
+    for (side, &tris) in layers.iter().enumerate() {
         let mut want = 0.0;
         for t in tris {
             want += 0.5 * area2(q(t[0])?, q(t[1])?, q(t[2])?);
@@ -744,5 +797,30 @@ mod tests {
         let area_a = signed_area(&uv, &o, 1_000_000, &a).abs();
         let area_b = signed_area(&uv, &o, 1_000_000, &b).abs();
         assert!((o.output_area - (area_b - area_a)).abs() < 1e-12 * area_b);
+    }
+
+    #[test]
+    fn flat_zone_is_returned_with_the_section_layer() {
+        // as above, with A's whole triangulation of the square [0,2]x[0,1] as the section layer
+        let uv = uvmap(&[
+            (0, [0.0, 0.0]),
+            (1, [1.0, 0.0]),
+            (2, [2.0, 0.0]),
+            (3, [2.0, 1.0]),
+            (4, [1.0, 1.0]),
+            (5, [0.0, 1.0]),
+            (6, [0.5, 0.5]),
+        ]);
+        let a = [[0, 1, 4], [0, 4, 5]];
+        let b = [[0, 6, 1], [1, 6, 4], [4, 6, 5], [5, 6, 0]];
+        let s = [[0, 1, 4], [0, 4, 5], [1, 2, 4], [2, 3, 4]];
+        let o = overlay_with_section(&uv, &a, &b, &s, true, 1000).unwrap();
+        assert!(o.triangles.is_empty(), "{:?}", o.triangles);
+        let flat: f64 = o.flat.iter().map(|&t| area(&uv, &o, t)).sum();
+        // the right half, counter-clockwise like A's triangles
+        assert!((flat - 1.0).abs() < 1e-12, "{flat} {:?}", o.flat);
+        assert!(o.flat.iter().all(|&t| area(&uv, &o, t) > 0.0));
+        // without the layer nothing is returned as flat
+        assert!(overlay(&uv, &a, &b, true, 1000).unwrap().flat.is_empty());
     }
 }

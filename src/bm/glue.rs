@@ -23,7 +23,8 @@
 //! The tetrahedral mesh is the union of the kept tets; it is non-conforming across a face where the
 //! two cells' section triangulations differ (counted in the report).
 use super::cell::CellResult;
-use super::face_overlay::{overlay, Overlay};
+use super::face_overlay::{overlay, overlay_with_section, Overlay};
+use super::thicken::{thicken, Zone};
 use crate::arrangement::{Arrangement, VertexPool};
 use crate::mesh::{TetMesh, TriMesh};
 use std::collections::HashMap;
@@ -46,10 +47,28 @@ pub struct Glued {
     pub overlay_fallbacks: u64,
     /// Displaced vertices moved to another candidate position because the first one crossed the surface.
     pub lifts_redirected: u64,
+    /// Connected flat zones thickened into a thin slab (`thicken`), and their total area.
+    pub flat_zones_thickened: u64,
+    pub flat_zone_area_thickened: f64,
+    /// Connected flat zones that could not be thickened (left out of the solid).
+    pub flat_zones_left: u64,
+}
+
+/// Unit normal of face `f`'s plane pointing into cell `c` (zero when `c` is not on the face).
+fn into_cell(arr: &Arrangement, f: u32, c: u32) -> [f64; 3] {
+    let face = &arr.faces[f as usize];
+    let n = arr.planes[face.plane as usize].plane.normal;
+    if face.positive_cell == Some(c) {
+        n
+    } else if face.negative_cell == Some(c) {
+        [-n[0], -n[1], -n[2]]
+    } else {
+        [0.0; 3]
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum Kind {
+pub(super) enum Kind {
     /// Boundary triangle inside this cell.
     Cell(u32),
     /// Section triangle on this face.
@@ -125,6 +144,8 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     }
     // original edge (min, max) → vertices the face overlays put inside it, from min to max
     let mut edge_splits: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+    // flat zones attached from neither side, thickened after the faces are assembled
+    let mut zones: Vec<Zone> = Vec::new();
     let mut face_ids: Vec<u32> = sides.keys().copied().collect();
     face_ids.sort_unstable();
     for f in face_ids {
@@ -184,36 +205,77 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                 if area > 0.0 {
                     g.flat_zone_faces += 1;
                     g.flat_zone_area += area;
-                    g.warnings.push(format!(
-                        "face {f} (plane {}): section of area {area:.4e} attached from neither side (flat zone, not in the solid)",
-                        arr.faces[f as usize].plane
-                    ));
+                    zones.push(Zone {
+                        face: f,
+                        plane: arr.faces[f as usize].plane,
+                        area,
+                        cells: list
+                            .iter()
+                            .map(|&(c, _)| (c as u32, into_cell(arr, f, c as u32)))
+                            .collect(),
+                        tris: list
+                            .iter()
+                            .map(|cs| {
+                                side(cs)
+                                    .triangles
+                                    .iter()
+                                    .map(|t| map3(&maps[cs.0], t.0))
+                                    .collect()
+                            })
+                            .collect(),
+                    });
                 }
             }
             1 => {
                 let (c, s) = *attaching[0];
                 let mut flat = 0.0;
+                let mut zone = Vec::new();
                 for &(t, att) in &results[c].as_ref().unwrap().faces[s].triangles {
                     if att {
                         tris.push(map3(&maps[c], t));
                         kind.push(Kind::Face(f));
                     } else {
                         flat += tri_area(&positions, map3(&maps[c], t));
+                        zone.push(map3(&maps[c], t));
                     }
                 }
                 if flat > 0.0 {
                     g.flat_zone_faces += 1;
                     g.flat_zone_area += flat;
-                    g.warnings.push(format!(
-                        "face {f} (plane {}): flat zone of area {flat:.4e} attached from neither side (not in the solid)",
-                        arr.faces[f as usize].plane
-                    ));
+                    zones.push(Zone {
+                        face: f,
+                        plane: arr.faces[f as usize].plane,
+                        area: flat,
+                        cells: vec![(c as u32, into_cell(arr, f, c as u32))],
+                        tris: vec![zone],
+                    });
                 }
             }
             _ => {
                 let face = &arr.faces[f as usize];
                 let plane = &arr.planes[face.plane as usize].plane;
-                match overlay_face(pool, results, &maps, list, positions.len() as u32) {
+                let first = overlay_face(pool, results, &maps, list, positions.len() as u32, false);
+                // a flat zone: again with the whole section as a third layer, to get its triangles
+                let with_zone = match &first {
+                    Ok((o, section_area))
+                        if section_area - o.attached_area > 1e-9 * section_area =>
+                    {
+                        match overlay_face(pool, results, &maps, list, positions.len() as u32, true)
+                        {
+                            Ok(r) => Some(r),
+                            Err(why) => {
+                                g.warnings.push(format!(
+                                    "face {f} (plane {}): overlay with the section layer failed ({why}); its flat zone is not thickened",
+                                    face.plane
+                                ));
+                                None
+                            }
+                        }
+                    }
+                    _ => None,
+                };
+                let zone_found = with_zone.is_some();
+                match with_zone.map(Ok).unwrap_or(first) {
                     Ok((o, section_area)) => {
                         g.overlay_faces += 1;
                         g.overlay_vertices += o.new_vertices.len() as u64;
@@ -227,10 +289,24 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                         if flat > 1e-9 * section_area {
                             g.flat_zone_faces += 1;
                             g.flat_zone_area += flat;
-                            g.warnings.push(format!(
-                                "face {f} (plane {}): flat zone of area {flat:.4e} attached from neither side (not in the solid)",
-                                face.plane
-                            ));
+                            if zone_found && !o.flat.is_empty() {
+                                zones.push(Zone {
+                                    face: f,
+                                    plane: face.plane,
+                                    area: flat,
+                                    cells: list
+                                        .iter()
+                                        .map(|&(c, _)| (c as u32, into_cell(arr, f, c as u32)))
+                                        .collect(),
+                                    tris: vec![o.flat.clone()],
+                                });
+                            } else {
+                                g.flat_zones_left += 1;
+                                g.warnings.push(format!(
+                                    "face {f} (plane {}): flat zone of area {flat:.4e} attached from neither side (not in the solid)",
+                                    face.plane
+                                ));
+                            }
                         }
                     }
                     Err(why) => {
@@ -286,12 +362,59 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .filter(|(_, d)| !d)
         .map(|(t, _)| t)
         .unzip();
+    let mut kind = kind;
+    let mut slab_vertices = 0..0u32;
+    if std::env::var("SLICE2SOLID_NO_THICKEN").is_ok() {
+        for z in &zones {
+            g.flat_zones_left += 1;
+            g.warnings.push(format!(
+                "face {} (plane {}): flat zone of area {:.4e} attached from neither side (not in the solid; thickening disabled)",
+                z.face, z.plane, z.area
+            ));
+        }
+    } else if !zones.is_empty() {
+        // the zones' triangles get the same splits as the faces' output
+        for z in &mut zones {
+            for l in &mut z.tris {
+                let mut k = vec![Kind::Face(z.face); l.len()];
+                split_at_edges(l, &mut k, &mut positions, &edge_splits);
+            }
+        }
+        let diag = bbox_diagonal(&positions);
+        slab_vertices = positions.len() as u32..u32::MAX;
+        for o in thicken(
+            arr,
+            pool,
+            &mut positions,
+            &mut tris,
+            &mut kind,
+            &zones,
+            diag,
+        ) {
+            for &(c, area, lo, hi) in &o.thickened {
+                g.flat_zones_thickened += 1;
+                g.flat_zone_area_thickened += area;
+                g.warnings.push(format!(
+                    "face {} (plane {}): flat zone of area {area:.4e} attached from neither side, thickened into cell {c} (paper Fig. 12c; slab {lo:.2e}..{hi:.2e} thick)",
+                    o.face, o.plane
+                ));
+            }
+            for (area, why) in &o.left {
+                g.flat_zones_left += 1;
+                g.warnings.push(format!(
+                    "face {} (plane {}): flat zone of area {area:.4e} attached from neither side, not thickened ({why}): not in the solid",
+                    o.face, o.plane
+                ));
+            }
+        }
+    }
+    slab_vertices.end = slab_vertices.end.min(positions.len() as u32);
+    let after_thicken = positions.len() as u32;
     let before_lift = positions.clone();
     let mut copies = Vec::new();
     let split = unpinch(arr, &mut positions, &mut tris, &kind, &mut copies);
     g.pinched_vertices = split.len() as u64;
     lift_samples(&mut positions, &tris, &samples, &split);
-    let mut kind = kind;
     let mut crease_mids = Vec::new();
     let n_split_edges = split_mixed_edges(&mut positions, &mut tris, &mut kind, &mut crease_mids);
     if n_split_edges > 0 {
@@ -325,6 +448,9 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             "{} displaced vertices still make their triangles cross others (no candidate position was free)",
             untangled.unresolved
         ));
+    }
+    if std::env::var("BM_DEBUG_CROSSINGS").is_ok() {
+        debug_slab_crossings(&positions, &tris, &kind, &slab_vertices, after_thicken);
     }
     if std::env::var("BM_DEBUG").is_ok() {
         let edges = edge_triangles(&tris);
@@ -523,12 +649,15 @@ fn overlay_face(
     maps: &[Vec<u32>],
     list: &[(usize, usize)],
     first_new: u32,
+    with_section: bool,
 ) -> Result<(Overlay, f64), String> {
     if list.len() != 2 {
         return Err(format!("{} sides", list.len()));
     }
     let mut uv: HashMap<u32, [f64; 2]> = HashMap::new();
     let mut x: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
+    // A's whole triangulation of the section (the third layer, when asked)
+    let mut whole: Vec<[u32; 3]> = Vec::new();
     let mut section_area = 0.0f64;
     let mut ccw_a = true;
     for (k, &(c, s)) in list.iter().enumerate() {
@@ -558,6 +687,15 @@ fn overlay_face(
                 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1])
                     - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]))
                     .abs();
+            if k == 0 && with_section {
+                for (l, p) in t.into_iter().zip(q) {
+                    if !(p[0].is_finite() && p[1].is_finite()) {
+                        return Err(format!("local vertex {l} of cell {c} has no (u,v)"));
+                    }
+                    uv.insert(maps[c][l as usize], p);
+                }
+                whole.push(t.map(|l| maps[c][l as usize]));
+            }
             if !att {
                 continue;
             }
@@ -571,7 +709,11 @@ fn overlay_face(
         }
         section_area = section_area.max(area);
     }
-    let o = overlay(&uv, &x[0], &x[1], ccw_a, first_new)?;
+    let o = if with_section {
+        overlay_with_section(&uv, &x[0], &x[1], &whole, ccw_a, first_new)?
+    } else {
+        overlay(&uv, &x[0], &x[1], ccw_a, first_new)?
+    };
     Ok((o, section_area))
 }
 
@@ -641,6 +783,71 @@ fn split_at_edges(
             kind.push(kind[i]);
         }
     }
+}
+
+/// BM_DEBUG_CROSSINGS: every crossing pair of the glued surface, with kinds and which vertices
+/// are slab copies (`slab`) or were created after thickening.
+fn debug_slab_crossings(
+    positions: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    kind: &[Kind],
+    slab: &std::ops::Range<u32>,
+    after: u32,
+) {
+    use crate::eval::bvh::{triangle_boxes, Bvh};
+    let boxes = triangle_boxes(positions, tris);
+    let bvh = Bvh::build(boxes.clone());
+    let tol =
+        crate::eval::near_coplanar::NEAR_COPLANAR_RELATIVE_TOLERANCE * bbox_diagonal(positions);
+    let tag = |v: u32| {
+        if slab.contains(&v) {
+            format!("{v}s")
+        } else if v >= after {
+            format!("{v}n")
+        } else {
+            format!("{v}")
+        }
+    };
+    for (i, t) in tris.iter().enumerate() {
+        let b = &boxes[i];
+        let grown = crate::eval::bvh::Aabb {
+            lo: b.lo.map(|x| x - 2.0 * tol),
+            hi: b.hi.map(|x| x + 2.0 * tol),
+        };
+        bvh.for_each_overlap(&grown, |j| {
+            let j = j as usize;
+            let u = tris[j];
+            let pts = |t: [u32; 3]| t.map(|v| positions[v as usize]);
+            let cross = j > i && crate::eval::tri_tri::mesh_triangles_intersect(*t, u, positions);
+            let overlap = j > i
+                && !cross
+                && crate::eval::near_coplanar::overlapping_near_coplanar(pts(*t), pts(u), tol);
+            if cross || overlap {
+                eprintln!(
+                    "{} {:?} {:?} × {:?} {:?} at {:?}",
+                    if cross { "crossing" } else { "overlap" },
+                    kind[i],
+                    t.map(tag),
+                    kind[j],
+                    tris[j].map(tag),
+                    positions[t[0] as usize]
+                );
+            }
+        });
+    }
+}
+
+/// Diagonal of the bounding box of `positions`.
+fn bbox_diagonal(positions: &[[f64; 3]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let d = crate::sections::sub(hi, lo);
+    crate::sections::dot(d, d).sqrt()
 }
 
 /// The triangles (indices, ascending) on each undirected edge, keyed `(min, max)`.

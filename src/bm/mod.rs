@@ -10,7 +10,8 @@
 //! in step 1; tet types by the tag rule in `classify`; step 3 uses the paper's face-count rule plus
 //! filling of enclosed voids; branching samples are cell-local vertices placed on the Moebius diagram
 //! where the Delaunay apex map is discontinuous; gluing never matches section triangles across cells
-//! (`glue`), flat zones are reported, pinched vertices are split and singular crossings of the two
+//! (`glue`), flat zones attached from neither side are thickened into thin slabs merged into the cell
+//! whose surface borders them most (`thicken`, Fig. 12c), pinched vertices are split and singular crossings of the two
 //! cells' branching diagrams avoided by displacing samples 1e-6 of an edge into their cell (Fig. 12b).
 //!
 //! Cutting-diagram samples (`cutting`) are added beside the branching samples where a site's Moebius
@@ -31,6 +32,7 @@ pub mod cutting;
 pub mod face_overlay;
 pub mod glue;
 pub mod prune;
+pub mod thicken;
 pub mod untangle;
 
 use crate::arrangement::Arrangement;
@@ -237,6 +239,12 @@ pub fn reconstruct(
     report
         .values
         .insert("flat_zone_area".into(), glued.flat_zone_area);
+    report.count("flat_zones_thickened", glued.flat_zones_thickened);
+    report.values.insert(
+        "flat_zone_area_thickened".into(),
+        glued.flat_zone_area_thickened,
+    );
+    report.count("flat_zones_left", glued.flat_zones_left);
     report.count("nonconforming_faces", glued.nonconforming_faces);
     report.count("pinched_vertices_lifted", glued.pinched_vertices);
     report.count("lifts_redirected", glued.lifts_redirected);
