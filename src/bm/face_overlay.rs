@@ -25,6 +25,7 @@
 //! is an `Err` with the reason: the caller then keeps its per-side output for that face.
 //! `SLICE2SOLID_OVERLAY_DUMP=dir` writes each failing input to `dir` as JSON (with
 //! `SLICE2SOLID_OVERLAY_DUMP_ALL` set, every input), the format of the tests' `testdata`.
+use crate::fxhash::FxHashMap;
 use crate::geom::predicates::orient2d;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
 use spade::{
@@ -358,7 +359,9 @@ fn insert_constraints(
     edges: &[(u32, u32)],
 ) -> Result<Vec<Vec<FixedVertexHandle>>, String> {
     let mut chains: Vec<Vec<FixedVertexHandle>> = Vec::with_capacity(edges.len());
-    let mut tracked: std::collections::HashSet<(usize, usize)> = Default::default();
+    // every sub-edge of every chain → the chains running along it (collinear input edges share
+    // sub-edges); its number of keys is checked against spade's number of constraint edges
+    let mut owner: FxHashMap<(usize, usize), Vec<usize>> = FxHashMap::default();
     // Input vertices lying exactly on an edge (spade's exact line walk, before any constraint):
     // the edge is inserted as its pieces between them. Inserted whole, a constraint that is split
     // at a crossing goes on from the rounded crossing point and can miss such a vertex by an ulp,
@@ -385,24 +388,70 @@ fn insert_constraints(
                 ));
             }
         }
-        tracked.extend(chain.windows(2).map(|w| ukey(w[0], w[1])));
+        let me = chains.len();
+        for w in chain.windows(2) {
+            owner.entry(ukey(w[0], w[1])).or_default().push(me);
+        }
+        let new_vertices = cdt.num_vertices() > nv;
         chains.push(chain);
-        if cdt.num_vertices() == nv && cdt.num_constraints() == tracked.len() {
+        if !new_vertices && cdt.num_constraints() == owner.len() {
             continue;
         }
-        // some sub-edges were split: repair every chain
+        // Some sub-edges were split. They can only be split at a vertex of the new chain (a
+        // crossing it created, or a vertex it was routed through): repair the chains owning a
+        // sub-edge between two constraint neighbours of such a vertex, then check the count.
+        let mut hit: Vec<usize> = Vec::new();
+        for &w in &chains[me][1..chains[me].len() - 1] {
+            let nbrs: Vec<FixedVertexHandle> = cdt
+                .vertex(w)
+                .out_edges()
+                .filter(|e| e.is_constraint_edge())
+                .map(|e| e.to().fix())
+                .collect();
+            for (i, &p) in nbrs.iter().enumerate() {
+                for &q in &nbrs[i + 1..] {
+                    if let Some(cs) = owner.get(&ukey(p, q)) {
+                        hit.extend(cs.iter().filter(|&&c| c != me));
+                    }
+                }
+            }
+        }
+        hit.sort_unstable();
+        hit.dedup();
+        for &c in &hit {
+            let repaired = repair_chain(cdt, &chains[c], nv)?;
+            for w in chains[c].windows(2) {
+                let k = ukey(w[0], w[1]);
+                if let Some(cs) = owner.get_mut(&k) {
+                    cs.retain(|&d| d != c);
+                    if cs.is_empty() {
+                        owner.remove(&k);
+                    }
+                }
+            }
+            for w in repaired.windows(2) {
+                owner.entry(ukey(w[0], w[1])).or_default().push(c);
+            }
+            chains[c] = repaired;
+        }
+        if cdt.num_constraints() == owner.len() {
+            continue;
+        }
+        // not local after all: repair every chain
         for chain in chains.iter_mut() {
             *chain = repair_chain(cdt, chain, nv)?;
         }
-        tracked = chains
-            .iter()
-            .flat_map(|c| c.windows(2).map(|w| ukey(w[0], w[1])))
-            .collect();
-        if cdt.num_constraints() != tracked.len() {
+        owner.clear();
+        for (c, chain) in chains.iter().enumerate() {
+            for w in chain.windows(2) {
+                owner.entry(ukey(w[0], w[1])).or_default().push(c);
+            }
+        }
+        if cdt.num_constraints() != owner.len() {
             return Err(format!(
                 "constraint {x}–{y}: {} constraint edges, {} on the chains",
                 cdt.num_constraints(),
-                tracked.len()
+                owner.len()
             ));
         }
     }

@@ -28,11 +28,14 @@
 //! three tries it is left flat (not in the solid, as before), with the reason.
 use super::glue::Kind;
 use crate::arrangement::{Arrangement, VertexPool};
-use crate::eval::bvh::{triangle_boxes, Aabb, Bvh};
 use crate::eval::near_coplanar::{overlapping_near_coplanar, NEAR_COPLANAR_RELATIVE_TOLERANCE};
 use crate::eval::tri_tri::mesh_triangles_intersect;
+use crate::geom::bvh::{Aabb, Bvh};
 use crate::sections::{dot, sub};
 use std::collections::{HashMap, HashSet};
+
+/// Edge (min, max) → the triangles using it.
+type EdgeMap = crate::fxhash::FxHashMap<(u32, u32), Vec<usize>>;
 
 /// Slab thickness wanted, relative to the model's bounding-box diagonal: twice the offset at which
 /// the outside judge takes sections above and below each plane.
@@ -105,7 +108,7 @@ pub(super) fn thicken(
         };
         // (cell index, component triangles facing away from that cell)
         let mut pieces: Vec<(usize, Vec<[u32; 3]>)> = Vec::new();
-        let edges = edge_map(tris);
+        let edges = edge_map_at(tris, z.tris.iter().flatten().flatten().copied());
         if z.tris.len() == 1 {
             for comp in components(&z.tris[0]) {
                 let best = (0..z.cells.len())
@@ -236,7 +239,7 @@ fn oriented(comp: &[[u32; 3]], k: usize) -> Vec<[u32; 3]> {
 fn merge_length(
     positions: &[[f64; 3]],
     kind: &[Kind],
-    edges: &HashMap<(u32, u32), Vec<usize>>,
+    edges: &EdgeMap,
     z: &[[u32; 3]],
     cell: u32,
 ) -> f64 {
@@ -305,9 +308,23 @@ fn components(z: &[[u32; 3]]) -> Vec<Vec<[u32; 3]>> {
     out
 }
 
-fn edge_map(tris: &[[u32; 3]]) -> HashMap<(u32, u32), Vec<usize>> {
-    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+/// Edge → triangles, for the triangles with a vertex in `at` (the edges among `at` are complete).
+fn edge_map_at(tris: &[[u32; 3]], at: impl Iterator<Item = u32>) -> EdgeMap {
+    let mut mark: Vec<bool> = Vec::new();
+    for v in at {
+        if mark.len() <= v as usize {
+            mark.resize(v as usize + 1, false);
+        }
+        mark[v as usize] = true;
+    }
+    let mut edges = EdgeMap::default();
     for (i, t) in tris.iter().enumerate() {
+        if !t
+            .iter()
+            .any(|&v| mark.get(v as usize).copied().unwrap_or(false))
+        {
+            continue;
+        }
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
             edges.entry((a.min(b), a.max(b))).or_default().push(i);
@@ -508,8 +525,24 @@ fn crossings(positions: &[[f64; 3]], tris: &[[u32; 3]], changed: &[usize], diag:
         return 0;
     }
     let tol = NEAR_COPLANAR_RELATIVE_TOLERANCE * diag;
-    let boxes = triangle_boxes(positions, tris);
-    let bvh = Bvh::build(boxes.clone());
+    let grow = |b: Aabb| Aabb {
+        lo: b.lo.map(|x| x - 2.0 * tol),
+        hi: b.hi.map(|x| x + 2.0 * tol),
+    };
+    // only the triangles near the changed ones: one linear pass, then a BVH over those (a BVH of
+    // the whole surface per zone made thickening quadratic in the number of zones)
+    let tbox = |t: [u32; 3]| Aabb::of_points(&t.map(|v| positions[v as usize]));
+    let region = grow(
+        changed
+            .iter()
+            .map(|&i| tbox(tris[i]))
+            .reduce(|a, b| a.union(&b))
+            .expect("changed is not empty"),
+    );
+    let near: Vec<usize> = (0..tris.len())
+        .filter(|&j| tbox(tris[j]).overlaps(&region))
+        .collect();
+    let bvh = Bvh::build(near.iter().map(|&j| tbox(tris[j])).collect());
     let is_changed: HashSet<usize> = changed.iter().copied().collect();
     let pts = |t: [u32; 3]| t.map(|v| positions[v as usize]);
     let debug = std::env::var("BM_DEBUG_THICKEN").is_ok();
@@ -519,13 +552,9 @@ fn crossings(positions: &[[f64; 3]], tris: &[[u32; 3]], changed: &[usize], diag:
         if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
             continue;
         }
-        let b = &boxes[i];
-        let bb = Aabb {
-            lo: b.lo.map(|x| x - 2.0 * tol),
-            hi: b.hi.map(|x| x + 2.0 * tol),
-        };
-        bvh.for_each_overlap(&bb, |j| {
-            let j = j as usize;
+        let bb = grow(tbox(t));
+        bvh.for_each_overlap(&bb, |k| {
+            let j = near[k as usize];
             if j == i || (is_changed.contains(&j) && j < i) {
                 return;
             }
@@ -637,7 +666,7 @@ mod tests {
         assert!(out[0].left.is_empty());
         assert!(edge_balance_ok(&tris));
         // closed 2-manifold: every undirected edge used exactly twice
-        let edges = edge_map(&tris);
+        let edges = edge_map_at(&tris, tris.iter().flatten().copied());
         assert!(edges.values().all(|l| l.len() == 2), "{edges:?}");
         // the middle edge 1–4 is now inside the flat bottom (two section triangles)
         let mid = &edges[&(1, 4)];
