@@ -67,6 +67,23 @@ pub struct Overlay {
     pub flat: Vec<[u32; 3]>,
 }
 
+impl Overlay {
+    /// The same overlay with its new vertices numbered from `first_new` instead of `base` (ids
+    /// below `base` are global ids and stay).
+    pub fn renumbered(mut self, base: u32, first_new: u32) -> Overlay {
+        let f = |v: u32| if v >= base { v - base + first_new } else { v };
+        for t in self.triangles.iter_mut().chain(self.flat.iter_mut()) {
+            *t = t.map(f);
+        }
+        for (_, inner) in self.splits.iter_mut() {
+            for v in inner.iter_mut() {
+                *v = f(*v);
+            }
+        }
+        self
+    }
+}
+
 fn area2(p: [f64; 2], q: [f64; 2], r: [f64; 2]) -> f64 {
     (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
 }

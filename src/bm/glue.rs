@@ -27,7 +27,18 @@ use super::face_overlay::{overlay, overlay_with_section, Overlay};
 use super::thicken::{thicken, Zone};
 use crate::arrangement::{Arrangement, VertexPool};
 use crate::mesh::{TetMesh, TriMesh};
+use rayon::prelude::*;
 use std::collections::HashMap;
+
+/// First id of the vertices an overlay creates while the faces are overlaid in parallel (above every
+/// global id; renumbered from the current vertex count when the face is assembled).
+const OVERLAY_BASE: u32 = 1 << 31;
+
+/// A face's overlay, and the one with the section layer when the first shows a flat zone.
+type OverlayOutcome = (
+    Result<(Overlay, f64), String>,
+    Option<Result<(Overlay, f64), String>>,
+);
 
 #[derive(Clone, Debug, Default)]
 pub struct Glued {
@@ -148,6 +159,31 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     let mut zones: Vec<Zone> = Vec::new();
     let mut face_ids: Vec<u32> = sides.keys().copied().collect();
     face_ids.sort_unstable();
+    // The overlays of faces attached from both sides are independent: computed in parallel with
+    // new vertices numbered from OVERLAY_BASE, renumbered in face order below (same ids as a
+    // sequential run).
+    let attached = |&(c, s): &(usize, usize)| {
+        results[c].as_ref().unwrap().faces[s]
+            .triangles
+            .iter()
+            .any(|t| t.1)
+    };
+    let mut overlays: HashMap<u32, OverlayOutcome> = face_ids
+        .par_iter()
+        .filter(|f| sides[f].iter().filter(|cs| attached(cs)).count() >= 2)
+        .map(|&f| {
+            let list = &sides[&f];
+            let first = overlay_face(pool, results, &maps, list, OVERLAY_BASE, false);
+            // a flat zone: again with the whole section as a third layer, to get its triangles
+            let with_zone = match &first {
+                Ok((o, section_area)) if section_area - o.attached_area > 1e-9 * section_area => {
+                    Some(overlay_face(pool, results, &maps, list, OVERLAY_BASE, true))
+                }
+                _ => None,
+            };
+            (f, (first, with_zone))
+        })
+        .collect();
     for f in face_ids {
         let list = &sides[&f];
         let side = |&(c, s): &(usize, usize)| &results[c].as_ref().unwrap().faces[s];
@@ -254,25 +290,23 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             _ => {
                 let face = &arr.faces[f as usize];
                 let plane = &arr.planes[face.plane as usize].plane;
-                let first = overlay_face(pool, results, &maps, list, positions.len() as u32, false);
-                // a flat zone: again with the whole section as a third layer, to get its triangles
-                let with_zone = match &first {
-                    Ok((o, section_area))
-                        if section_area - o.attached_area > 1e-9 * section_area =>
-                    {
-                        match overlay_face(pool, results, &maps, list, positions.len() as u32, true)
-                        {
-                            Ok(r) => Some(r),
-                            Err(why) => {
-                                g.warnings.push(format!(
+                let (first, second) = overlays.remove(&f).expect("overlay computed");
+                let renumber = |r: Result<(Overlay, f64), String>| {
+                    r.map(|(o, a)| (o.renumbered(OVERLAY_BASE, positions.len() as u32), a))
+                };
+                let first = renumber(first);
+                let with_zone = match second {
+                    None => None,
+                    Some(r) => match renumber(r) {
+                        Ok(r) => Some(r),
+                        Err(why) => {
+                            g.warnings.push(format!(
                                     "face {f} (plane {}): overlay with the section layer failed ({why}); its flat zone is not thickened",
                                     face.plane
                                 ));
-                                None
-                            }
+                            None
                         }
-                    }
-                    _ => None,
+                    },
                 };
                 let zone_found = with_zone.is_some();
                 match with_zone.map(Ok).unwrap_or(first) {
