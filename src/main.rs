@@ -150,6 +150,12 @@ pub struct InfoArgs {
 }
 
 fn main() -> ExitCode {
+    // Rust ignores SIGPIPE, which turns a closed pipe (`| head`) into a panic inside println!:
+    // take the default action instead, like every other command-line tool
+    #[cfg(unix)]
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Reconstruct(a) => cli::reconstruct::run(a),

@@ -47,3 +47,54 @@ fn info_reports_input_errors() {
         "{err}"
     );
 }
+
+/// A reader that stops early (`slice2solid check ... | head -1`) must not make us panic: the process
+/// ends on SIGPIPE like other tools (it used to panic inside println!, exit code 101). The mesh has
+/// 3000 separate tetrahedra, so the component table is far larger than a pipe's buffer.
+#[cfg(unix)]
+#[test]
+fn closed_stdout_is_not_a_panic() {
+    use std::io::{Read, Write};
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("tets.obj");
+    let mut obj = std::fs::File::create(&path).unwrap();
+    for k in 0..3000 {
+        let x = 3.0 * k as f64;
+        for p in [
+            [x, 0.0, 0.0],
+            [x + 1.0, 0.0, 0.0],
+            [x, 1.0, 0.0],
+            [x, 0.0, 1.0],
+        ] {
+            writeln!(obj, "v {} {} {}", p[0], p[1], p[2]).unwrap();
+        }
+        let b = 4 * k + 1;
+        for t in [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]] {
+            writeln!(obj, "f {} {} {}", b + t[0], b + t[1], b + t[2]).unwrap();
+        }
+    }
+    drop(obj);
+    let mut child = bin()
+        .arg("check")
+        .arg(&path)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // read one byte, then close the pipe long before the output is complete
+    let mut out = child.stdout.take().unwrap();
+    let mut one = [0u8; 1];
+    out.read_exact(&mut one).unwrap();
+    drop(out);
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    let status = child.wait().unwrap();
+    assert!(!err.contains("panicked"), "{err}");
+    assert_ne!(status.code(), Some(101), "{err}");
+}
