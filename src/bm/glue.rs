@@ -528,6 +528,18 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             g.nonconforming_faces
         ));
     }
+    let collapsed = collapse_micro_edges(
+        pool,
+        &positions,
+        &mut tris,
+        &mut tets,
+        MICRO_EDGE * bbox_diagonal(&positions),
+    );
+    if collapsed > 0 {
+        g.warnings.push(format!(
+            "{collapsed} surface edges shorter than {MICRO_EDGE:e} of the diagonal collapsed (vertices the arrangement put apart by rounding where several planes nearly meet in one point)"
+        ));
+    }
     // compact vertices
     let mut remap = vec![u32::MAX; positions.len()];
     let mut verts = Vec::new();
@@ -885,6 +897,83 @@ fn bbox_diagonal(positions: &[[f64; 3]]) -> f64 {
 }
 
 /// The triangles (indices, ascending) on each undirected edge, keyed `(min, max)`.
+/// Surface edges shorter than this fraction of the bounding-box diagonal are collapsed.
+const MICRO_EDGE: f64 = 1e-12;
+
+/// Collapses surface edges shorter than `tol`: where several planes nearly meet in one point the
+/// arrangement can make vertices 1e-15 apart, and the triangles between them have no area a float
+/// consumer can resolve (they showed up as overlapping near-coplanar pairs). An edge a–b is
+/// collapsed (b onto a, keeping the vertex on more planes) only when it has two triangles and the
+/// link condition holds (the common neighbours of a and b are the two apexes), so the surface
+/// stays a closed 2-manifold; tets using b use a, and tets that degenerate are dropped.
+fn collapse_micro_edges(
+    pool: &VertexPool,
+    positions: &[[f64; 3]],
+    tris: &mut Vec<[u32; 3]>,
+    tets: &mut Vec<[u32; 4]>,
+    tol: f64,
+) -> usize {
+    let len2 = |a: u32, b: u32| {
+        let (p, q) = (positions[a as usize], positions[b as usize]);
+        (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>()
+    };
+    let tags = |v: u32| pool.tags.get(v as usize).map_or(0, |t| t.len());
+    let mut done = 0;
+    let mut refused: std::collections::HashSet<(u32, u32)> = Default::default();
+    loop {
+        let short = tris
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+            .map(|(a, b)| (a.min(b), a.max(b)))
+            .filter(|&(a, b)| a != b && !refused.contains(&(a, b)) && len2(a, b) < tol * tol)
+            .min();
+        let Some((x, y)) = short else {
+            return done;
+        };
+        let on_edge: Vec<usize> = (0..tris.len())
+            .filter(|&i| tris[i].contains(&x) && tris[i].contains(&y))
+            .collect();
+        let neighbours = |v: u32| -> std::collections::BTreeSet<u32> {
+            tris.iter()
+                .filter(|t| t.contains(&v))
+                .flat_map(|t| t.iter().copied())
+                .filter(|&w| w != v)
+                .collect()
+        };
+        let common: Vec<u32> = neighbours(x)
+            .intersection(&neighbours(y))
+            .copied()
+            .collect();
+        let mut apexes: Vec<u32> = on_edge
+            .iter()
+            .map(|&i| *tris[i].iter().find(|&&w| w != x && w != y).unwrap())
+            .collect();
+        apexes.sort_unstable();
+        if on_edge.len() != 2 || common != apexes {
+            refused.insert((x, y));
+            continue;
+        }
+        let (keep, gone) = if tags(y) > tags(x) { (y, x) } else { (x, y) };
+        let mut i = 0;
+        tris.retain(|_| {
+            i += 1;
+            !on_edge.contains(&(i - 1))
+        });
+        for t in tris.iter_mut().flat_map(|t| t.iter_mut()) {
+            if *t == gone {
+                *t = keep;
+            }
+        }
+        for t in tets.iter_mut().flat_map(|t| t.iter_mut()) {
+            if *t == gone {
+                *t = keep;
+            }
+        }
+        tets.retain(|t| (0..4).all(|i| (i + 1..4).all(|j| t[i] != t[j])));
+        done += 1;
+    }
+}
+
 fn edge_triangles(tris: &[[u32; 3]]) -> HashMap<(u32, u32), Vec<usize>> {
     let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
     for (i, t) in tris.iter().enumerate() {
@@ -1425,6 +1514,44 @@ fn lift_samples(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn micro_edge_is_collapsed_and_the_surface_stays_closed() {
+        // a tetrahedron whose edge 0–1 got a vertex 4 at 1e-15 from vertex 0 (the two triangles
+        // on that edge split in two): the micro edge 0–4 goes, the tetrahedron comes back
+        let positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1e-15, 0.0, 0.0],
+        ];
+        let mut tris = vec![
+            [0, 2, 4],
+            [4, 2, 1],
+            [0, 4, 3],
+            [4, 1, 3],
+            [1, 2, 3],
+            [0, 3, 2],
+        ];
+        let mut tets = vec![[0, 4, 2, 3], [4, 1, 2, 3]];
+        let pool = VertexPool::default();
+        let n = collapse_micro_edges(&pool, &positions, &mut tris, &mut tets, 1e-12 * 3f64.sqrt());
+        assert_eq!(n, 1);
+        let mut got: Vec<[u32; 3]> = tris.iter().map(|&t| sorted(t)).collect();
+        got.sort_unstable();
+        assert_eq!(got, vec![[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]]);
+        assert!(edge_triangles(&tris).values().all(|l| l.len() == 2));
+        // the tet on the micro edge degenerated and is dropped
+        assert_eq!(tets, vec![[0, 1, 2, 3]]);
+        // nothing shorter than the tolerance: nothing changes
+        let before = tris.clone();
+        assert_eq!(
+            collapse_micro_edges(&pool, &positions, &mut tris, &mut tets, 1e-12),
+            0
+        );
+        assert_eq!(tris, before);
+    }
 
     /// hand.csl: a crease (two triangles of one cell) on an edge shared with two section triangles
     /// kept both sheets in one fan at both endpoints, so the edge stayed non-manifold.
