@@ -30,7 +30,7 @@ fn debug_one_four() {
             eprintln!("edge {:?} {:?}-{:?}: {} tris", e, p(e.0), p(e.1), ts.len());
             for &t in ts {
                 let tr = m.triangles[t];
-                eprintln!("   {:?}", tr.map(|v| p(v)));
+                eprintln!("   {:?}", tr.map(p));
             }
         }
     }

@@ -70,8 +70,8 @@ fn run(name: &str, sections: &Sections) -> Option<(usize, i64, f64)> {
 
 #[test]
 fn sphere_cut_by_cube_faces_gives_the_hull_of_the_contours() {
-    let (a, r_sphere) = (1.0, 1.3);
-    let r = (r_sphere * r_sphere - a * a as f64).sqrt();
+    let (a, r_sphere): (f64, f64) = (1.0, 1.3);
+    let r = (r_sphere * r_sphere - a * a).sqrt();
     let mut sections = Sections {
         n_labels: 1,
         ..Default::default()
