@@ -1,27 +1,14 @@
 //! Every shared CSL file reconstructs with the Delaunay pruning engine (no error); the files in
-//! `KNOWN_GOOD` into closed, oriented, manifold surfaces. Prints per file: time, triangles, checks, worst section disagreement, flat zones.
+//! `CLEAN` into closed, oriented, manifold surfaces without self-intersections whose sections agree
+//! with the input. Prints per file: time, triangles, checks, worst section disagreement, flat zones.
 //! The surfaces are written to `$BM_OUT_DIR` (if set) for the outside judge.
 mod bm_common;
 mod common;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::{Error, Options};
 
-const KNOWN_GOOD: &[&str] = &[
-    "Armadillo-23-better",
-    "Elephant",
-    "Heart-simplified",
-    "ParallelEight",
-    "ParallelEightMore",
-    "SideBishop",
-    "balloondog",
-    "balloondog_box",
-    "eight_15",
-    "eight_20",
-    "hand",
-];
-
-/// Files whose surface is also free of self-intersections (exact crossings and overlapping
-/// near-coplanar pairs), has no two vertices at one position, and whose every section agrees with the
+/// Files whose surface is closed, oriented and manifold, free of self-intersections (exact crossings
+/// and overlapping near-coplanar pairs), has no two vertices at one position, and whose every section agrees with the
 /// input within 2% (the criterion). Flat zones attached from neither side are thickened
 /// (bm::thicken), so hand and Armadillo keep their sections (Armadillo lost 20% of one before), and
 /// untangle lets a pinch's kept fan retreat (Elephant and Armadillo had 5 and 6 crossings), and
@@ -61,8 +48,10 @@ const ONE_PIECE: &[&str] = &[
 fn every_shared_csl_file_reconstructs() {
     let out_dir = std::env::var_os("BM_OUT_DIR").map(std::path::PathBuf::from);
     let mut failures = Vec::new();
+    let mut seen = Vec::new();
     for path in common::shared_csl_files() {
         let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        seen.push(name.clone());
         let sections = slice2solid::io::read_sections(&path).expect("read");
         let t = std::time::Instant::now();
         let solid = match slice2solid::reconstruct(&sections, &Options::default()) {
@@ -94,10 +83,7 @@ fn every_shared_csl_file_reconstructs() {
             solid.report.counts.get("branching_samples").unwrap_or(&0),
             solid.report.counts.get("cutting_samples").unwrap_or(&0),
         );
-        // Files that reconstruct into closed oriented manifolds today must keep doing so; the others
-        // are reported (known failures: hand, non-manifold edges where pieces meet; Horsers, closed and
-        // manifold but with an inside-out component).
-        if KNOWN_GOOD.contains(&name.as_str()) && !(c.closed && c.manifold && c.oriented) {
+        if CLEAN.contains(&name.as_str()) && !(c.closed && c.manifold && c.oriented) {
             failures.push(format!(
                 "{name}: closed {} manifold {} oriented {} (boundary edges {}, non-manifold edges {}, vertices {})",
                 c.closed, c.manifold, c.oriented, c.boundary_edges, c.nonmanifold_edges, c.nonmanifold_vertices
@@ -113,6 +99,11 @@ fn every_shared_csl_file_reconstructs() {
         }
         if ONE_PIECE.contains(&name.as_str()) && c.components != 1 {
             failures.push(format!("{name}: {} components, expected 1", c.components));
+        }
+    }
+    for name in CLEAN.iter().chain(ONE_PIECE) {
+        if !seen.iter().any(|s| s == name) {
+            failures.push(format!("{name}: not among the shared CSL files"));
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
