@@ -86,7 +86,7 @@ pub(super) enum Kind {
     Face(u32),
 }
 
-fn tri_area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
+pub(super) fn tri_area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
     let (a, b, c) = (p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
     let u = crate::sections::sub(b, a);
     let v = crate::sections::sub(c, a);
@@ -985,13 +985,13 @@ fn edge_triangles(tris: &[[u32; 3]]) -> HashMap<(u32, u32), Vec<usize>> {
     edges
 }
 
-fn sorted(mut t: [u32; 3]) -> [u32; 3] {
+pub(super) fn sorted(mut t: [u32; 3]) -> [u32; 3] {
     t.sort_unstable();
     t
 }
 
 /// Even permutation of the sorted triple.
-fn parity(t: [u32; 3]) -> bool {
+pub(super) fn parity(t: [u32; 3]) -> bool {
     let inv = (t[0] > t[1]) as u8 + (t[0] > t[2]) as u8 + (t[1] > t[2]) as u8;
     inv % 2 == 0
 }
@@ -1592,19 +1592,6 @@ mod tests {
         );
     }
 
-    fn empty_arrangement() -> Arrangement {
-        Arrangement {
-            planes: Vec::new(),
-            n_input: 0,
-            pool: VertexPool::default(),
-            faces: Vec::new(),
-            cells: Vec::new(),
-            bbox: ([0.0; 3], [1.0; 3]),
-            max_disagreement: 0.0,
-            warnings: Vec::new(),
-        }
-    }
-
     /// The four faces of tetrahedron `t`, oriented outward.
     fn tet_surface(p: &[[f64; 3]], t: [u32; 4]) -> Vec<[u32; 3]> {
         use crate::sections::{cross, dot, sub};
@@ -1652,7 +1639,7 @@ mod tests {
         kind.extend([kinds[1]; 4]);
         assert_eq!(edge_uses(&tris)[&(0, 1)], 4);
         let split = unpinch(
-            &empty_arrangement(),
+            &super::super::empty_arrangement(),
             &mut pos,
             &mut tris,
             &kind,

@@ -258,3 +258,18 @@ pub fn reconstruct(
         report: Report::default(),
     })
 }
+
+/// An arrangement without planes or cells (unit tests of the gluing steps that do not look at it).
+#[cfg(test)]
+fn empty_arrangement() -> Arrangement {
+    Arrangement {
+        planes: Vec::new(),
+        n_input: 0,
+        pool: Default::default(),
+        faces: Vec::new(),
+        cells: Vec::new(),
+        bbox: ([0.0; 3], [1.0; 3]),
+        max_disagreement: 0.0,
+        warnings: Vec::new(),
+    }
+}

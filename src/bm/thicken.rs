@@ -26,7 +26,7 @@
 //! tested exactly against the triangles near it (crossings, and near-coplanar overlaps as
 //! `eval::check` counts them); if one crosses, the component is rebuilt with a tenth of δ, and after
 //! three tries it is left flat (not in the solid, as before), with the reason.
-use super::glue::Kind;
+use super::glue::{parity, sorted, tri_area, Kind};
 use crate::arrangement::{Arrangement, VertexPool};
 use crate::eval::near_coplanar::{overlapping_near_coplanar, NEAR_COPLANAR_RELATIVE_TOLERANCE};
 use crate::eval::tri_tri::mesh_triangles_intersect;
@@ -333,12 +333,6 @@ fn edge_map_at(tris: &[[u32; 3]], at: impl Iterator<Item = u32>) -> EdgeMap {
     edges
 }
 
-fn tri_area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
-    let (a, b, c) = (p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
-    let w = crate::sections::cross(sub(b, a), sub(c, a));
-    0.5 * dot(w, w).sqrt()
-}
-
 /// The quad [p, q, r, s] (cyclic) as triangles: degenerate sides dropped, else split along the
 /// diagonal through the smallest id, so that a quad and its reverse give opposite triangles.
 fn quad(p: u32, q: u32, r: u32, s: u32, out: &mut Vec<[u32; 3]>) {
@@ -356,17 +350,6 @@ fn quad(p: u32, q: u32, r: u32, s: u32, out: &mut Vec<[u32; 3]>) {
             }
         }
     }
-}
-
-fn sorted(mut t: [u32; 3]) -> [u32; 3] {
-    t.sort_unstable();
-    t
-}
-
-/// Even permutation of the sorted triple.
-fn parity(t: [u32; 3]) -> bool {
-    let inv = (t[0] > t[1]) as u8 + (t[0] > t[2]) as u8 + (t[1] > t[2]) as u8;
-    inv % 2 == 0
 }
 
 /// Drop pairs of opposite coincident triangles.
@@ -643,16 +626,7 @@ mod tests {
             tris: vec![vec![[1, 3, 2], [1, 4, 3]]],
         };
         let diag = 3.0;
-        let arr = Arrangement {
-            planes: Vec::new(),
-            n_input: 0,
-            pool: VertexPool::default(),
-            faces: Vec::new(),
-            cells: Vec::new(),
-            bbox: ([0.0; 3], [1.0; 3]),
-            max_disagreement: 0.0,
-            warnings: Vec::new(),
-        };
+        let arr = super::super::empty_arrangement();
         let out = thicken(
             &arr,
             &arr.pool,
