@@ -925,7 +925,7 @@ fn collapse_micro_edges(
             .iter()
             .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
             .map(|(a, b)| (a.min(b), a.max(b)))
-            .filter(|&(a, b)| a != b && !refused.contains(&(a, b)) && len2(a, b) < tol * tol)
+            .filter(|&(a, b)| a != b && len2(a, b) < tol * tol && !refused.contains(&(a, b)))
             .min();
         let Some((x, y)) = short else {
             return done;
