@@ -164,10 +164,14 @@ pub(super) fn moebius_sites(input: &CellInput, s: usize, n: [f64; 3]) -> Vec<Sit
 
 /// Sample the section on a grid of spacing `h`, find each grid point's minimiser of r_b, and on every
 /// grid edge whose two minimisers are discontinuous place a point where r_b1 = r_b2 (bisection on the
-/// segment). Samples of one site pair on two edges of one grid square are consecutive (marching
-/// squares; a square with four, a saddle, is decided by the sign of r_b1 − r_b2 at its centre). The
-/// samples are thinned along these chains (`chains::thin_chains`): points closer than h/2 to a
-/// contour vertex or to another sample are dropped, their chain neighbours linked.
+/// segment). Two samples on edges of one grid square are consecutive when they are on the same
+/// branch: their site pairs match up continuously (`chains::same_branch`; the sites are section
+/// vertices and change from vertex to neighbouring vertex along a branch). Marching squares: a square
+/// with two samples of a branch links them; a square with four, a saddle, links them so that the
+/// corners whose minimiser is discontinuous with the centre's are cut off; a square with three (a
+/// missing crossing) links none. The samples are thinned along these chains
+/// (`chains::thin_chains`): points closer than h/2 to a contour vertex or to another sample are
+/// dropped, their chain neighbours linked.
 fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h: f64) -> Chains {
     let slot = &input.slots[s];
     let bit = 1u128 << s;

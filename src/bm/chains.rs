@@ -135,7 +135,8 @@ impl SlotDiagram {
 
     /// The point where r_b1 = r_b2 (`sa`, else `sb`) on the perpendicular bisector of the chord
     /// pa pb nearest the chord's midpoint (within the chord's length of it), else the midpoint.
-    /// `None` when that point is not strictly inside the section, or the site with the smallest
+    /// `None` when that point or the chord's midpoint is not strictly inside the section (the edge
+    /// would be external, e.g. across a notch), or the site with the smallest
     /// radius there is none of the four sites, continuous with none of them (see [`continuous`]),
     /// and smaller than theirs beyond rounding: the diagram between the two samples leaves the
     /// section or runs into a third site's cell. (The sites are section vertices: along one branch
@@ -158,7 +159,11 @@ impl SlotDiagram {
         let x = diagram_point_across(pa, pb, site(sa.0), site(sa.1))
             .or_else(|| diagram_point_across(pa, pb, site(sb.0), site(sb.1)))
             .unwrap_or([0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]);
-        if !x.iter().all(|c| c.is_finite()) || slot.locator.locate(x) != Where::Inside {
+        let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+        if !x.iter().all(|c| c.is_finite())
+            || slot.locator.locate(x) != Where::Inside
+            || slot.locator.locate(mid) != Where::Inside
+        {
             return None;
         }
         let x3 = plane.to_3d(x);
