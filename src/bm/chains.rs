@@ -325,8 +325,9 @@ pub fn conform_pairs(
         .min()
         .unwrap_or(0);
     let mut diagrams: IdMap<usize, SlotDiagram> = IdMap::default();
+    // whether each pair is an edge, for the current triangulation and pairs
+    let mut edge = grounded_pair_edges(dt, &input.mask, &pairs, min_id);
     for _ in 0..max_rounds {
-        let edge = grounded_pair_edges(dt, &input.mask, &pairs, min_id);
         let missing: Vec<usize> = (0..pairs.len()).filter(|&i| !edge[i]).collect();
         if missing.is_empty() {
             break;
@@ -370,10 +371,11 @@ pub fn conform_pairs(
         }
         pairs.extend(added);
         if !split {
+            // nothing changed: `edge` still holds
             break;
         }
+        edge = grounded_pair_edges(dt, &input.mask, &pairs, min_id);
     }
-    let edge = grounded_pair_edges(dt, &input.mask, &pairs, min_id);
     out.not_edges = (0..pairs.len())
         .filter(|&i| !edge[i])
         .map(|i| pairs[i])
