@@ -13,8 +13,16 @@
 //! * face polygons lose repeated vertices; a face left with fewer than three is dropped (it had no
 //!   area), and so is a cell left with no face (it had no volume); the other cells keep their
 //!   remaining faces, which still close them (the merge is an edge collapse of their boundary);
-//! * faces and cells are renumbered, volumes of the touched cells recomputed.
+//! * faces and cells are renumbered, volumes of the touched cells recomputed;
+//! * a cluster is left apart when its merge would leave a cell with one to three faces or two faces
+//!   on one vertex set (a thin wedge between two nearly parallel planes: its two big faces would
+//!   become one polygon on two planes).
+//!
+//! After the pieces are built, a section point on two or more planes (contour crossing) closer than
+//! the same tolerance to an arrangement vertex on all its planes becomes that vertex
+//! (`merge_line_points`), so no contour leaves a micro edge next to a face corner.
 use super::{Arrangement, CellId, FaceId, PlaneTags, VertexId};
+use crate::fxhash::FxHashMap as HashMap;
 
 /// What a merge changed.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -268,6 +276,60 @@ pub(super) fn merge_close_vertices(
     }
 }
 
+/// Section points on two or more planes (contour crossings, contour vertices on a plane) closer
+/// than `tol` to an arrangement vertex on all their planes are that vertex: a contour passing a
+/// rounding error away from a corner would otherwise leave a micro edge on the face boundary.
+/// `n_arr`: number of arrangement vertices at the start of the pool. Returns the merged count.
+pub(super) fn merge_line_points(arr: &mut Arrangement, n_arr: usize, tol: f64) -> usize {
+    if !(tol > 0.0) {
+        return 0;
+    }
+    let pos = &arr.pool.positions;
+    let mut corners: Vec<u32> = (0..n_arr as u32).collect();
+    corners.sort_by(|&a, &b| pos[a as usize][0].total_cmp(&pos[b as usize][0]));
+    let xs: Vec<f64> = corners.iter().map(|&a| pos[a as usize][0]).collect();
+    let mut merged_into: HashMap<VertexId, VertexId> = HashMap::default();
+    for v in n_arr..pos.len() {
+        let tags = &arr.pool.tags[v];
+        if tags.len() < 2 {
+            continue;
+        }
+        let p = pos[v];
+        let start = xs.partition_point(|&x| x <= p[0] - tol);
+        let mut best: Option<(f64, u32)> = None;
+        for &a in &corners[start..] {
+            let q = pos[a as usize];
+            if q[0] >= p[0] + tol {
+                break;
+            }
+            let d = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt();
+            let on_all = tags.iter().all(|t| arr.pool.tags[a as usize].contains(t));
+            if d < tol && on_all && best.is_none_or(|b| d < b.0) {
+                best = Some((d, a));
+            }
+        }
+        if let Some((_, a)) = best {
+            merged_into.insert(v as VertexId, a);
+        }
+    }
+    if merged_into.is_empty() {
+        return 0;
+    }
+    let map = |v: VertexId| merged_into.get(&v).copied().unwrap_or(v);
+    for face in &mut arr.faces {
+        for piece in &mut face.pieces {
+            piece.outer = merged_polygon(&piece.outer, map);
+            for h in &mut piece.holes {
+                *h = merged_polygon(h, map);
+            }
+            piece.holes.retain(|h| h.len() >= 3);
+        }
+        face.pieces.retain(|p| p.outer.len() >= 3);
+    }
+    super::reconcile::compact(arr, &merged_into);
+    merged_into.len()
+}
+
 /// Volume of a cell from its face polygons (outward orientation from `outward_is_plane_normal`).
 fn cell_volume(arr: &Arrangement, c: CellId) -> f64 {
     let cell = &arr.cells[c as usize];
@@ -356,6 +418,89 @@ mod tests {
     fn diag(s: &Sections) -> f64 {
         let (lo, hi) = s.bounding_box().unwrap();
         (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
+    }
+
+    /// On z = 0, a triangle whose edge y = x + δ crosses x = 0 and y = 0 at δ from the corner of
+    /// the three axis planes (the other two planes carry no section).
+    fn contour_passing_near_a_corner(delta: f64) -> Sections {
+        let axis = |k: usize| {
+            let mut n = [0.0; 3];
+            n[k] = 1.0;
+            Plane::from_equation(n, 0.0).unwrap()
+        };
+        let z = axis(2);
+        let pts = vec![[-1.0, -1.0 + delta], [1.0, 1.0 + delta], [-1.0, 1.0]];
+        let mut sections = vec![Section {
+            plane: z,
+            regions: vec![Region {
+                label: 1,
+                outer: Contour::from_2d(&z, pts),
+                holes: Vec::new(),
+            }],
+            source_index: 0,
+            max_off_plane: 0.0,
+        }];
+        for k in [0, 1] {
+            sections.push(Section {
+                plane: axis(k),
+                regions: Vec::new(),
+                source_index: k + 1,
+                max_off_plane: 0.0,
+            });
+        }
+        Sections {
+            sections,
+            n_labels: 1,
+            warnings: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn crossings_a_rounding_error_from_a_corner_are_the_corner() {
+        let s = contour_passing_near_a_corner(1e-13);
+        let off = ArrangementOptions {
+            merge_tolerance: 0.0,
+            ..Default::default()
+        };
+        let arr = Arrangement::build(&s, &off).unwrap();
+        assert!(closest_pair(&arr) < 1e-12, "{}", closest_pair(&arr));
+        let opt = ArrangementOptions::default();
+        let arr = Arrangement::build(&s, &opt).unwrap();
+        assert!(closest_pair(&arr) >= opt.merge_tolerance * diag(&s));
+        // The corner of the three planes is on the contour of plane 0.
+        let corner = arr
+            .pool
+            .tags
+            .iter()
+            .position(|t| t.len() == 3 && t[..] == [0, 1, 2]);
+        let corner = corner.expect("corner") as u32;
+        let on_contour = arr
+            .faces
+            .iter()
+            .flat_map(|f| f.pieces.iter())
+            .filter(|p| p.outer.contains(&corner))
+            .count();
+        assert!(on_contour >= 2, "{on_contour}");
+        let total: f64 = arr
+            .faces
+            .iter()
+            .filter(|f| f.plane == 0)
+            .flat_map(|f| f.pieces.iter())
+            .map(|p| arr.piece_area(0, p))
+            .sum();
+        assert!((total - s.sections[0].area()).abs() <= 1e-9 * total);
+        for face in &arr.faces {
+            for piece in &face.pieces {
+                assert!(piece.outer.len() >= 3);
+                let a = arr.loop_area(face.plane, &piece.outer);
+                assert!(a > 1e-20, "piece area {a}");
+            }
+        }
+        assert!(
+            arr.warnings.iter().all(|w| w.starts_with("sections")),
+            "{:?}",
+            arr.warnings
+        );
     }
 
     #[test]
