@@ -46,7 +46,7 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
 pub(crate) fn close_clusters(positions: &[[f64; 3]], tol: f64) -> Vec<u32> {
     let n = positions.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    if !(tol > 0.0) {
+    if tol.is_nan() || tol <= 0.0 {
         return parent;
     }
     let mut order: Vec<u32> = (0..n as u32).collect();
@@ -137,9 +137,9 @@ fn consistent_clusters(arr: &Arrangement, mut root: Vec<u32>) -> Vec<u32> {
         }
         reject.sort_unstable();
         reject.dedup();
-        for v in 0..root.len() {
-            if reject.binary_search(&root[v]).is_ok() {
-                root[v] = v as u32;
+        for (v, r) in root.iter_mut().enumerate() {
+            if reject.binary_search(r).is_ok() {
+                *r = v as u32;
             }
         }
     }
@@ -161,11 +161,9 @@ pub(super) fn merge_close_vertices(
     let mut sum = vec![[0.0f64; 3]; n];
     let mut count = vec![0u32; n];
     let mut tags: Vec<PlaneTags> = vec![PlaneTags::new(); n];
-    for v in 0..n {
-        let r = root[v] as usize;
-        for k in 0..3 {
-            sum[r][k] += arr.pool.positions[v][k];
-        }
+    for (v, &r) in root.iter().enumerate() {
+        let (r, p) = (r as usize, arr.pool.positions[v]);
+        sum[r] = [sum[r][0] + p[0], sum[r][1] + p[1], sum[r][2] + p[2]];
         count[r] += 1;
         tags[r].extend(arr.pool.tags[v].iter().copied());
     }
@@ -281,7 +279,7 @@ pub(super) fn merge_close_vertices(
 /// rounding error away from a corner would otherwise leave a micro edge on the face boundary.
 /// `n_arr`: number of arrangement vertices at the start of the pool. Returns the merged count.
 pub(super) fn merge_line_points(arr: &mut Arrangement, n_arr: usize, tol: f64) -> usize {
-    if !(tol > 0.0) {
+    if tol.is_nan() || tol <= 0.0 {
         return 0;
     }
     let pos = &arr.pool.positions;
