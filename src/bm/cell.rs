@@ -151,34 +151,11 @@ pub fn finite_tets(dt: &crate::delaunay::Delaunay) -> Vec<[u32; 4]> {
         .tets()
         .map(|t| {
             let v = dt.tet_vertices(t);
-            canonical_tet([v[0], v[1], v[3], v[2]])
+            super::complex::canonical_tet([v[0], v[1], v[3], v[2]]).0
         })
         .collect();
     tets.sort_unstable();
     tets
-}
-
-/// `t` rotated by an even permutation so that t[0] is its smallest vertex and t[1] the smallest of
-/// the other three.
-fn canonical_tet(t: [u32; 4]) -> [u32; 4] {
-    let [a, b, c, d] = t;
-    let m = if a <= b.min(c).min(d) {
-        t
-    } else if b <= c.min(d) {
-        [b, a, d, c]
-    } else if c <= d {
-        [c, d, a, b]
-    } else {
-        [d, c, b, a]
-    };
-    let [a, b, c, d] = m;
-    if b <= c.min(d) {
-        m
-    } else if c <= d {
-        [a, c, d, b]
-    } else {
-        [a, d, b, c]
-    }
 }
 
 /// Per slot: sorted vertex triple → (the triangle oriented outward from its tet, the tet).
@@ -207,7 +184,7 @@ fn run_cell_with(
     let mut timing = CellTiming::default();
     let mut clock = std::time::Instant::now();
     let mut dt = crate::delaunay::Delaunay::try_new(&input.points)?;
-    let mut tets = finite_tets(&dt);
+    let mut cx = Complex::from_delaunay(input.points.len(), &dt);
     timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
     let mut n_cut = 0;
@@ -218,7 +195,6 @@ fn run_cell_with(
     let mut pair_list: Vec<(usize, u32, u32)> = Vec::new();
     if sampling.branching || sampling.cutting {
         for _round in 0..BRANCHING_ROUNDS {
-            let cx = Complex::new(input.points.len(), tets.clone());
             let ty: Vec<TetType> = cx
                 .tets
                 .iter()
@@ -323,12 +299,10 @@ fn run_cell_with(
                 pair_list.extend(pc.pairs.iter().map(|p| (p.slot, p.ends.0, p.ends.1)));
             }
             timing.sample_pairs += lap(&mut clock);
-            tets = finite_tets(&dt);
+            cx = Complex::from_delaunay(input.points.len(), &dt);
             timing.delaunay += lap(&mut clock);
         }
     }
-    let cx = Complex::new(input.points.len(), tets);
-    timing.delaunay += lap(&mut clock);
     let classifier = Classifier::new(&input);
 
     // Section triangles per slot: grounded faces of non-flat tets.

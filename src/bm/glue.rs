@@ -26,6 +26,7 @@ use super::cell::CellResult;
 use super::face_overlay::{overlay, overlay_with_section, Overlay};
 use super::thicken::{thicken, Zone};
 use crate::arrangement::{Arrangement, VertexPool};
+use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::mesh::{TetMesh, TriMesh};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -63,6 +64,26 @@ pub struct Glued {
     pub flat_zone_area_thickened: f64,
     /// Connected flat zones that could not be thickened (left out of the solid).
     pub flat_zones_left: u64,
+    /// Wall time of each gluing step, in the order run (reported as `glue_seconds.<step>`).
+    pub timings: Vec<(&'static str, f64)>,
+}
+
+/// Wall time of consecutive steps: `lap(name)` records the time since the previous lap.
+struct Laps {
+    last: std::time::Instant,
+}
+
+impl Laps {
+    fn new() -> Self {
+        Laps {
+            last: std::time::Instant::now(),
+        }
+    }
+    fn lap(&mut self, name: &'static str, out: &mut Vec<(&'static str, f64)>) {
+        let now = std::time::Instant::now();
+        out.push((name, (now - self.last).as_secs_f64()));
+        self.last = now;
+    }
 }
 
 /// Unit normal of face `f`'s plane pointing into cell `c` (zero when `c` is not on the face).
@@ -96,6 +117,7 @@ pub(super) fn tri_area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
 
 pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]) -> Glued {
     let mut g = Glued::default();
+    let mut laps = Laps::new();
     let mut positions = pool.positions.clone();
     // global id per cell-local vertex (branching samples get new ids)
     // branching samples: (global id, unit direction into their cell)
@@ -153,6 +175,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             sides.entry(fs.face).or_default().push((c, s));
         }
     }
+    laps.lap("collect", &mut g.timings);
     // original edge (min, max) → vertices the face overlays put inside it, from min to max
     let mut edge_splits: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
     // flat zones attached from neither side, thickened after the faces are assembled
@@ -184,6 +207,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             (f, (first, with_zone))
         })
         .collect();
+    laps.lap("overlay", &mut g.timings);
     for f in face_ids {
         let list = &sides[&f];
         let side = |&(c, s): &(usize, usize)| &results[c].as_ref().unwrap().faces[s];
@@ -365,6 +389,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             }
         }
     }
+    laps.lap("faces", &mut g.timings);
     split_at_edges(&mut tris, &mut kind, &mut positions, &edge_splits);
     // Cancel coincident opposite triangles (flat-zone sheets triangulated alike on both sides).
     let mut by_key: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
@@ -397,6 +422,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .map(|(t, _)| t)
         .unzip();
     let mut kind = kind;
+    laps.lap("split_cancel", &mut g.timings);
     let mut slab_vertices = 0..0u32;
     if std::env::var("SLICE2SOLID_NO_THICKEN").is_ok() {
         for z in &zones {
@@ -442,12 +468,14 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             }
         }
     }
+    laps.lap("thicken", &mut g.timings);
     slab_vertices.end = slab_vertices.end.min(positions.len() as u32);
     let after_thicken = positions.len() as u32;
     let before_lift = positions.clone();
     let mut copies = Vec::new();
     let split = unpinch(arr, &mut positions, &mut tris, &kind, &mut copies);
     g.pinched_vertices = split.len() as u64;
+    laps.lap("unpinch", &mut g.timings);
     lift_samples(&mut positions, &tris, &samples, &split);
     let mut crease_mids = Vec::new();
     let n_split_edges = split_mixed_edges(&mut positions, &mut tris, &mut kind, &mut crease_mids);
@@ -456,6 +484,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             "{n_split_edges} edges where a crease met a section were split, the crease's side displaced into its cell"
         ));
     }
+    laps.lap("lift_split_mixed", &mut g.timings);
     // every displaced vertex with the position it was displaced from
     let moved: Vec<(u32, [f64; 3])> = (0..before_lift.len())
         .filter(|&v| positions[v] != before_lift[v])
@@ -464,6 +493,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         .chain(crease_mids.iter().copied())
         .collect();
     let untangled = super::untangle::untangle(&mut positions, &tris, &moved);
+    laps.lap("untangle", &mut g.timings);
     if std::env::var_os("BM_DEBUG_CROSS").is_some() {
         debug_crossings(
             pool,
@@ -515,7 +545,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             g.pinched_vertices
         ));
     }
-    g.double_sheet_triangles = count_double_sheet(&tris);
+    g.double_sheet_triangles = count_double_sheet(positions.len(), &tris);
     if g.double_sheet_triangles > 0 {
         g.warnings.push(format!(
             "{} surface triangles touch non-manifold edges (singularities where pieces meet, or overlapping flat-zone sheets)",
@@ -528,6 +558,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             g.nonconforming_faces
         ));
     }
+    laps.lap("double_sheet", &mut g.timings);
     let collapsed = collapse_micro_edges(
         pool,
         &positions,
@@ -540,6 +571,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             "{collapsed} surface edges shorter than {MICRO_EDGE:e} of the diagonal collapsed (vertices the arrangement put apart by rounding where several planes nearly meet in one point)"
         ));
     }
+    laps.lap("collapse", &mut g.timings);
     // compact vertices
     let mut remap = vec![u32::MAX; positions.len()];
     let mut verts = Vec::new();
@@ -579,6 +611,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
         vertices: verts,
         tets,
     };
+    laps.lap("compact", &mut g.timings);
     g
 }
 
@@ -997,22 +1030,14 @@ pub(super) fn parity(t: [u32; 3]) -> bool {
 }
 
 /// Triangles on an edge used by more than two triangles (a sign of overlapping sheets).
-fn count_double_sheet(tris: &[[u32; 3]]) -> u64 {
-    let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in tris {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            *edges.entry((a.min(b), a.max(b))).or_default() += 1;
+fn count_double_sheet(n_vertices: usize, tris: &[[u32; 3]]) -> u64 {
+    let mut on = vec![false; tris.len()];
+    for (_, l) in crowded_edges(&Stars::new(n_vertices, tris), tris) {
+        for (i, _) in l {
+            on[i] = true;
         }
     }
-    tris.iter()
-        .filter(|t| {
-            (0..3).any(|k| {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                edges[&(a.min(b), a.max(b))] > 2
-            })
-        })
-        .count() as u64
+    on.iter().filter(|&&x| x).count() as u64
 }
 
 /// Where the solid touches a section plane from one side only (branching on a side the other cell
@@ -1034,32 +1059,23 @@ fn unpinch(
     tris: &mut [[u32; 3]],
     kind: &[Kind],
     copies: &mut Vec<(u32, u32)>,
-) -> std::collections::HashSet<u32> {
-    let mut at: HashMap<u32, Vec<usize>> = HashMap::new();
-    for (i, t) in tris.iter().enumerate() {
-        for &v in t {
-            at.entry(v).or_default().push(i);
-        }
-    }
-    let edges = edge_triangles(tris);
-    let partners = pair_around_edges(positions, tris);
-    // per edge with more than two triangles: its sheets (groups of triangles that stay together)
-    #[derive(Clone, Copy, PartialEq)]
-    enum Pairing {
-        Kind,
-        Angle(usize),
-        Together,
-    }
+) -> FxHashSet<u32> {
+    let at = Stars::new(positions.len(), tris);
+    let crowded = crowded_edges(&at, tris);
+    let partners = pair_around_edges(positions, tris, &crowded);
+    // the triangles of each edge used by more than two (ascending; a triangle using the edge twice
+    // is listed twice)
+    let edges: FxHashMap<(u32, u32), Vec<usize>> = crowded
+        .iter()
+        .map(|(e, l)| (*e, l.iter().map(|u| u.0).collect()))
+        .collect();
     let forward = |i: usize, a: u32, b: u32| {
         let t = tris[i];
         (0..3).any(|k| t[k] == a && t[(k + 1) % 3] == b)
     };
-    let mut choice: HashMap<(u32, u32), Pairing> = HashMap::new();
+    let mut choice: FxHashMap<(u32, u32), Pairing> = FxHashMap::default();
     for (&(a, b), l) in &edges {
-        if l.len() <= 2 {
-            continue;
-        }
-        let mut by_kind: HashMap<Kind, Vec<usize>> = HashMap::new();
+        let mut by_kind: FxHashMap<Kind, Vec<usize>> = FxHashMap::default();
         for &i in l {
             by_kind.entry(kind_key(kind[i])).or_default().push(i);
         }
@@ -1081,77 +1097,11 @@ fn unpinch(
         };
         choice.insert((a, b), c);
     }
-    fn find(p: &mut [usize], mut x: usize) -> usize {
-        while p[x] != x {
-            p[x] = p[p[x]];
-            x = p[x];
-        }
-        x
-    }
-    let mut vs: Vec<u32> = at.keys().copied().collect();
-    vs.sort_unstable();
-    // the sheets of an edge, as pairs of triangles to join
-    let sheet_links = |e: (u32, u32), c: Pairing| -> Vec<(usize, usize)> {
-        let l = &edges[&e];
-        match c {
-            Pairing::Together => l.windows(2).map(|w| (w[0], w[1])).collect(),
-            Pairing::Kind => {
-                let mut out = Vec::new();
-                for x in 0..l.len() {
-                    for y in x + 1..l.len() {
-                        if kind_key(kind[l[x]]) == kind_key(kind[l[y]]) {
-                            out.push((l[x], l[y]));
-                        }
-                    }
-                }
-                out
-            }
-            Pairing::Angle(pass) => l
-                .iter()
-                .map(|&i| (i, partners[pass][&(i, slot_of(&tris[i], e.0, e.1))]))
-                .collect(),
-        }
-    };
-    // fans of a vertex: classes of its star's triangles (as indices into tris)
-    let fans_of = |v: u32, choice: &HashMap<(u32, u32), Pairing>| -> Vec<Vec<usize>> {
-        let list = &at[&v];
-        let pos = |i: usize| list.iter().position(|&j| j == i);
-        let mut parent: Vec<usize> = (0..list.len()).collect();
-        let mut ws: Vec<u32> = list
-            .iter()
-            .flat_map(|&i| tris[i].iter().copied())
-            .filter(|&w| w != v)
-            .collect();
-        ws.sort_unstable();
-        ws.dedup();
-        for w in ws {
-            let e = (v.min(w), v.max(w));
-            let links = match choice.get(&e) {
-                Some(&c) => sheet_links(e, c),
-                None => {
-                    let l = &edges[&e];
-                    if l.len() == 2 {
-                        vec![(l[0], l[1])]
-                    } else {
-                        Vec::new()
-                    }
-                }
-            };
-            for (x, y) in links {
-                if let (Some(x), Some(y)) = (pos(x), pos(y)) {
-                    let (x, y) = (find(&mut parent, x), find(&mut parent, y));
-                    parent[x] = y;
-                }
-            }
-        }
-        let mut fans: HashMap<usize, Vec<usize>> = HashMap::new();
-        for (k, &i) in list.iter().enumerate() {
-            let r = find(&mut parent, k);
-            fans.entry(r).or_default().push(i);
-        }
-        let mut fans: Vec<Vec<usize>> = fans.into_values().collect();
-        fans.sort();
-        fans
+    let fans = Fans {
+        at: &at,
+        tris,
+        kind,
+        partners: &partners,
     };
     // an angular pairing that separates nothing at either endpoint: try the other side's wedges
     let mut keys: Vec<(u32, u32)> = choice.keys().copied().collect();
@@ -1164,7 +1114,7 @@ fn unpinch(
             }
             let l = &edges[&e];
             let separated = [e.0, e.1].iter().any(|&v| {
-                let fans = fans_of(v, &choice);
+                let fans = fans.of(v, &choice);
                 let f0 = fans.iter().position(|f| f.contains(&l[0]));
                 l.iter()
                     .any(|&i| fans.iter().position(|f| f.contains(&i)) != f0)
@@ -1178,26 +1128,19 @@ fn unpinch(
             break;
         }
     }
-    let diag = {
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for p in positions.iter() {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        let d = crate::sections::sub(hi, lo);
-        crate::sections::dot(d, d).sqrt()
-    };
-    // all fans from the original ids, before any vertex is split
+    let diag = bbox_diagonal(positions);
+    // all fans from the original ids, before any vertex is split (independent: in parallel)
+    let vs: Vec<u32> = (0..positions.len() as u32)
+        .filter(|&v| !at.of(v).is_empty())
+        .collect();
     let all_fans: Vec<(u32, Vec<Vec<usize>>)> = vs
-        .iter()
-        .map(|&v| (v, fans_of(v, &choice)))
+        .par_iter()
+        .map(|&v| (v, fans.of(v, &choice)))
         .filter(|(_, f)| f.len() >= 2)
         .collect();
-    let mut split = std::collections::HashSet::new();
+    let mut split = FxHashSet::default();
     for (v, mut fans) in all_fans {
-        let list = at[&v].clone();
+        let list = at.of(v).to_vec();
         let planar = |f: &Vec<usize>| {
             f.iter()
                 .filter(|&&i| matches!(kind[i], Kind::Face(_)))
@@ -1276,6 +1219,197 @@ fn unpinch(
     split
 }
 
+/// How the triangles of an edge used by more than two triangles are paired into sheets.
+#[derive(Clone, Copy, PartialEq)]
+enum Pairing {
+    /// Triangles of one kind together.
+    Kind,
+    /// Angular neighbours (`pair_around_edges` pass).
+    Angle(usize),
+    /// All in one sheet.
+    Together,
+}
+
+/// The triangles around each vertex, ascending (a triangle listed once per corner at the vertex).
+struct Stars {
+    start: Vec<usize>,
+    tri: Vec<usize>,
+}
+
+impl Stars {
+    fn new(n_vertices: usize, tris: &[[u32; 3]]) -> Stars {
+        let mut start = vec![0usize; n_vertices + 1];
+        for t in tris {
+            for &v in t {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n_vertices {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut tri = vec![0usize; start[n_vertices]];
+        for (i, t) in tris.iter().enumerate() {
+            for &v in t {
+                tri[fill[v as usize]] = i;
+                fill[v as usize] += 1;
+            }
+        }
+        Stars { start, tri }
+    }
+    fn of(&self, v: u32) -> &[usize] {
+        match self.start.get(v as usize + 1) {
+            Some(&end) => &self.tri[self.start[v as usize]..end],
+            None => &[],
+        }
+    }
+}
+
+/// Every edge (min, max) used by more than two triangles, ascending, with its uses (triangle, slot
+/// k of the edge t[k]–t[k+1]) ascending: found around each edge's smaller endpoint, in parallel.
+#[allow(clippy::type_complexity)]
+fn crowded_edges(at: &Stars, tris: &[[u32; 3]]) -> Vec<((u32, u32), Vec<(usize, u8)>)> {
+    let n = at.start.len() - 1;
+    let chunks: Vec<Vec<((u32, u32), Vec<(usize, u8)>)>> = (0..n.div_ceil(4096))
+        .into_par_iter()
+        .map(|c| {
+            let mut out = Vec::new();
+            let mut uses: Vec<(u32, usize, u8)> = Vec::new();
+            for v in (c * 4096) as u32..((c + 1) * 4096).min(n) as u32 {
+                uses.clear();
+                let mut prev = usize::MAX;
+                for &i in at.of(v) {
+                    if i == prev {
+                        continue;
+                    }
+                    prev = i;
+                    let t = tris[i];
+                    for k in 0..3 {
+                        let (a, b) = (t[k], t[(k + 1) % 3]);
+                        if a.min(b) == v {
+                            uses.push((a.max(b), i, k as u8));
+                        }
+                    }
+                }
+                uses.sort_unstable();
+                for g in uses.chunk_by(|x, y| x.0 == y.0) {
+                    if g.len() > 2 {
+                        out.push(((v, g[0].0), g.iter().map(|u| (u.1, u.2)).collect()));
+                    }
+                }
+            }
+            out
+        })
+        .collect();
+    chunks.concat()
+}
+
+/// What the fans of a vertex are computed from (`unpinch`).
+struct Fans<'a> {
+    at: &'a Stars,
+    tris: &'a [[u32; 3]],
+    kind: &'a [Kind],
+    partners: &'a [FxHashMap<(usize, u8), usize>; 2],
+}
+
+impl Fans<'_> {
+    /// The sheets of crowded edge `e` (triangles `l`, ascending), as pairs of triangles to join.
+    fn sheet_links(&self, e: (u32, u32), l: &[usize], c: Pairing) -> Vec<(usize, usize)> {
+        match c {
+            Pairing::Together => l.windows(2).map(|w| (w[0], w[1])).collect(),
+            Pairing::Kind => {
+                let mut out = Vec::new();
+                for x in 0..l.len() {
+                    for y in x + 1..l.len() {
+                        if kind_key(self.kind[l[x]]) == kind_key(self.kind[l[y]]) {
+                            out.push((l[x], l[y]));
+                        }
+                    }
+                }
+                out
+            }
+            Pairing::Angle(pass) => l
+                .iter()
+                .map(|&i| {
+                    (
+                        i,
+                        self.partners[pass][&(i, slot_of(&self.tris[i], e.0, e.1))],
+                    )
+                })
+                .collect(),
+        }
+    }
+
+    /// Fans of `v`: classes of its star's triangles (indices into tris, each class ascending, the
+    /// classes sorted) joined through two-triangle edges and the sheets of crowded edges.
+    fn of(&self, v: u32, choice: &FxHashMap<(u32, u32), Pairing>) -> Vec<Vec<usize>> {
+        fn find(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        let list = self.at.of(v);
+        // first position of triangle i in the (ascending) star
+        let pos = |i: usize| {
+            let p = list.partition_point(|&j| j < i);
+            (list.get(p) == Some(&i)).then_some(p)
+        };
+        let mut parent: Vec<usize> = (0..list.len()).collect();
+        // (other endpoint, triangle) per use of an edge at v: grouped, each group is the edge's
+        // triangle list
+        let mut uses: Vec<(u32, usize)> = Vec::new();
+        let mut prev = usize::MAX;
+        for &i in list {
+            if i == prev {
+                continue;
+            }
+            prev = i;
+            let t = self.tris[i];
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                if a == v && b != v {
+                    uses.push((b, i));
+                } else if b == v && a != v {
+                    uses.push((a, i));
+                }
+            }
+        }
+        uses.sort_unstable();
+        let mut l: Vec<usize> = Vec::new();
+        for g in uses.chunk_by(|x, y| x.0 == y.0) {
+            let w = g[0].0;
+            let e = (v.min(w), v.max(w));
+            l.clear();
+            l.extend(g.iter().map(|u| u.1));
+            let links = match choice.get(&e) {
+                Some(&c) => self.sheet_links(e, &l, c),
+                None if l.len() == 2 => vec![(l[0], l[1])],
+                None => Vec::new(),
+            };
+            for (x, y) in links {
+                if let (Some(x), Some(y)) = (pos(x), pos(y)) {
+                    let (x, y) = (find(&mut parent, x), find(&mut parent, y));
+                    parent[x] = y;
+                }
+            }
+        }
+        let mut slot = vec![usize::MAX; list.len()];
+        let mut fans: Vec<Vec<usize>> = Vec::new();
+        for (k, &i) in list.iter().enumerate() {
+            let r = find(&mut parent, k);
+            if slot[r] == usize::MAX {
+                slot[r] = fans.len();
+                fans.push(Vec::new());
+            }
+            fans[slot[r]].push(i);
+        }
+        fans.sort();
+        fans
+    }
+}
+
 /// An edge still used by four triangles after `unpinch` — two non-planar ones of one cell (a crease)
 /// and two section triangles of one face — keeps both sheets in one fan at both endpoints, so no
 /// vertex split separates them. The edge is split at its midpoint instead, with a separate midpoint for
@@ -1288,9 +1422,10 @@ fn split_mixed_edges(
     kind: &mut Vec<Kind>,
     moved: &mut Vec<(u32, [f64; 3])>,
 ) -> usize {
-    let edges = edge_triangles(tris);
-    let mut todo: Vec<((u32, u32), Vec<usize>)> = edges
+    let crowded = crowded_edges(&Stars::new(positions.len(), tris), tris);
+    let mut todo: Vec<((u32, u32), Vec<usize>)> = crowded
         .into_iter()
+        .map(|(e, l)| (e, l.into_iter().map(|u| u.0).collect::<Vec<usize>>()))
         .filter(|(_, l)| {
             l.len() == 4 && {
                 let cells: Vec<&usize> = l
@@ -1418,17 +1553,12 @@ fn slot_of(t: &[u32; 3], v: u32, w: u32) -> u8 {
 fn pair_around_edges(
     positions: &[[f64; 3]],
     tris: &[[u32; 3]],
-) -> [HashMap<(usize, u8), usize>; 2] {
+    crowded: &[((u32, u32), Vec<(usize, u8)>)],
+) -> [FxHashMap<(usize, u8), usize>; 2] {
     use crate::sections::{cross, dot, sub};
-    let mut edges: HashMap<(u32, u32), Vec<(usize, u8)>> = HashMap::new();
-    for (i, t) in tris.iter().enumerate() {
-        for k in 0..3u8 {
-            let (a, b) = (t[k as usize], t[(k as usize + 1) % 3]);
-            edges.entry((a.min(b), a.max(b))).or_default().push((i, k));
-        }
-    }
-    let mut out = [HashMap::new(), HashMap::new()];
-    for (&(a, b), l) in &edges {
+    let mut out = [FxHashMap::default(), FxHashMap::default()];
+    for ((a, b), l) in crowded {
+        let (a, b) = (*a, *b);
         if l.len() <= 2 || l.len() % 2 == 1 {
             continue;
         }
@@ -1484,16 +1614,17 @@ fn lift_samples(
     positions: &mut [[f64; 3]],
     tris: &[[u32; 3]],
     samples: &[(u32, [f64; 3])],
-    split: &std::collections::HashSet<u32>,
+    split: &FxHashSet<u32>,
 ) {
-    let mut shortest: HashMap<u32, f64> = HashMap::new();
+    // shortest incident edge per vertex (None: on no triangle)
+    let mut shortest: Vec<Option<f64>> = vec![None; positions.len()];
     for t in tris {
         for k in 0..3 {
             let (a, b) = (t[k], t[(k + 1) % 3]);
             let d = crate::sections::sub(positions[a as usize], positions[b as usize]);
             let l = crate::sections::dot(d, d).sqrt();
             for v in [a, b] {
-                let e = shortest.entry(v).or_insert(f64::INFINITY);
+                let e = shortest[v as usize].get_or_insert(f64::INFINITY);
                 *e = e.min(l);
             }
         }
@@ -1502,7 +1633,9 @@ fn lift_samples(
         if split.contains(&v) {
             continue;
         }
-        let Some(&l) = shortest.get(&v) else { continue };
+        let Some(l) = shortest[v as usize] else {
+            continue;
+        };
         let delta = 1e-6 * l;
         let p = &mut positions[v as usize];
         for k in 0..3 {

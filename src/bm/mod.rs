@@ -267,6 +267,9 @@ pub fn reconstruct(
     report.count("overlay_faces", glued.overlay_faces);
     report.count("overlay_vertices", glued.overlay_vertices);
     report.count("overlay_fallbacks", glued.overlay_fallbacks);
+    for &(step, secs) in &glued.timings {
+        report.values.insert(format!("glue_seconds.{step}"), secs);
+    }
     report.warnings.extend(glued.warnings);
     Ok(Solid {
         surface: glued.surface,

@@ -30,9 +30,11 @@ use super::glue::{parity, sorted, tri_area, Kind};
 use crate::arrangement::{Arrangement, VertexPool};
 use crate::eval::near_coplanar::{overlapping_near_coplanar, NEAR_COPLANAR_RELATIVE_TOLERANCE};
 use crate::eval::tri_tri::mesh_triangles_intersect;
+use crate::fxhash::FxHashSet;
 use crate::geom::bvh::{Aabb, Bvh};
 use crate::sections::{dot, sub};
-use std::collections::{HashMap, HashSet};
+use rayon::prelude::*;
+use std::collections::HashMap;
 
 /// Edge (min, max) → the triangles using it.
 type EdgeMap = crate::fxhash::FxHashMap<(u32, u32), Vec<usize>>;
@@ -91,6 +93,7 @@ pub(super) fn thicken(
 ) -> Vec<ZoneOutcome> {
     let mut centres: HashMap<u32, [f64; 3]> = HashMap::new();
     let mut out = Vec::new();
+    let mut index = TriIndex::new(positions, tris);
     // debugging: BM_THICKEN_ONLY=f1,f2 thickens only those faces
     let only: Option<Vec<u32>> = std::env::var("BM_THICKEN_ONLY")
         .ok()
@@ -108,7 +111,12 @@ pub(super) fn thicken(
         };
         // (cell index, component triangles facing away from that cell)
         let mut pieces: Vec<(usize, Vec<[u32; 3]>)> = Vec::new();
-        let edges = edge_map_at(tris, z.tris.iter().flatten().flatten().copied());
+        let edges = edge_map_near(
+            positions,
+            tris,
+            &index.view(positions, tris),
+            z.tris.iter().flatten().flatten().copied(),
+        );
         if z.tris.len() == 1 {
             for comp in components(&z.tris[0]) {
                 let best = (0..z.cells.len())
@@ -190,7 +198,8 @@ pub(super) fn thicken(
             let mut done = None;
             for &scale in &ATTEMPTS {
                 match apply(
-                    positions, tris, kind, &comp, z.face, cell, into, &dirs, scale, diag,
+                    positions, tris, kind, &mut index, &comp, z.face, cell, into, &dirs, scale,
+                    diag,
                 ) {
                     Ok(d) => {
                         done = Some(d);
@@ -308,7 +317,157 @@ fn components(z: &[[u32; 3]]) -> Vec<Vec<[u32; 3]>> {
     out
 }
 
+/// [`edge_map_at`] from the triangles `near` finds around `at` (those with a vertex in `at` are
+/// among them: their boxes hold that vertex), without a scan of the whole surface.
+fn edge_map_near(
+    positions: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    near: &Near,
+    at: impl Iterator<Item = u32>,
+) -> EdgeMap {
+    let at: FxHashSet<u32> = at.collect();
+    let mut bb = Aabb::EMPTY;
+    for &v in &at {
+        bb.add_point(positions[v as usize]);
+    }
+    let mut edges = EdgeMap::default();
+    for i in near.overlapping(&bb) {
+        let t = tris[i];
+        if !t.iter().any(|v| at.contains(v)) {
+            continue;
+        }
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.entry((a.min(b), a.max(b))).or_default().push(i);
+        }
+    }
+    edges
+}
+
+/// Box-overlap queries on the surface while zones are thickened, without a scan or a BVH of the
+/// whole surface per zone: segments, each a BVH over some triangles' boxes as they were when it was
+/// built (the first over the whole surface), and per triangle the segment holding its current box.
+/// Triangles changed or added since are built into a new segment at the next [`Near`] view, and
+/// the last segments merged when the newest is not much smaller than the one before (a binary
+/// counter: every triangle is rebuilt O(log) times). A query gives exactly the triangles whose
+/// current box overlaps (what a scan of the surface gives).
+struct TriIndex {
+    /// (triangles, BVH over their boxes at build).
+    segs: Vec<(Vec<usize>, Bvh)>,
+    /// Per triangle: the segment holding its current box (`NONE`: changed or added since).
+    seg_of: Vec<u32>,
+    /// Triangles changed since they were put into a segment.
+    pending: Vec<usize>,
+}
+
+/// A [`TriIndex`] brought up to date with the surface.
+struct Near<'a> {
+    index: &'a TriIndex,
+}
+
+impl TriIndex {
+    const NONE: u32 = u32::MAX;
+
+    fn new(positions: &[[f64; 3]], tris: &[[u32; 3]]) -> TriIndex {
+        let mut index = TriIndex {
+            segs: Vec::new(),
+            seg_of: Vec::new(),
+            pending: Vec::new(),
+        };
+        index.view(positions, tris);
+        index
+    }
+    /// Triangle `i` is about to change (or was restored).
+    fn touch(&mut self, i: usize) {
+        if let Some(s) = self.seg_of.get_mut(i) {
+            if *s != Self::NONE {
+                *s = Self::NONE;
+                self.pending.push(i);
+            }
+        }
+    }
+    /// The surface was cut back to its first `n` triangles.
+    fn truncate(&mut self, n: usize) {
+        self.seg_of.truncate(n);
+        self.pending.retain(|&i| i < n);
+    }
+    /// A segment over `items` (current triangles) with their current boxes.
+    fn push_segment(&mut self, positions: &[[f64; 3]], tris: &[[u32; 3]], items: Vec<usize>) {
+        let id = self.segs.len() as u32;
+        for &i in &items {
+            self.seg_of[i] = id;
+        }
+        let bvh = Bvh::build(
+            items
+                .iter()
+                .map(|&i| Aabb::of_points(&tris[i].map(|v| positions[v as usize])))
+                .collect(),
+        );
+        self.segs.push((items, bvh));
+    }
+    /// The triangles of segment `s` whose box there is still their current one.
+    fn live(&self, s: usize) -> Vec<usize> {
+        let id = s as u32;
+        self.segs[s]
+            .0
+            .iter()
+            .copied()
+            .filter(|&i| self.seg_of.get(i) == Some(&id))
+            .collect()
+    }
+    fn view(&mut self, positions: &[[f64; 3]], tris: &[[u32; 3]]) -> Near<'_> {
+        assert!(self.seg_of.len() <= tris.len(), "TriIndex: truncate first");
+        let n0 = self.seg_of.len();
+        self.seg_of.resize(tris.len(), Self::NONE);
+        self.pending.extend(n0..tris.len());
+        if !self.pending.is_empty() {
+            let mut items = std::mem::take(&mut self.pending);
+            items.sort_unstable();
+            items.dedup();
+            self.push_segment(positions, tris, items);
+            // merge the newest segments while the last is at least half the one before it (the
+            // whole surface's segment too, once the changes outgrow it)
+            while self.segs.len() >= 2 {
+                let k = self.segs.len();
+                let (last, prev) = (self.segs[k - 1].0.len(), self.segs[k - 2].0.len());
+                if 2 * last < prev {
+                    break;
+                }
+                let mut items = self.live(k - 2);
+                items.extend(self.live(k - 1));
+                items.sort_unstable();
+                self.segs.truncate(k - 2);
+                self.push_segment(positions, tris, items);
+            }
+        }
+        Near { index: self }
+    }
+}
+
+impl Near<'_> {
+    /// Calls `f` for every triangle whose box overlaps `bb` (closed), in no particular order.
+    fn for_each_overlap(&self, bb: &Aabb, mut f: impl FnMut(usize)) {
+        let idx = self.index;
+        for (s, (items, bvh)) in idx.segs.iter().enumerate() {
+            bvh.for_each_overlap(bb, |k| {
+                let i = items[k as usize];
+                if idx.seg_of.get(i) == Some(&(s as u32)) {
+                    f(i)
+                }
+            });
+        }
+    }
+    /// The triangles whose box overlaps `bb`, ascending.
+    fn overlapping(&self, bb: &Aabb) -> Vec<usize> {
+        let mut out = Vec::new();
+        self.for_each_overlap(bb, |j| out.push(j));
+        out.sort_unstable();
+        out
+    }
+}
+
 /// Edge → triangles, for the triangles with a vertex in `at` (the edges among `at` are complete).
+#[cfg(test)]
 fn edge_map_at(tris: &[[u32; 3]], at: impl Iterator<Item = u32>) -> EdgeMap {
     let mut mark: Vec<bool> = Vec::new();
     for v in at {
@@ -384,6 +543,7 @@ fn apply(
     positions: &mut Vec<[f64; 3]>,
     tris: &mut Vec<[u32; 3]>,
     kind: &mut Vec<Kind>,
+    index: &mut TriIndex,
     z: &[[u32; 3]],
     face: u32,
     cell: u32,
@@ -401,9 +561,17 @@ fn apply(
     let mut vz: Vec<u32> = z.iter().flatten().copied().collect();
     vz.sort_unstable();
     vz.dedup();
-    let in_z: HashSet<u32> = vz.iter().copied().collect();
-    // C's non-planar triangles at the zone's vertices
-    let cell_tris: Vec<usize> = (0..tris.len())
+    let in_z: FxHashSet<u32> = vz.iter().copied().collect();
+    // C's non-planar triangles at the zone's vertices (their boxes hold a vertex of the zone)
+    let z_box = Aabb::of_points(
+        &vz.iter()
+            .map(|&v| positions[v as usize])
+            .collect::<Vec<_>>(),
+    );
+    let cell_tris: Vec<usize> = index
+        .view(positions, tris)
+        .overlapping(&z_box)
+        .into_iter()
         .filter(|&i| kind[i] == Kind::Cell(cell) && tris[i].iter().any(|v| in_z.contains(v)))
         .collect();
     let tiny = 1e-9 * diag;
@@ -470,11 +638,13 @@ fn apply(
     let before = crossings(
         positions,
         tris,
+        &index.view(positions, tris),
         &substituted.iter().map(|s| s.0).collect::<Vec<_>>(),
         diag,
     );
     let n_tris = tris.len();
     for &(i, t) in &substituted {
+        index.touch(i);
         tris[i] = t.map(star);
     }
     for &(t, k) in &added {
@@ -486,11 +656,19 @@ fn apply(
         .map(|s| s.0)
         .chain(n_tris..tris.len())
         .collect();
-    let after = crossings(positions, tris, &changed, diag);
+    let after = crossings(
+        positions,
+        tris,
+        &index.view(positions, tris),
+        &changed,
+        diag,
+    );
     if after > before {
         for &(i, t) in &substituted {
+            index.touch(i);
             tris[i] = t;
         }
+        index.truncate(n_tris);
         tris.truncate(n_tris);
         kind.truncate(n_tris);
         positions.truncate(n0);
@@ -503,7 +681,13 @@ fn apply(
 
 /// Pairs (changed triangle, any other) that cross exactly or overlap near-coplanar (within
 /// `eval::check`'s tolerance), each counted once.
-fn crossings(positions: &[[f64; 3]], tris: &[[u32; 3]], changed: &[usize], diag: f64) -> usize {
+fn crossings(
+    positions: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    near: &Near,
+    changed: &[usize],
+    diag: f64,
+) -> usize {
     if changed.is_empty() {
         return 0;
     }
@@ -512,32 +696,18 @@ fn crossings(positions: &[[f64; 3]], tris: &[[u32; 3]], changed: &[usize], diag:
         lo: b.lo.map(|x| x - 2.0 * tol),
         hi: b.hi.map(|x| x + 2.0 * tol),
     };
-    // only the triangles near the changed ones: one linear pass, then a BVH over those (a BVH of
-    // the whole surface per zone made thickening quadratic in the number of zones)
     let tbox = |t: [u32; 3]| Aabb::of_points(&t.map(|v| positions[v as usize]));
-    let region = grow(
-        changed
-            .iter()
-            .map(|&i| tbox(tris[i]))
-            .reduce(|a, b| a.union(&b))
-            .expect("changed is not empty"),
-    );
-    let near: Vec<usize> = (0..tris.len())
-        .filter(|&j| tbox(tris[j]).overlaps(&region))
-        .collect();
-    let bvh = Bvh::build(near.iter().map(|&j| tbox(tris[j])).collect());
-    let is_changed: HashSet<usize> = changed.iter().copied().collect();
+    let is_changed: FxHashSet<usize> = changed.iter().copied().collect();
     let pts = |t: [u32; 3]| t.map(|v| positions[v as usize]);
     let debug = std::env::var("BM_DEBUG_THICKEN").is_ok();
-    let mut n = 0;
-    for &i in changed {
+    // the pairs of one changed triangle (independent of the others: counted in parallel)
+    let count = |&i: &usize| -> usize {
         let t = tris[i];
         if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
-            continue;
+            return 0;
         }
-        let bb = grow(tbox(t));
-        bvh.for_each_overlap(&bb, |k| {
-            let j = near[k as usize];
+        let mut n = 0;
+        near.for_each_overlap(&grow(tbox(t)), |j| {
             if j == i || (is_changed.contains(&j) && j < i) {
                 return;
             }
@@ -557,8 +727,13 @@ fn crossings(positions: &[[f64; 3]], tris: &[[u32; 3]], changed: &[usize], diag:
                 n += 1;
             }
         });
+        n
+    };
+    if debug {
+        changed.iter().map(count).sum()
+    } else {
+        changed.par_iter().map(count).sum()
     }
-    n
 }
 
 #[cfg(test)]
@@ -647,7 +822,11 @@ mod tests {
         assert!(mid.iter().all(|&i| kind[i] == Kind::Face(0)));
         // no crossings
         let all: Vec<usize> = (0..tris.len()).collect();
-        assert_eq!(crossings(&pos, &tris, &all, diag), 0);
+        let mut index = TriIndex::new(&pos, &tris);
+        assert_eq!(
+            crossings(&pos, &tris, &index.view(&pos, &tris), &all, diag),
+            0
+        );
         // the copies sit δ above their vertices
         let d = TARGET_RELATIVE_THICKNESS * diag;
         assert!((pos[7][2] - d).abs() < 1e-15 && pos[7][0] == pos[1][0]);

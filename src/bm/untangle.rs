@@ -17,9 +17,11 @@
 //! Elephant (a main surface crossing its plane at a contour vertex where a pocket above a section
 //! wedge touches it) and Armadillo (a crack ending on a section under a wall rising from the same
 //! contour vertex) both needed the outward step.
+use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::geom::bvh::{triangle_boxes, Aabb, Bvh};
 use crate::geom::tri_tri::mesh_triangles_intersect;
 use crate::sections::{cross, dot, sub};
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -40,8 +42,8 @@ pub fn untangle(
     if moved.is_empty() || tris.is_empty() {
         return out;
     }
-    let mut star: HashMap<u32, Vec<u32>> = HashMap::new();
-    let moved_set: std::collections::HashSet<u32> = moved.iter().map(|m| m.0).collect();
+    let mut star: FxHashMap<u32, Vec<u32>> = FxHashMap::default();
+    let moved_set: FxHashSet<u32> = moved.iter().map(|m| m.0).collect();
     for (i, t) in tris.iter().enumerate() {
         for &v in t {
             if moved_set.contains(&v) {
@@ -73,11 +75,12 @@ pub fn untangle(
             let t = tris[i as usize];
             let bb = Aabb::of_points(&t.map(|w| positions[w as usize]));
             bvh.for_each_overlap(&bb, |j| {
-                if j != i && mesh_triangles_intersect(t, tris[j as usize], positions) {
-                    // a pair inside the star is seen from both sides; count it once
-                    if !(s.contains(&j) && j < i) {
-                        n += 1;
-                    }
+                // a pair inside the star is seen from both sides; count (and test) it once
+                if j != i
+                    && !(j < i && s.contains(&j))
+                    && mesh_triangles_intersect(t, tris[j as usize], positions)
+                {
+                    n += 1;
                 }
             });
         }
@@ -91,14 +94,45 @@ pub fn untangle(
         .map(|&(v, _)| (v, positions[v as usize]))
         .collect();
     let mut unresolved = 0;
-    for _sweep in 0..4 {
+    // The first sweep's crossing counts at the start, in parallel (most are 0). A vertex's count is
+    // taken from there unless a vertex moved earlier in the sweep had a triangle (before or after
+    // the move) whose box overlaps one of its star's: only then can its count have changed.
+    let initial: Vec<usize> = {
+        let p: &[[f64; 3]] = positions;
+        todo.par_iter().map(|&(v, _)| crossings(p, v)).collect()
+    };
+    let tbox = |positions: &[[f64; 3]], i: u32| {
+        Aabb::of_points(&tris[i as usize].map(|w| positions[w as usize]))
+    };
+    for sweep in 0..4 {
         let mut again = Vec::new();
-        for &(v, origin) in &todo {
+        // boxes of the triangles of the vertices moved so far in this sweep, before and after
+        let mut dirty: Vec<Aabb> = Vec::new();
+        for (k, &(v, origin)) in todo.iter().enumerate() {
             let start = positions[v as usize];
-            let mut best = (crossings(positions, v), start);
+            let fresh = sweep > 0
+                || (!dirty.is_empty()
+                    && star.get(&v).is_some_and(|s| {
+                        s.iter().any(|&i| {
+                            let b = tbox(positions, i);
+                            dirty.iter().any(|d| d.overlaps(&b))
+                        })
+                    }));
+            let now = if fresh {
+                crossings(positions, v)
+            } else {
+                initial[k]
+            };
+            let mut best = (now, start);
             if best.0 == 0 {
                 continue;
             }
+            let star_boxes = |positions: &[[f64; 3]]| -> Vec<Aabb> {
+                star.get(&v)
+                    .map(|s| s.iter().map(|&i| tbox(positions, i)).collect())
+                    .unwrap_or_default()
+            };
+            dirty.extend(star_boxes(positions));
             let step = sub(first[&v], origin);
             let len = dot(step, step).sqrt();
             let inward = star
@@ -136,6 +170,7 @@ pub fn untangle(
                 }
             }
             positions[v as usize] = best.1;
+            dirty.extend(star_boxes(positions));
             if best.0 > 0 {
                 again.push((v, origin));
             }
