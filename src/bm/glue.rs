@@ -1042,7 +1042,7 @@ pub(super) fn sorted(mut t: [u32; 3]) -> [u32; 3] {
 /// Even permutation of the sorted triple.
 pub(super) fn parity(t: [u32; 3]) -> bool {
     let inv = (t[0] > t[1]) as u8 + (t[0] > t[2]) as u8 + (t[1] > t[2]) as u8;
-    inv % 2 == 0
+    inv.is_multiple_of(2)
 }
 
 /// Triangles on an edge used by more than two triangles (a sign of overlapping sheets).
@@ -1281,12 +1281,15 @@ impl Stars {
     }
 }
 
+/// An edge (min, max) used by more than two triangles, with its uses (triangle, slot k of the edge
+/// t[k]–t[k+1]).
+type CrowdedEdge = ((u32, u32), Vec<(usize, u8)>);
+
 /// Every edge (min, max) used by more than two triangles, ascending, with its uses (triangle, slot
 /// k of the edge t[k]–t[k+1]) ascending: found around each edge's smaller endpoint, in parallel.
-#[allow(clippy::type_complexity)]
-fn crowded_edges(at: &Stars, tris: &[[u32; 3]]) -> Vec<((u32, u32), Vec<(usize, u8)>)> {
+fn crowded_edges(at: &Stars, tris: &[[u32; 3]]) -> Vec<CrowdedEdge> {
     let n = at.start.len() - 1;
-    let chunks: Vec<Vec<((u32, u32), Vec<(usize, u8)>)>> = (0..n.div_ceil(4096))
+    let chunks: Vec<Vec<CrowdedEdge>> = (0..n.div_ceil(4096))
         .into_par_iter()
         .map(|c| {
             let mut out = Vec::new();
@@ -1569,7 +1572,7 @@ fn slot_of(t: &[u32; 3], v: u32, w: u32) -> u8 {
 fn pair_around_edges(
     positions: &[[f64; 3]],
     tris: &[[u32; 3]],
-    crowded: &[((u32, u32), Vec<(usize, u8)>)],
+    crowded: &[CrowdedEdge],
 ) -> [FxHashMap<(usize, u8), usize>; 2] {
     use crate::sections::{cross, dot, sub};
     let mut out = [FxHashMap::default(), FxHashMap::default()];
