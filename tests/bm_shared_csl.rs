@@ -74,7 +74,7 @@ fn every_shared_csl_file_reconstructs() {
         let c = check_mesh(&solid.surface, None);
         let worst = bm_common::worst_section(&solid.surface, &sections);
         eprintln!(
-            "{name}: {:.3}s {} tris closed {} manifold {} oriented {} comps {} genus {} self-int {} worst-section {:.4} flat-zone-faces {} nonconf {} steiner {} branching {} cutting {}",
+            "{name}: {:.3}s {} tris closed {} manifold {} oriented {} comps {} genus {} self-int {} worst-section {:.4} flat-zone-faces {} nonconf {} steiner {} branching {} cutting {} sample pairs {} diagram steiner {}",
             secs, c.triangles, c.closed, c.manifold, c.oriented, c.components, c.genus,
             c.self_intersections_vertex_disjoint, worst,
             solid.report.counts.get("flat_zone_faces").unwrap_or(&0),
@@ -82,6 +82,8 @@ fn every_shared_csl_file_reconstructs() {
             solid.report.counts.get("steiner_points").unwrap_or(&0),
             solid.report.counts.get("branching_samples").unwrap_or(&0),
             solid.report.counts.get("cutting_samples").unwrap_or(&0),
+            solid.report.counts.get("sample_pairs").unwrap_or(&0),
+            solid.report.counts.get("sample_steiner_points").unwrap_or(&0),
         );
         if CLEAN.contains(&name.as_str()) && !(c.closed && c.manifold && c.oriented) {
             failures.push(format!(
@@ -95,6 +97,19 @@ fn every_shared_csl_file_reconstructs() {
             failures.push(format!(
                 "{name}: self-intersections {} overlapping coplanar pairs {} coincident vertices {} worst section {worst:.4}",
                 c.self_intersections, c.overlapping_coplanar_pairs, c.coincident_vertices
+            ));
+        }
+        // paper §3, Delaunay conformity: consecutive branching/cutting samples are edges
+        let not_edges = solid
+            .report
+            .counts
+            .get("sample_pairs_not_edges")
+            .copied()
+            .unwrap_or(0);
+        if not_edges != 0 || !solid.report.counts.contains_key("sample_pairs") {
+            failures.push(format!(
+                "{name}: {not_edges} consecutive diagram sample pairs are not Delaunay edges (sample_pairs {:?})",
+                solid.report.counts.get("sample_pairs")
             ));
         }
         if ONE_PIECE.contains(&name.as_str()) && c.components != 1 {

@@ -9,10 +9,15 @@
 //! we place a sample on their shared edge where r_b1 = r_b2 (a quadratic in the edge parameter).
 //! The caller inserts the samples and re-triangulates, a few rounds, until none is found.
 //! Samples are thinned: none closer than half the face's median contour edge to another sample or to
-//! the edge's endpoints.
+//! a contour vertex. Samples are linked into chains along the diagram (marching squares on the
+//! sampling grid, see `grid_samples`), which the cell makes Delaunay edges (`chains`).
 use super::cell_input::CellInput;
+use super::chains::{
+    continuous, same_branch, thin_chains, Chains, DiagramSample, Kind, SlotDiagram,
+};
 use super::classify::{Classifier, TetType};
 use super::complex::{outward_face, Complex};
+use super::cutting::Thinning;
 use crate::sections::{dot, sub};
 use std::collections::HashMap;
 
@@ -88,7 +93,20 @@ pub fn samples(
     cl: &mut Classifier,
     apex: &[Vec<([u32; 3], u32)>],
 ) -> Vec<(usize, [f64; 2], [f64; 3])> {
-    let mut out = Vec::new();
+    sample_chains(input, cl, apex)
+        .samples
+        .into_iter()
+        .map(|d| (d.slot, d.uv, d.p3))
+        .collect()
+}
+
+/// [`samples`] with their diagram identity (slot, site pair) and chain links (see [`grid_samples`]).
+pub fn sample_chains(
+    input: &CellInput,
+    cl: &mut Classifier,
+    apex: &[Vec<([u32; 3], u32)>],
+) -> Chains {
+    let mut out = Chains::default();
     for (s, slot) in input.slots.iter().enumerate() {
         let tri_apex = &apex[s];
         if tri_apex.is_empty() {
@@ -123,11 +141,7 @@ pub fn samples(
         if !discontinuous || h <= 0.0 {
             continue;
         }
-        out.extend(
-            grid_samples(input, cl, s, n, h)
-                .into_iter()
-                .map(|(uv, p3)| (s, uv, p3)),
-        );
+        out.extend(grid_samples(input, cl, s, n, h));
     }
     out
 }
@@ -152,20 +166,18 @@ pub(super) fn moebius_sites(input: &CellInput, s: usize, n: [f64; 3]) -> Vec<Sit
 
 /// Sample the section on a grid of spacing `h`, find each grid point's minimiser of r_b, and on every
 /// grid edge whose two minimisers are discontinuous place a point where r_b1 = r_b2 (bisection on the
-/// segment). Points closer than h/2 to a contour vertex or to another sample are dropped.
-fn grid_samples(
-    input: &CellInput,
-    cl: &mut Classifier,
-    s: usize,
-    n: [f64; 3],
-    h: f64,
-) -> Vec<([f64; 2], [f64; 3])> {
+/// segment). Samples of one site pair on two edges of one grid square are consecutive (marching
+/// squares; a square with four, a saddle, is decided by the sign of r_b1 − r_b2 at its centre). The
+/// samples are thinned along these chains (`chains::thin_chains`): points closer than h/2 to a
+/// contour vertex or to another sample are dropped, their chain neighbours linked.
+fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h: f64) -> Chains {
     let slot = &input.slots[s];
     let bit = 1u128 << s;
     let plane = slot.geom;
-    let sites = moebius_sites(input, s, n);
+    let diagram = SlotDiagram::new(input, s);
+    let sites = &diagram.sites;
     if sites.len() < 2 {
-        return Vec::new();
+        return Chains::default();
     }
     let on_face: Vec<u32> = (0..input.points.len() as u32)
         .filter(|&v| input.mask[v as usize] & bit != 0)
@@ -181,7 +193,7 @@ fn grid_samples(
     let nx = (((hi[0] - lo[0]) / h).ceil() as usize).clamp(1, 400);
     let ny = (((hi[1] - lo[1]) / h).ceil() as usize).clamp(1, 400);
     let (sx, sy) = ((hi[0] - lo[0]) / nx as f64, (hi[1] - lo[1]) / ny as f64);
-    let at = |i: usize, j: usize| [lo[0] + sx * i as f64, lo[1] + sy * j as f64];
+    let at = |i: f64, j: f64| [lo[0] + sx * i, lo[1] + sy * j];
     let r = |a3: [f64; 3], site: &(u32, [f64; 3], f64)| {
         // h_b measured from a (a is on the plane up to rounding)
         let hb = dot(n, sub(site.1, a3));
@@ -191,7 +203,7 @@ fn grid_samples(
             dist2(a3, site.1) / (2.0 * hb)
         }
     };
-    let index = SiteIndex::new(&plane, &sites);
+    let index = &diagram.index;
     // Same answer as a scan of all sites in order (smallest r, first site on ties), visiting only
     // the sites whose in-plane distance can still beat the best r found (r_b(a) >= that distance).
     let argmin = |q: [f64; 2]| -> usize {
@@ -210,39 +222,27 @@ fn grid_samples(
     let mut minimiser: Vec<Option<usize>> = vec![None; w * (ny + 1)];
     for j in 0..=ny {
         for i in 0..=nx {
-            let q = at(i, j);
+            let q = at(i as f64, j as f64);
             if slot.locator.locate(q) == super::cell_input::Where::Inside {
                 minimiser[j * w + i] = Some(argmin(q));
             }
         }
     }
-    // thinning grid: cells of size h/2
-    let cell = 0.5 * h;
-    let key = |q: [f64; 2]| ((q[0] / cell).floor() as i64, (q[1] / cell).floor() as i64);
-    let mut occupied: HashMap<(i64, i64), Vec<[f64; 2]>> = HashMap::new();
+    let mut thin = Thinning::new(0.5 * h);
     for &v in &on_face {
-        let q = slot.uv[v as usize];
-        occupied.entry(key(q)).or_default().push(q);
+        thin.occupy(slot.uv[v as usize]);
     }
-    let near = |occ: &HashMap<(i64, i64), Vec<[f64; 2]>>, q: [f64; 2]| {
-        let (kx, ky) = key(q);
-        (kx - 1..=kx + 1).any(|x| {
-            (ky - 1..=ky + 1).any(|y| {
-                occ.get(&(x, y)).is_some_and(|l| {
-                    l.iter()
-                        .any(|p| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) < cell * cell)
-                })
-            })
-        })
-    };
-    let mut out = Vec::new();
+    // candidates in grid order; per grid edge (2 (j w + i) + {0: along x, 1: along y}) its
+    // candidate and the candidate's site indices (m0, m1), m0 the minimiser at the edge's start
+    let mut cands: Vec<Option<DiagramSample>> = Vec::new();
+    let mut on_edge: HashMap<usize, (u32, (u32, u32))> = HashMap::new();
     let mut pairs_checked: HashMap<(usize, usize), bool> = HashMap::new();
     for j in 0..=ny {
         for i in 0..=nx {
             let Some(m0) = minimiser[j * w + i] else {
                 continue;
             };
-            for (di, dj) in [(1usize, 0usize), (0, 1)] {
+            for (dir, (di, dj)) in [(1usize, 0usize), (0, 1)].into_iter().enumerate() {
                 let (i1, j1) = (i + di, j + dj);
                 if i1 > nx || j1 > ny {
                     continue;
@@ -262,7 +262,7 @@ fn grid_samples(
                 if !disc {
                     continue;
                 }
-                let (q0, q1) = (at(i, j), at(i1, j1));
+                let (q0, q1) = (at(i as f64, j as f64), at(i1 as f64, j1 as f64));
                 let f = |t: f64| {
                     let q = [q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1])];
                     let a3 = plane.to_3d(q);
@@ -283,16 +283,94 @@ fn grid_samples(
                 }
                 let t = 0.5 * (a + b);
                 let q = [q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1])];
-                if slot.locator.locate(q) != super::cell_input::Where::Inside || near(&occupied, q)
-                {
-                    continue;
-                }
-                occupied.entry(key(q)).or_default().push(q);
-                out.push((q, plane.to_3d(q)));
+                let inside = slot.locator.locate(q) == super::cell_input::Where::Inside;
+                let (b0, b1) = (sites[m0].0, sites[m1].0);
+                on_edge.insert(
+                    2 * (j * w + i) + dir,
+                    (cands.len() as u32, (b0.min(b1), b0.max(b1))),
+                );
+                cands.push(inside.then(|| DiagramSample {
+                    slot: s,
+                    uv: q,
+                    p3: plane.to_3d(q),
+                    kind: Kind::Branching,
+                    sites: (b0.min(b1), b0.max(b1)),
+                }));
             }
         }
     }
-    out
+    // marching squares: per grid square, its edges' candidates grouped by site pair
+    let mut links: Vec<(u32, u32)> = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            // bottom, right, top, left (counter-clockwise from the corner (i, j))
+            let sides = [
+                2 * (j * w + i),
+                2 * (j * w + i + 1) + 1,
+                2 * ((j + 1) * w + i),
+                2 * (j * w + i) + 1,
+            ];
+            let found: Vec<(usize, u32, (u32, u32))> = sides
+                .iter()
+                .enumerate()
+                .filter_map(|(k, e)| on_edge.get(e).map(|&(c, m)| (k, c, m)))
+                .collect();
+            if found.len() < 2 {
+                continue;
+            }
+            // group the square's samples by branch (site pairs that match up continuously)
+            let mut group: Vec<usize> = (0..found.len()).collect();
+            for a in 0..found.len() {
+                for b in a + 1..found.len() {
+                    if group[b] == b && same_branch(input, found[a].2, found[b].2) {
+                        group[b] = group[a];
+                    }
+                }
+            }
+            for g0 in 0..found.len() {
+                let g: Vec<(usize, u32)> = (0..found.len())
+                    .filter(|&k| group[k] == g0)
+                    .map(|k| (found[k].0, found[k].1))
+                    .collect();
+                match g.len() {
+                    2 => links.push((g[0].1.min(g[1].1), g[0].1.max(g[1].1))),
+                    4 => {
+                        // saddle: the corners' minimisers alternate between the two sides; the
+                        // segments cut off the two corners not on the centre's side
+                        let (Some(mc), Some(m00)) = (
+                            Some(argmin(at(i as f64 + 0.5, j as f64 + 0.5))),
+                            minimiser[j * w + i],
+                        ) else {
+                            continue;
+                        };
+                        let corner_with_centre = continuous(input, sites[mc].0, sites[m00].0);
+                        let by_side = |k: usize| g.iter().find(|x| x.0 == k).map(|x| x.1);
+                        let (Some(b), Some(rt), Some(t), Some(l)) =
+                            (by_side(0), by_side(1), by_side(2), by_side(3))
+                        else {
+                            continue;
+                        };
+                        let pairs = if !corner_with_centre {
+                            // cut off corner (i, j) (bottom + left) and corner (i+1, j+1)
+                            [(b, l), (rt, t)]
+                        } else {
+                            // cut off corners (i+1, j) (bottom + right) and (i, j+1)
+                            [(b, rt), (t, l)]
+                        };
+                        links.extend(pairs.iter().map(|&(x, y)| (x.min(y), x.max(y))));
+                    }
+                    _ => {}
+                }
+            }
+        }
+    }
+    links.sort_unstable();
+    links.dedup();
+    thin_chains(cands, &links, &mut thin, |x, y| {
+        diagram
+            .between(input, x.uv, y.uv, x.sites, y.sites)
+            .is_some()
+    })
 }
 
 /// The sites bucketed by their projection on the face's plane, for the minimiser search of r_b:

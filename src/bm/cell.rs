@@ -7,6 +7,9 @@ use super::classify::{classify, tet_type, Classifier, TetType};
 /// Rounds of branching and cutting sampling (sample, re-triangulate) per cell.
 const BRANCHING_ROUNDS: usize = 1;
 
+/// Most rounds of Steiner splits making consecutive diagram samples Delaunay edges.
+pub const SAMPLE_PAIR_ROUNDS: usize = 8;
+
 /// Which samples of the Moebius diagram a cell adds to its contour vertices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Sampling {
@@ -24,6 +27,7 @@ impl Default for Sampling {
         }
     }
 }
+use super::chains::{conform_pairs, Kind, SamplePair};
 use super::complex::{outward_face, Complex, NONE};
 use super::prune::{prune, PruneCounts};
 use crate::error::Result;
@@ -51,6 +55,14 @@ pub struct CellResult {
     pub flat_tets: u64,
     pub branching_samples: u64,
     pub cutting_samples: u64,
+    /// Pairs of diagram samples consecutive along a branching or cutting diagram (`chains`).
+    pub sample_pairs: u64,
+    /// Steiner points on the diagrams that split pairs which were not Delaunay edges.
+    pub sample_steiner_points: u64,
+    /// Per face, pairs (after splitting) still not edges of the face's section triangles.
+    pub sample_pairs_not_edges: Vec<(u32, u64)>,
+    /// The consecutive pairs after splitting: (slot, local id, local id).
+    pub sample_pair_list: Vec<(usize, u32, u32)>,
     /// Cutting samples that end on the border of a flat zone of this cell (a vertex of a section
     /// triangle the cell attaches to and of one it leaves flat).
     pub cutting_on_flat_border: u64,
@@ -72,6 +84,8 @@ pub struct CellTiming {
     pub branching: f64,
     /// Cutting-diagram samples (without the re-triangulation).
     pub cutting: f64,
+    /// Consecutive diagram samples made Delaunay edges (checks and Steiner insertions).
+    pub sample_pairs: f64,
     /// Section triangles per face and the contour-edge conformity check.
     pub conformity: f64,
     /// Simplex classification by plane tags.
@@ -88,6 +102,7 @@ impl CellTiming {
         self.delaunay += o.delaunay;
         self.branching += o.branching;
         self.cutting += o.cutting;
+        self.sample_pairs += o.sample_pairs;
         self.conformity += o.conformity;
         self.classify += o.classify;
         self.prune += o.prune;
@@ -95,12 +110,13 @@ impl CellTiming {
     }
 
     /// (name, seconds) pairs in pipeline order.
-    pub fn entries(&self) -> [(&'static str, f64); 8] {
+    pub fn entries(&self) -> [(&'static str, f64); 9] {
         [
             ("input", self.input),
             ("delaunay", self.delaunay),
             ("branching", self.branching),
             ("cutting", self.cutting),
+            ("sample_pairs", self.sample_pairs),
             ("conformity", self.conformity),
             ("classify", self.classify),
             ("prune", self.prune),
@@ -135,41 +151,28 @@ pub fn finite_tets(dt: &crate::delaunay::Delaunay) -> Vec<[u32; 4]> {
         .tets()
         .map(|t| {
             let v = dt.tet_vertices(t);
-            canonical_tet([v[0], v[1], v[3], v[2]])
+            super::complex::canonical_tet([v[0], v[1], v[3], v[2]]).0
         })
         .collect();
     tets.sort_unstable();
     tets
 }
 
-/// `t` rotated by an even permutation so that t[0] is its smallest vertex and t[1] the smallest of
-/// the other three.
-fn canonical_tet(t: [u32; 4]) -> [u32; 4] {
-    let [a, b, c, d] = t;
-    let m = if a <= b.min(c).min(d) {
-        t
-    } else if b <= c.min(d) {
-        [b, a, d, c]
-    } else if c <= d {
-        [c, d, a, b]
-    } else {
-        [d, c, b, a]
-    };
-    let [a, b, c, d] = m;
-    if b <= c.min(d) {
-        m
-    } else if c <= d {
-        [a, c, d, b]
-    } else {
-        [a, d, b, c]
-    }
-}
-
 /// Per slot: sorted vertex triple → (the triangle oriented outward from its tet, the tet).
 type SectionTriangles = IdMap<[u32; 3], ([u32; 3], u32)>;
 
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
-pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> Result<CellResult> {
+pub fn run_cell(input: CellInput, sampling: Sampling, check_only: bool) -> Result<CellResult> {
+    run_cell_with(input, sampling, check_only, SAMPLE_PAIR_ROUNDS)
+}
+
+/// [`run_cell`] with at most `pair_rounds` rounds of Steiner splits on the diagram pairs.
+fn run_cell_with(
+    mut input: CellInput,
+    sampling: Sampling,
+    check_only: bool,
+    pair_rounds: usize,
+) -> Result<CellResult> {
     let all = input.mask.iter().fold(!0u128, |a, &m| a & m);
     if all != 0 || input.points.len() < 4 {
         // every vertex on one plane: no volume to reconstruct in this cell
@@ -181,14 +184,17 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
     let mut timing = CellTiming::default();
     let mut clock = std::time::Instant::now();
     let mut dt = crate::delaunay::Delaunay::try_new(&input.points)?;
-    let mut tets = finite_tets(&dt);
+    let mut cx = Complex::from_delaunay(input.points.len(), &dt);
     timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
     let mut n_cut = 0;
     let mut cut_ids: Vec<u32> = Vec::new();
+    let mut n_pairs = 0;
+    let mut n_pair_steiner = 0;
+    let mut pairs_not_edges: std::collections::BTreeMap<u32, u64> = Default::default();
+    let mut pair_list: Vec<(usize, u32, u32)> = Vec::new();
     if sampling.branching || sampling.cutting {
         for _round in 0..BRANCHING_ROUNDS {
-            let cx = Complex::new(input.points.len(), tets.clone());
             let ty: Vec<TetType> = cx
                 .tets
                 .iter()
@@ -204,23 +210,35 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
                 .collect();
             let mut cl = Classifier::new(&input);
             let apex = super::branching::apex_triangles(&input, &cx, &ty, &cl);
-            let samples = if sampling.branching {
-                super::branching::samples(&input, &mut cl, &apex)
+            let branch_chains = if sampling.branching {
+                super::branching::sample_chains(&input, &mut cl, &apex)
             } else {
-                Vec::new()
+                Default::default()
             };
+            let samples: Vec<(usize, [f64; 2], [f64; 3])> = branch_chains
+                .samples
+                .iter()
+                .map(|d| (d.slot, d.uv, d.p3))
+                .collect();
             timing.branching += lap(&mut clock);
             // from the same triangulation, kept apart from the branching samples
-            let cuts = if sampling.cutting {
-                super::cutting::samples(&input, &cx, &ty, &mut cl, &apex, &samples)
+            let cut_chains = if sampling.cutting {
+                super::cutting::sample_chains(&input, &cx, &ty, &mut cl, &apex, &samples)
             } else {
-                Vec::new()
+                Default::default()
             };
+            let cuts: Vec<(usize, [f64; 2], [f64; 3])> = cut_chains
+                .samples
+                .iter()
+                .map(|d| (d.slot, d.uv, d.p3))
+                .collect();
             timing.cutting += lap(&mut clock);
             drop(cl);
             if samples.is_empty() && cuts.is_empty() {
                 break;
             }
+            let mut chains = branch_chains;
+            chains.extend(cut_chains);
             n_branch += samples.len() as u64;
             n_cut += cuts.len() as u64;
             if !cuts.is_empty() && std::env::var("BM_DEBUG").is_ok() {
@@ -236,6 +254,7 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
             }
             // inserted into the triangulation we have (same result as re-triangulating everything)
             let first_cut = input.points.len() + samples.len();
+            let first_sample = input.points.len() as u32;
             for (s, q, p3) in samples.into_iter().chain(cuts) {
                 if !p3.iter().all(|c| c.is_finite()) {
                     return Err(crate::Error::input(
@@ -250,12 +269,40 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
                     cut_ids.push(l);
                 }
             }
-            tets = finite_tets(&dt);
+            timing.delaunay += lap(&mut clock);
+            // consecutive samples along a diagram become edges (Steiner points on the diagram)
+            let pairs: Vec<SamplePair> = chains
+                .pairs
+                .iter()
+                .map(|&(a, b)| {
+                    let d = &chains.samples[a as usize];
+                    SamplePair {
+                        slot: d.slot,
+                        kind: d.kind,
+                        sites: d.sites,
+                        ends: (first_sample + a, first_sample + b),
+                    }
+                })
+                .collect();
+            n_pairs += pairs.len() as u64;
+            if !pairs.is_empty() {
+                let pc = conform_pairs(&mut input, &mut dt, pairs, pair_rounds)?;
+                for &(l, kind) in &pc.steiner {
+                    if kind == Kind::Cutting {
+                        cut_ids.push(l);
+                    }
+                }
+                n_pair_steiner += pc.steiner.len() as u64;
+                for p in &pc.not_edges {
+                    *pairs_not_edges.entry(input.slots[p.slot].face).or_default() += 1;
+                }
+                pair_list.extend(pc.pairs.iter().map(|p| (p.slot, p.ends.0, p.ends.1)));
+            }
+            timing.sample_pairs += lap(&mut clock);
+            cx = Complex::from_delaunay(input.points.len(), &dt);
             timing.delaunay += lap(&mut clock);
         }
     }
-    let cx = Complex::new(input.points.len(), tets);
-    timing.delaunay += lap(&mut clock);
     let classifier = Classifier::new(&input);
 
     // Section triangles per slot: grounded faces of non-flat tets.
@@ -402,8 +449,98 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
         flat_tets,
         branching_samples: n_branch,
         cutting_samples: n_cut,
+        sample_pairs: n_pairs,
+        sample_steiner_points: n_pair_steiner,
+        sample_pairs_not_edges: pairs_not_edges.into_iter().collect(),
+        sample_pair_list: pair_list,
         cutting_on_flat_border,
         flat_area,
         timing,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bm::cutting::tests::slab;
+
+    fn circle(cx: f64, cy: f64, r: f64, n: usize) -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                [cx + r * a.cos(), cy + r * a.sin()]
+            })
+            .collect()
+    }
+
+    /// The paper's configuration (Fig. 4d): one circle on z = 0 facing four circles on z = 1; the
+    /// bottom face's branching diagram is the cross between the four circles' projections.
+    fn one_facing_four() -> CellInput {
+        let four: Vec<Vec<[f64; 2]>> = [(-0.6, -0.6), (0.6, -0.6), (0.6, 0.6), (-0.6, 0.6)]
+            .iter()
+            .map(|&(x, y)| circle(x, y, 0.4, 24))
+            .collect();
+        slab(&[circle(0.0, 0.0, 1.2, 48)], &four)
+    }
+
+    /// Pairs of `r` that are not edges of its face's internal section triangles.
+    fn pairs_off_triangles(r: &CellResult) -> Vec<(usize, u32, u32)> {
+        r.sample_pair_list
+            .iter()
+            .filter(|&&(s, u, v)| {
+                !r.faces[s]
+                    .triangles
+                    .iter()
+                    .any(|(t, _)| t.contains(&u) && t.contains(&v))
+            })
+            .copied()
+            .collect()
+    }
+
+    #[test]
+    fn consecutive_branching_samples_are_section_edges() {
+        let r = run_cell(one_facing_four(), Sampling::default(), false).unwrap();
+        eprintln!(
+            "branching {} cutting {} pairs {} steiner {} not edges {:?}",
+            r.branching_samples,
+            r.cutting_samples,
+            r.sample_pairs,
+            r.sample_steiner_points,
+            r.sample_pairs_not_edges
+        );
+        assert!(r.branching_samples > 0);
+        assert!(r.sample_pairs > 0);
+        assert!(
+            r.sample_pairs_not_edges.is_empty(),
+            "{:?}",
+            r.sample_pairs_not_edges
+        );
+        assert_eq!(
+            r.sample_pair_list.len() as u64,
+            r.sample_pairs + r.sample_steiner_points
+        );
+        let off = pairs_off_triangles(&r);
+        assert!(off.is_empty(), "{off:?}");
+        // every pair is on the bottom (the branching diagram of the four circles), and the chains
+        // follow the cross x = 0, y = 0 between them
+        let input = r.input.as_ref().unwrap();
+        for &(s, u, v) in &r.sample_pair_list {
+            assert_eq!(s, 0);
+            for w in [u, v] {
+                let p = input.points[w as usize];
+                assert!(p[0].abs().min(p[1].abs()) < 0.02, "{p:?} off the cross");
+            }
+        }
+    }
+
+    /// On these parallel planes consecutive samples along the straight branches are Delaunay edges
+    /// without splitting: the pair list is the same with and without Steiner rounds (the splitting
+    /// itself is tested in `chains`).
+    #[test]
+    fn straight_branches_need_no_splitting() {
+        let r = run_cell_with(one_facing_four(), Sampling::default(), false, 0).unwrap();
+        assert!(r.sample_pairs > 0);
+        assert!(pairs_off_triangles(&r).is_empty());
+        assert!(r.sample_pairs_not_edges.is_empty());
+    }
 }

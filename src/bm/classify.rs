@@ -14,9 +14,8 @@
 //!     edges are the tet's pivot edges in step 2;
 //!   - `Evv`: some edge is grounded;
 //!   - `Vvvv`: no edge is grounded.
-use super::cell_input::{CellInput, Mask, Where};
+use super::cell_input::{CellInput, IdMap, Mask, Where};
 use super::complex::{Complex, TET_EDGES};
-use std::collections::HashMap;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TetType {
@@ -57,20 +56,27 @@ pub fn grounded_faces(m: [Mask; 4]) -> u8 {
     (0..4).filter(|&i| faces[i] != 0).fold(0, |b, i| b | 1 << i)
 }
 
-fn slots_of(m: Mask) -> impl Iterator<Item = usize> {
-    (0..128).filter(move |s| m >> s & 1 == 1)
+/// The slots whose bit is set in `m`, ascending (one step per set bit, not per slot).
+fn slots_of(mut m: Mask) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (m != 0).then(|| {
+            let s = m.trailing_zeros() as usize;
+            m &= m - 1;
+            s
+        })
+    })
 }
 
 pub struct Classifier<'a> {
     pub input: &'a CellInput,
-    edge_cache: HashMap<(u32, u32), bool>,
+    edge_cache: IdMap<(u32, u32), bool>,
 }
 
 impl<'a> Classifier<'a> {
     pub fn new(input: &'a CellInput) -> Self {
         Classifier {
             input,
-            edge_cache: HashMap::new(),
+            edge_cache: IdMap::default(),
         }
     }
 

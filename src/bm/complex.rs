@@ -1,7 +1,10 @@
 //! A plain tetrahedral complex in local vertex ids: tetrahedra, face neighbours and vertex stars.
 //! Built from any list of positively oriented tetrahedra (the Delaunay kernel's finite tets, or a
 //! hand-built complex in tests), so the pruning code does not depend on the kernel's internals.
+//! [`Complex::from_delaunay`] builds the same complex from the kernel's own adjacency (no facet
+//! hashing).
 use super::cell_input::IdMap;
+use crate::delaunay::Delaunay;
 
 pub const NONE: u32 = u32::MAX;
 
@@ -14,7 +17,55 @@ pub struct Complex {
     /// Neighbour across the face opposite vertex `i`, `NONE` on the hull.
     pub nbr: Vec<[u32; 4]>,
     /// Tetrahedra incident to each vertex.
-    pub star: Vec<Vec<u32>>,
+    pub star: Stars,
+}
+
+/// Tetrahedra incident to each vertex, ascending, in one array (`star[v]` is a slice).
+#[derive(Clone, Debug, Default)]
+pub struct Stars {
+    /// `tets[start[v]..start[v + 1]]` is vertex v's star.
+    start: Vec<u32>,
+    tets: Vec<u32>,
+}
+
+impl Stars {
+    /// The stars of `n_vertices` vertices in `tets` (each list ascending).
+    fn new(n_vertices: usize, tets: &[[u32; 4]]) -> Stars {
+        let mut start = vec![0u32; n_vertices + 1];
+        for t in tets {
+            for &v in t {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n_vertices {
+            start[v + 1] += start[v];
+        }
+        let mut next = start.clone();
+        let mut out = vec![0u32; start[n_vertices] as usize];
+        for (ti, t) in tets.iter().enumerate() {
+            for &v in t {
+                out[next[v as usize] as usize] = ti as u32;
+                next[v as usize] += 1;
+            }
+        }
+        Stars { start, tets: out }
+    }
+
+    /// Number of vertices.
+    pub fn len(&self) -> usize {
+        self.start.len().saturating_sub(1)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl std::ops::Index<usize> for Stars {
+    type Output = [u32];
+    fn index(&self, v: usize) -> &[u32] {
+        &self.tets[self.start[v] as usize..self.start[v + 1] as usize]
+    }
 }
 
 /// Face opposite local vertex `i`, oriented outward for a positively oriented tetrahedron.
@@ -30,6 +81,31 @@ pub fn outward_face(t: &[u32; 4], i: usize) -> [u32; 3] {
 fn key3(mut f: [u32; 3]) -> [u32; 3] {
     f.sort_unstable();
     f
+}
+
+/// `t` rotated by an even permutation (keeping its orientation) so that t[0] is its smallest vertex
+/// and t[1] the smallest of the other three; with `pos[k]`, the position in `t` of the result's
+/// vertex k.
+pub fn canonical_tet(t: [u32; 4]) -> ([u32; 4], [u8; 4]) {
+    let p = |m: [usize; 4]| (m.map(|i| t[i]), m.map(|i| i as u8));
+    let [a, b, c, d] = t;
+    let m = if a <= b.min(c).min(d) {
+        [0, 1, 2, 3]
+    } else if b <= c.min(d) {
+        [1, 0, 3, 2]
+    } else if c <= d {
+        [2, 3, 0, 1]
+    } else {
+        [3, 2, 1, 0]
+    };
+    let [b, c, d] = [t[m[1]], t[m[2]], t[m[3]]];
+    if b <= c.min(d) {
+        p(m)
+    } else if c <= d {
+        p([m[0], m[2], m[3], m[1]])
+    } else {
+        p([m[0], m[3], m[1], m[2]])
+    }
 }
 
 impl Complex {
@@ -48,12 +124,47 @@ impl Complex {
                 }
             }
         }
-        let mut star = vec![Vec::new(); n_vertices];
-        for (ti, t) in tets.iter().enumerate() {
-            for &v in t {
-                star[v as usize].push(ti as u32);
-            }
+        let star = Stars::new(n_vertices, &tets);
+        Complex { tets, nbr, star }
+    }
+
+    /// `Complex::new(n_vertices, finite_tets(dt))` (see `cell::finite_tets`: tets positively
+    /// oriented in `robust`'s convention, canonically rotated, sorted), with the neighbours read from
+    /// the kernel instead of matched by hashing facets.
+    pub fn from_delaunay(n_vertices: usize, dt: &Delaunay) -> Complex {
+        // (canonical tet, kernel slot, kernel position of each of its vertices)
+        let mut rows: Vec<([u32; 4], u32, [u8; 4])> = dt
+            .tets()
+            .map(|t| {
+                let v = dt.tet_vertices(t);
+                // the kernel's positive volume is robust's negative orientation: swap two vertices
+                let (c, pos) = canonical_tet([v[0], v[1], v[3], v[2]]);
+                (c, t, pos.map(|k| [0u8, 1, 3, 2][k as usize]))
+            })
+            .collect();
+        // distinct tets: the order does not depend on the sort's stability
+        rows.sort_unstable_by_key(|r| r.0);
+        let slots = rows.iter().map(|r| r.1 as usize + 1).max().unwrap_or(0);
+        let mut rank = vec![NONE; slots];
+        for (k, r) in rows.iter().enumerate() {
+            rank[r.1 as usize] = k as u32;
         }
+        let nbr = rows
+            .iter()
+            .map(|&(_, t, pos)| {
+                let n = dt.tet_neighbors(t);
+                pos.map(|p| {
+                    let m = n[p as usize];
+                    if dt.is_infinite(m) {
+                        NONE
+                    } else {
+                        rank[m as usize]
+                    }
+                })
+            })
+            .collect();
+        let tets: Vec<[u32; 4]> = rows.into_iter().map(|r| r.0).collect();
+        let star = Stars::new(n_vertices, &tets);
         Complex { tets, nbr, star }
     }
 
@@ -99,5 +210,63 @@ mod tests {
         assert_eq!(c.back_index(1, 0), 3);
         assert!(c.has_edge(3, 0, |_| true));
         assert!(!c.has_edge(3, 4, |_| true));
+        assert_eq!(c.star.len(), 5);
+        assert_eq!(&c.star[0], &[0, 1]);
+        assert_eq!(&c.star[4], &[1]);
+    }
+
+    #[test]
+    fn canonical_rotation_is_even_and_tracks_positions() {
+        for t in [
+            [0, 1, 2, 3],
+            [3, 2, 1, 0],
+            [2, 0, 3, 1],
+            [1, 3, 0, 2],
+            [3, 1, 2, 0],
+        ] {
+            let (c, pos) = canonical_tet(t);
+            assert_eq!(c[0], *t.iter().min().unwrap());
+            assert!(c[1] < c[2] && c[1] < c[3]);
+            assert_eq!(pos.map(|p| t[p as usize]), c);
+            // even permutation: an even number of inversions
+            let inv = (0..4)
+                .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+                .filter(|&(i, j)| pos[i] > pos[j])
+                .count();
+            assert_eq!(inv % 2, 0, "{t:?}");
+        }
+    }
+
+    #[test]
+    fn from_delaunay_equals_the_hashed_complex() {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        // points on the faces of a tilted box (coplanar groups, as in a cell), then insertions
+        let mut pts: Vec<[f64; 3]> = (0..300)
+            .map(|k| {
+                let (a, b): (f64, f64) = (r.gen(), r.gen());
+                let c = (k % 2) as f64;
+                let p = match k % 6 / 2 {
+                    0 => [c, a, b],
+                    1 => [a, c, b],
+                    _ => [a, b, c],
+                };
+                [p[0] + 0.3 * p[1], p[1] - 0.2 * p[2], p[2] + 0.1 * p[0]]
+            })
+            .collect();
+        let mut dt = Delaunay::new(&pts);
+        for _ in 0..50 {
+            let p = [r.gen(), r.gen(), 0.5];
+            pts.push(p);
+            dt.insert(p);
+        }
+        let a = Complex::from_delaunay(pts.len(), &dt);
+        let b = Complex::new(pts.len(), crate::bm::cell::finite_tets(&dt));
+        assert!(a.len() > 300);
+        assert_eq!(a.tets, b.tets);
+        assert_eq!(a.nbr, b.nbr);
+        for v in 0..pts.len() {
+            assert_eq!(&a.star[v], &b.star[v]);
+        }
     }
 }

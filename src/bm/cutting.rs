@@ -28,10 +28,14 @@
 //! point-in-section tests of `Classifier`, neighbours along a contour are the cell's contour edges
 //! (Steiner splits applied). Only the position of a sample is a floating-point construction.
 //!
-//! Not done: consecutive cutting samples are not forced to be Delaunay edges (the branching samples
-//! are not either); the samples only refine the triangulation along the diagram.
-use super::branching::{contour_spacing, into_cell_normal, moebius_sites, Site, SiteIndex};
+//! Chains: each sample carries its site pair (a, a'); two samples are consecutive when their source
+//! edges share an endpoint that no third source edge of the pair has (the separating edges form
+//! polylines along M(a) ∩ M(a')), after thinning along these chains (`chains::thin_chains`). The
+//! cell makes consecutive samples Delaunay edges with Steiner points on the diagram
+//! (`chains::conform_pairs`, paper §3's Delaunay conformity condition).
+use super::branching::{contour_spacing, Site, SiteIndex};
 use super::cell_input::{edge_key, CellInput, IdMap, IdSet, Where};
+use super::chains::{thin_chains, Chains, DiagramSample, Kind, SlotDiagram};
 use super::classify::{tet_type, Classifier, TetType};
 use super::complex::{Complex, NONE};
 use crate::sections::{dot, sub};
@@ -50,6 +54,24 @@ pub fn samples(
     apex: &[Vec<([u32; 3], u32)>],
     taken: &[Sample],
 ) -> Vec<Sample> {
+    sample_chains(input, cx, ty, cl, apex, taken)
+        .samples
+        .into_iter()
+        .map(|d| (d.slot, d.uv, d.p3))
+        .collect()
+}
+
+/// [`samples`] with their diagram identity and chain links: two samples are consecutive when their
+/// source edges (same site pair) share an endpoint that no third source edge of the pair has, and
+/// the diagram between them stays in the section and the two sites' cells (`chains`).
+pub fn sample_chains(
+    input: &CellInput,
+    cx: &Complex,
+    ty: &[TetType],
+    cl: &mut Classifier,
+    apex: &[Vec<([u32; 3], u32)>],
+    taken: &[Sample],
+) -> Chains {
     // neighbours along a contour: the contour edges of every slot (an apex on slot g is a contour
     // vertex of g; its neighbours are the ends of its contour edges)
     let mut contour_pairs: Vec<(u32, u32)> = input
@@ -59,7 +81,7 @@ pub fn samples(
         .collect();
     contour_pairs.sort_unstable();
     contour_pairs.dedup();
-    let mut out = Vec::new();
+    let mut out = Chains::default();
     for s in 0..input.slots.len() {
         let tri_apex = &apex[s];
         if tri_apex.is_empty() {
@@ -85,22 +107,39 @@ pub fn samples(
                 thin.occupy(q);
             }
         }
-        let n = into_cell_normal(input, s);
-        let sites = moebius_sites(input, s, n);
-        let index = SiteIndex::new(&slot.geom, &sites);
-        for ((p, q), (a, b)) in edges {
-            let Some(uv) = diagram_point_near_edge(input, s, n, (p, q), (a, b)) else {
-                continue;
-            };
-            if slot.locator.locate(uv) != Where::Inside
-                || thin.near(uv)
-                || !not_dominated(input, s, n, &sites, &index, uv, a)
-            {
-                continue;
+        let d = SlotDiagram::new(input, s);
+        let n = d.n;
+        let mut cands = Vec::with_capacity(edges.len());
+        // (site pair, endpoint) → source edges
+        let mut at_vertex: IdMap<((u32, u32), u32), Vec<u32>> = IdMap::default();
+        for (i, &((p, q), (a, b))) in edges.iter().enumerate() {
+            let sites = edge_key(a, b);
+            for v in [p, q] {
+                at_vertex.entry((sites, v)).or_default().push(i as u32);
             }
-            thin.occupy(uv);
-            out.push((s, uv, slot.geom.to_3d(uv)));
+            let cand = diagram_point_near_edge(input, s, n, (p, q), (a, b))
+                .filter(|&uv| {
+                    slot.locator.locate(uv) == Where::Inside
+                        && not_dominated(input, s, n, &d.sites, &d.index, uv, a)
+                })
+                .map(|uv| DiagramSample {
+                    slot: s,
+                    uv,
+                    p3: slot.geom.to_3d(uv),
+                    kind: Kind::Cutting,
+                    sites,
+                });
+            cands.push(cand);
         }
+        let mut links: Vec<(u32, u32)> = at_vertex
+            .values()
+            .filter(|l| l.len() == 2)
+            .map(|l| (l[0].min(l[1]), l[0].max(l[1])))
+            .collect();
+        links.sort_unstable();
+        out.extend(thin_chains(cands, &links, &mut thin, |x, y| {
+            d.between(input, x.uv, y.uv, x.sites, y.sites).is_some()
+        }));
     }
     out
 }
@@ -293,15 +332,26 @@ fn diagram_point_near_edge(
     let slot = &input.slots[s];
     let plane = slot.geom;
     let (p2, q2) = (slot.uv[p as usize], slot.uv[q as usize]);
-    let m = [0.5 * (p2[0] + q2[0]), 0.5 * (p2[1] + q2[1])];
-    // perpendicular of the edge, as long as the edge
-    let d = [q2[1] - p2[1], p2[0] - q2[0]];
-    let (from, to) = ([m[0] - d[0], m[1] - d[1]], [m[0] + d[0], m[1] + d[1]]);
     let site = |x: u32| {
         let x3 = input.points[x as usize];
         (plane.to_2d(x3), dot(n, sub(x3, plane.origin)))
     };
-    let t = equal_radius_parameters(from, to, site(a), site(b))
+    diagram_point_across(p2, q2, site(a), site(b))
+}
+
+/// The root of r_a = r_b (sites given by projection and height) nearest to the midpoint of p2 q2
+/// on the line through it perpendicular to p2 q2, within the length of p2 q2 of the midpoint.
+pub(super) fn diagram_point_across(
+    p2: [f64; 2],
+    q2: [f64; 2],
+    a: ([f64; 2], f64),
+    b: ([f64; 2], f64),
+) -> Option<[f64; 2]> {
+    let m = [0.5 * (p2[0] + q2[0]), 0.5 * (p2[1] + q2[1])];
+    // perpendicular of the edge, as long as the edge
+    let d = [q2[1] - p2[1], p2[0] - q2[0]];
+    let (from, to) = ([m[0] - d[0], m[1] - d[1]], [m[0] + d[0], m[1] + d[1]]);
+    let t = equal_radius_parameters(from, to, a, b)
         .into_iter()
         .min_by(|x, y| (x - 0.5).abs().total_cmp(&(y - 0.5).abs()))?;
     Some([
@@ -392,13 +442,13 @@ fn not_dominated(
 }
 
 /// Points in a plane bucketed by cells of size `r`: is a new point closer than `r` to one of them?
-struct Thinning {
+pub(super) struct Thinning {
     r: f64,
     cells: IdMap<(i64, i64), Vec<[f64; 2]>>,
 }
 
 impl Thinning {
-    fn new(r: f64) -> Thinning {
+    pub(super) fn new(r: f64) -> Thinning {
         Thinning {
             r,
             cells: IdMap::default(),
@@ -412,14 +462,14 @@ impl Thinning {
         )
     }
 
-    fn occupy(&mut self, q: [f64; 2]) {
+    pub(super) fn occupy(&mut self, q: [f64; 2]) {
         if q.iter().all(|c| c.is_finite()) {
             let k = self.key(q);
             self.cells.entry(k).or_default().push(q);
         }
     }
 
-    fn near(&self, q: [f64; 2]) -> bool {
+    pub(super) fn near(&self, q: [f64; 2]) -> bool {
         let (kx, ky) = self.key(q);
         (kx - 1..=kx + 1).any(|x| {
             (ky - 1..=ky + 1).any(|y| {
@@ -461,7 +511,7 @@ impl UnionFind {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::bm::branching::apex_triangles;
     use crate::bm::cell::delaunay_tets;
@@ -471,7 +521,7 @@ mod tests {
 
     /// The slab cell between z = 0 (slot 0, below) and z = 1 (slot 1, above) with the given contour
     /// loops (x, y) on each plane.
-    fn slab(bottom: &[Vec<[f64; 2]>], top: &[Vec<[f64; 2]>]) -> CellInput {
+    pub(crate) fn slab(bottom: &[Vec<[f64; 2]>], top: &[Vec<[f64; 2]>]) -> CellInput {
         let mut input = CellInput {
             cell: 0,
             global: Vec::new(),

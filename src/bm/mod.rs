@@ -17,7 +17,11 @@
 //! Cutting-diagram samples (`cutting`) are added beside the branching samples where a site's Moebius
 //! cell on a face is disconnected next to a connected one (the borders of flat zones).
 //!
-//! Known limits: consecutive branching or cutting samples are not forced to be Delaunay edges; on a face attached from both sides the
+//! Consecutive branching or cutting samples (chains along the diagram, `chains`) are made Delaunay
+//! edges of the cell by Steiner points on the diagram (counts `sample_pairs`, `sample_steiner_points`,
+//! `sample_pairs_not_edges`, the last warned per cell and face).
+//!
+//! Known limits: on a face attached from both sides the
 //! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
 //! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
 //! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
@@ -25,6 +29,7 @@
 pub mod branching;
 pub mod cell;
 pub mod cell_input;
+pub mod chains;
 pub mod classify;
 pub mod complex;
 pub mod conform;
@@ -231,6 +236,17 @@ pub fn reconstruct(
         report.count("tets_kept", r.kept.len() as u64);
         report.count("branching_samples", r.branching_samples);
         report.count("cutting_samples", r.cutting_samples);
+        report.count("sample_pairs", r.sample_pairs);
+        report.count("sample_steiner_points", r.sample_steiner_points);
+        let not_edges: u64 = r.sample_pairs_not_edges.iter().map(|x| x.1).sum();
+        report.count("sample_pairs_not_edges", not_edges);
+        for &(face, k) in &r.sample_pairs_not_edges {
+            let cell = r.input.as_ref().map_or(u32::MAX, |i| i.cell);
+            report.warnings.push(format!(
+                "cell {cell}, face {face}: {k} pairs of consecutive diagram samples are not Delaunay edges after {} rounds of Steiner splits",
+                cell::SAMPLE_PAIR_ROUNDS
+            ));
+        }
         report.count("cutting_samples_on_flat_border", r.cutting_on_flat_border);
         *report.values.entry("cell_flat_area".into()).or_insert(0.0) += r.flat_area;
     }

@@ -64,6 +64,9 @@ pub fn orient_within(a: P, b: P, c: P, d: P, sb: f64) -> f64 {
         // the points share one coordinate exactly (a section on an axis plane): coplanar
         return 0.0;
     }
+    if let Some(det) = orient3d_dd(a, b, c, d) {
+        return -det;
+    }
     -gp::orient3d(a, b, c, d)
 }
 
@@ -127,9 +130,14 @@ fn split(a: f64) -> Dd {
     (hi, a - hi)
 }
 
+/// a·b = p + e exactly (Dekker's splitting, or one fused multiply-add when `FMA`: the same exact
+/// pair either way, so the stages below give bit-identical results with or without FMA).
 #[inline(always)]
-fn two_prod(a: f64, b: f64) -> Dd {
+fn two_prod<const FMA: bool>(a: f64, b: f64) -> Dd {
     let p = a * b;
+    if FMA {
+        return (p, a.mul_add(b, -p));
+    }
     let (ah, al) = split(a);
     let (bh, bl) = split(b);
     (p, al * bl - (((p - ah * bh) - al * bh) - ah * bl))
@@ -148,15 +156,50 @@ fn dd_sub(x: Dd, y: Dd) -> Dd {
     dd_add(x, (-y.0, -y.1))
 }
 
+/// The cross terms are plain products (not fused even with `FMA`, to stay bit-identical).
 #[inline(always)]
-fn dd_mul(x: Dd, y: Dd) -> Dd {
-    let (p, e) = two_prod(x.0, y.0);
+fn dd_mul<const FMA: bool>(x: Dd, y: Dd) -> Dd {
+    let (p, e) = two_prod::<FMA>(x.0, y.0);
     fast_two_sum(p, e + (x.0 * y.1 + x.1 * y.0))
+}
+
+/// Whether the CPU has fused multiply-add (detected once; the double-double stages then take their
+/// FMA build, about a third fewer operations per product).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn has_fma() -> bool {
+    use std::sync::atomic::{AtomicU8, Ordering};
+    static FMA: AtomicU8 = AtomicU8::new(0);
+    match FMA.load(Ordering::Relaxed) {
+        1 => false,
+        2 => true,
+        _ => {
+            let yes = std::arch::is_x86_feature_detected!("fma");
+            FMA.store(1 + yes as u8, Ordering::Relaxed);
+            yes
+        }
+    }
 }
 
 /// `robust::insphere`'s determinant (its sign convention) when double-double arithmetic certifies
 /// its sign, else `None`.
 fn insphere_dd(a: P, b: P, c: P, d: P, e: P) -> Option<f64> {
+    #[cfg(target_arch = "x86_64")]
+    if has_fma() {
+        // SAFETY: the CPU has FMA (checked above).
+        return unsafe { insphere_dd_fma(a, b, c, d, e) };
+    }
+    insphere_dd_with::<false>(a, b, c, d, e)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+unsafe fn insphere_dd_fma(a: P, b: P, c: P, d: P, e: P) -> Option<f64> {
+    insphere_dd_with::<true>(a, b, c, d, e)
+}
+
+#[inline(always)]
+fn insphere_dd_with<const FMA: bool>(a: P, b: P, c: P, d: P, e: P) -> Option<f64> {
     let diff = |p: P| [0, 1, 2].map(|k| two_sum(p[k], -e[k]));
     let (pa, pb, pc, pd) = (diff(a), diff(b), diff(c), diff(d));
     let m = [pa, pb, pc, pd]
@@ -189,18 +232,35 @@ fn insphere_dd(a: P, b: P, c: P, d: P, e: P) -> Option<f64> {
         + (da * h(cez) + ac * h(dez) + cd * h(aez)) * lift(bex, bey, bez)
         + (ab * h(dez) + bd * h(aez) + da * h(bez)) * lift(cex, cey, cez)
         + (bc * h(aez) + ac * h(bez) + ab * h(cez)) * lift(dex, dey, dez);
-    let minor = |p: Dd, q: Dd, r: Dd, s: Dd| dd_sub(dd_mul(p, q), dd_mul(r, s));
+    let minor = |p: Dd, q: Dd, r: Dd, s: Dd| dd_sub(dd_mul::<FMA>(p, q), dd_mul::<FMA>(r, s));
     let ab = minor(aex, bey, bex, aey);
     let bc = minor(bex, cey, cex, bey);
     let cd = minor(cex, dey, dex, cey);
     let da = minor(dex, aey, aex, dey);
     let ac = minor(aex, cey, cex, aey);
     let bd = minor(bex, dey, dex, bey);
-    let abc = dd_add(dd_sub(dd_mul(bc, aez), dd_mul(ac, bez)), dd_mul(ab, cez));
-    let bcd = dd_add(dd_sub(dd_mul(cd, bez), dd_mul(bd, cez)), dd_mul(bc, dez));
-    let cda = dd_add(dd_add(dd_mul(da, cez), dd_mul(ac, dez)), dd_mul(cd, aez));
-    let dab = dd_add(dd_add(dd_mul(ab, dez), dd_mul(bd, aez)), dd_mul(da, bez));
-    let lift = |x: Dd, y: Dd, z: Dd| dd_add(dd_add(dd_mul(x, x), dd_mul(y, y)), dd_mul(z, z));
+    let abc = dd_add(
+        dd_sub(dd_mul::<FMA>(bc, aez), dd_mul::<FMA>(ac, bez)),
+        dd_mul::<FMA>(ab, cez),
+    );
+    let bcd = dd_add(
+        dd_sub(dd_mul::<FMA>(cd, bez), dd_mul::<FMA>(bd, cez)),
+        dd_mul::<FMA>(bc, dez),
+    );
+    let cda = dd_add(
+        dd_add(dd_mul::<FMA>(da, cez), dd_mul::<FMA>(ac, dez)),
+        dd_mul::<FMA>(cd, aez),
+    );
+    let dab = dd_add(
+        dd_add(dd_mul::<FMA>(ab, dez), dd_mul::<FMA>(bd, aez)),
+        dd_mul::<FMA>(da, bez),
+    );
+    let lift = |x: Dd, y: Dd, z: Dd| {
+        dd_add(
+            dd_add(dd_mul::<FMA>(x, x), dd_mul::<FMA>(y, y)),
+            dd_mul::<FMA>(z, z),
+        )
+    };
     let (al, bl, cl, dl) = (
         lift(aex, aey, aez),
         lift(bex, bey, bez),
@@ -208,14 +268,68 @@ fn insphere_dd(a: P, b: P, c: P, d: P, e: P) -> Option<f64> {
         lift(dex, dey, dez),
     );
     let det = dd_add(
-        dd_sub(dd_mul(dl, abc), dd_mul(cl, dab)),
-        dd_sub(dd_mul(bl, cda), dd_mul(al, bcd)),
+        dd_sub(dd_mul::<FMA>(dl, abc), dd_mul::<FMA>(cl, dab)),
+        dd_sub(dd_mul::<FMA>(bl, cda), dd_mul::<FMA>(al, bcd)),
     );
     let det = det.0 + det.1;
     // ~40 double-double operations deep, each within 2^-100 of its operands' magnitudes: the
     // error is far below 1e-24 × permanent. The absolute term covers underflow of the low parts when
     // some differences are tiny: each costs at most ~1e-308 times a cofactor below 1e120 (m < 1e30).
     let bound = 1e-24 * permanent + 1e-150;
+    (det > bound || -det > bound).then_some(det)
+}
+
+/// `robust::orient3d`'s determinant (its sign convention) when double-double arithmetic certifies
+/// its sign, else `None` (exact zeros among them). For four nearly coplanar points on a tilted
+/// plane (every point of a cell lies on one of its faces) the filter fails and `robust` would go
+/// to its tail and exact stages.
+fn orient3d_dd(a: P, b: P, c: P, d: P) -> Option<f64> {
+    #[cfg(target_arch = "x86_64")]
+    if has_fma() {
+        // SAFETY: the CPU has FMA (checked above).
+        return unsafe { orient3d_dd_fma(a, b, c, d) };
+    }
+    orient3d_dd_with::<false>(a, b, c, d)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "fma")]
+unsafe fn orient3d_dd_fma(a: P, b: P, c: P, d: P) -> Option<f64> {
+    orient3d_dd_with::<true>(a, b, c, d)
+}
+
+#[inline(always)]
+fn orient3d_dd_with<const FMA: bool>(a: P, b: P, c: P, d: P) -> Option<f64> {
+    let diff = |p: P| [0, 1, 2].map(|k| two_sum(p[k], -d[k]));
+    let (pa, pb, pc) = (diff(a), diff(b), diff(c));
+    let m = [pa, pb, pc]
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.0.abs()));
+    // keep products far from overflow and underflow (else `robust`)
+    if !(m > 1e-30 && m < 1e30) {
+        return None;
+    }
+    let [adx, ady, adz] = pa;
+    let [bdx, bdy, bdz] = pb;
+    let [cdx, cdy, cdz] = pc;
+    // an upper bound of the permanent
+    let h = |x: Dd| x.0.abs() * (1.0 + 1e-10);
+    let permanent = h(adz) * (h(bdx) * h(cdy) + h(cdx) * h(bdy))
+        + h(bdz) * (h(cdx) * h(ady) + h(adx) * h(cdy))
+        + h(cdz) * (h(adx) * h(bdy) + h(bdx) * h(ady));
+    let mul = dd_mul::<FMA>;
+    let det = dd_add(
+        dd_add(
+            mul(adz, dd_sub(mul(bdx, cdy), mul(cdx, bdy))),
+            mul(bdz, dd_sub(mul(cdx, ady), mul(adx, cdy))),
+        ),
+        mul(cdz, dd_sub(mul(adx, bdy), mul(bdx, ady))),
+    );
+    let det = det.0 + det.1;
+    // ~10 double-double operations deep, each within 2^-100 of its operands' magnitudes; the
+    // absolute term covers underflow of the low parts (cofactors below 1e60 as m < 1e30).
+    let bound = 1e-24 * permanent + 1e-200;
     (det > bound || -det > bound).then_some(det)
 }
 
@@ -526,6 +640,99 @@ mod tests {
             }
         }
         assert!(answered > nonzero / 2, "{answered} of {nonzero}");
+    }
+
+    #[test]
+    fn double_double_orient_agrees_with_robust() {
+        // nearly coplanar 4-tuples on tilted planes (rounded), exactly coplanar ones, random ones
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let (mut answered, mut nonzero) = (0, 0);
+        for k in 0..40000 {
+            let n: P = [
+                r.gen::<f64>() - 0.5,
+                r.gen::<f64>() - 0.5,
+                r.gen::<f64>() - 0.5,
+            ];
+            let u: P = [n[1], -n[0], 0.0];
+            let v: P = [
+                n[1] * u[2] - n[2] * u[1],
+                n[2] * u[0] - n[0] * u[2],
+                n[0] * u[1] - n[1] * u[0],
+            ];
+            let o: P = [r.gen(), r.gen(), r.gen()];
+            let mut p: [P; 4] = [[0.0; 3]; 4];
+            for (i, q) in p.iter_mut().enumerate() {
+                let (s, t): (f64, f64) = (r.gen::<f64>() - 0.5, r.gen::<f64>() - 0.5);
+                let h = match k % 4 {
+                    1 if i == 3 => 1e-13 * (r.gen::<f64>() - 0.5),
+                    2 => r.gen::<f64>() - 0.5,
+                    _ => 0.0,
+                };
+                *q = std::array::from_fn(|c| o[c] + s * u[c] + t * v[c] + h * n[c]);
+            }
+            if k % 4 == 3 {
+                // exactly coplanar: the fourth point is the midpoint of a dyadic pair
+                p[3] = [0.5 * (p[0][0] + p[1][0]), p[0][1], p[0][2]];
+                p[1] = [p[1][0], p[0][1], p[0][2]];
+            }
+            let exact = gp::orient3d(p[0], p[1], p[2], p[3]);
+            if exact != 0.0 {
+                nonzero += 1;
+            }
+            for fma in [false, true] {
+                let dd = if fma {
+                    #[cfg(target_arch = "x86_64")]
+                    {
+                        if !has_fma() {
+                            continue;
+                        }
+                        // SAFETY: checked just above.
+                        unsafe { orient3d_dd_fma(p[0], p[1], p[2], p[3]) }
+                    }
+                    #[cfg(not(target_arch = "x86_64"))]
+                    continue;
+                } else {
+                    orient3d_dd_with::<false>(p[0], p[1], p[2], p[3])
+                };
+                if let Some(dd) = dd {
+                    answered += !fma as usize;
+                    assert_eq!(dd > 0.0, exact > 0.0, "case {k}: {p:?}");
+                    assert!(exact != 0.0, "case {k}");
+                }
+            }
+        }
+        assert!(answered > nonzero * 9 / 10, "{answered} of {nonzero}");
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn fma_double_double_stages_are_bit_identical() {
+        if !has_fma() {
+            return;
+        }
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+        for k in 0..20000 {
+            let mut p: [P; 5] = [[0.0; 3]; 5];
+            for q in p.iter_mut() {
+                *q = [r.gen(), r.gen(), 0.3 * r.gen::<f64>()];
+            }
+            if k % 2 == 0 {
+                for q in p.iter_mut() {
+                    q[2] = 0.3 * q[0] - 0.7 * q[1];
+                }
+            }
+            let [a, b, c, d, e] = p;
+            // SAFETY: the CPU has FMA.
+            let (x, y) = unsafe { (insphere_dd_fma(a, b, c, d, e), orient3d_dd_fma(a, b, c, d)) };
+            assert_eq!(
+                x.map(f64::to_bits),
+                insphere_dd_with::<false>(a, b, c, d, e).map(f64::to_bits)
+            );
+            assert_eq!(
+                y.map(f64::to_bits),
+                orient3d_dd_with::<false>(a, b, c, d).map(f64::to_bits)
+            );
+        }
     }
 
     #[cfg(target_arch = "x86_64")]
