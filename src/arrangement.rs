@@ -20,6 +20,10 @@
 //!   through a point and nearly parallel planes give one consistent subdivision: a vertex exactly on
 //!   a plane gets its tag, and coinciding vertices are one vertex. Duplicate input planes (equal up
 //!   to scale, either orientation) are rejected with `Error::Input` naming both.
+//! * `merge`: vertices closer than `merge_tolerance × diagonal` are only apart by rounding (four
+//!   planes meeting in one point up to the rounding of their equations): they become one vertex
+//!   (mean position, union of tags), faces left with fewer than three vertices and cells left
+//!   with no face are dropped, before the pieces are built.
 //! * `pieces`: contour vertices are classified by the exact sign of `n·p + d` at their 3D point;
 //!   planes that share their line with another plane on the section's plane are decided through one
 //!   representative, planes that do not cut the section's plane inside the box have a constant side.
@@ -38,6 +42,7 @@
 mod build;
 mod cells;
 pub(crate) mod exact;
+mod merge;
 mod pieces;
 mod reconcile;
 
@@ -107,6 +112,15 @@ pub struct ArrangementOptions {
     /// Where the sections of two planes cross their common line at points closer than this
     /// (relative to the bounding-box diagonal), the crossings are snapped to one shared vertex.
     pub snap_tolerance: f64,
+    /// Arrangement vertices closer than this (relative to the bounding-box diagonal) are one vertex:
+    /// where several planes meet in one point up to the rounding of their equations, the rounded
+    /// vertices of their triples and the sliver faces and cells between them are merged away.
+    #[serde(default = "default_merge_tolerance")]
+    pub merge_tolerance: f64,
+}
+
+fn default_merge_tolerance() -> f64 {
+    1e-10
 }
 
 impl Default for ArrangementOptions {
@@ -114,6 +128,7 @@ impl Default for ArrangementOptions {
         ArrangementOptions {
             margin: 0.1,
             snap_tolerance: 1e-3,
+            merge_tolerance: default_merge_tolerance(),
         }
     }
 }

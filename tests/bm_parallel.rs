@@ -75,7 +75,7 @@ fn one_circle_facing_four_circles_branches() {
         .iter()
         .map(|&(x, y)| (circle(x, y, 0.4, 24), vec![]))
         .collect();
-    run(
+    let report = run(
         "one-four",
         &[
             (0.0, vec![(circle(0.0, 0.0, 1.2, 48), vec![])]),
@@ -87,6 +87,11 @@ fn one_circle_facing_four_circles_branches() {
             flat_zones: false,
         },
     );
+    // the branching samples form chains along the diagram, each consecutive pair a Delaunay edge
+    let count = |k: &str| report.counts.get(k).copied().unwrap_or(0);
+    assert!(count("branching_samples") > 0);
+    assert!(count("sample_pairs") > 0);
+    assert_eq!(count("sample_pairs_not_edges"), 0);
 }
 
 #[test]

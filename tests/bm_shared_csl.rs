@@ -12,8 +12,9 @@ use slice2solid::{Error, Options};
 /// input within 2% (the criterion). Flat zones attached from neither side are thickened
 /// (bm::thicken), so hand and Armadillo keep their sections (Armadillo lost 20% of one before), and
 /// untangle lets a pinch's kept fan retreat (Elephant and Armadillo had 5 and 6 crossings), and
-/// micro edges are collapsed (Horsers had two overlapping near-coplanar pairs of 1e-15-wide
-/// triangles where four planes nearly meet in one point). All twelve shared files.
+/// the arrangement merges the vertices that rounding kept apart where four planes nearly meet in
+/// one point (Horsers had two overlapping near-coplanar pairs of 1e-15-wide triangles there;
+/// arrangement::merge, tests/bm_horsers.rs). All twelve shared files.
 const CLEAN: &[&str] = &[
     "Armadillo-23-better",
     "Elephant",

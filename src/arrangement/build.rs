@@ -190,6 +190,8 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
         max_disagreement: 0.0,
         warnings: Vec::new(),
     };
+    // Vertices that only rounding keeps apart (planes nearly through one point): one vertex.
+    super::merge::merge_close_vertices(&mut arr, &mut cell_sign, options.merge_tolerance * diag);
     super::pieces::build_pieces(&mut arr, sections, &cell_sign, diag, options)?;
     Ok(arr)
 }

@@ -152,6 +152,7 @@ pub(super) fn build_pieces(
     let line_points = std::mem::take(&mut ctx.line_points);
     arr.warnings.extend(warnings);
     super::reconcile::reconcile(arr, &line_points, n_arr, diag, options);
+    super::merge::merge_line_points(arr, n_arr, options.merge_tolerance * diag);
     Ok(())
 }
 

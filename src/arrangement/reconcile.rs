@@ -284,7 +284,7 @@ fn insert_line_points(arr: &mut Arrangement, lines: &HashMap<(u32, u32), LinePoi
 }
 
 /// Remove merged-away vertices from the pool and renumber.
-fn compact(arr: &mut Arrangement, merged_into: &HashMap<VertexId, VertexId>) {
+pub(super) fn compact(arr: &mut Arrangement, merged_into: &HashMap<VertexId, VertexId>) {
     let nv = arr.pool.positions.len();
     let mut new_id = vec![u32::MAX; nv];
     let mut next = 0u32;

@@ -11,10 +11,8 @@
 //! Samples are thinned: none closer than half the face's median contour edge to another sample or to
 //! a contour vertex. Samples are linked into chains along the diagram (marching squares on the
 //! sampling grid, see `grid_samples`), which the cell makes Delaunay edges (`chains`).
-use super::cell_input::CellInput;
-use super::chains::{
-    continuous, same_branch, thin_chains, Chains, DiagramSample, Kind, SlotDiagram,
-};
+use super::cell_input::{CellInput, IdMap};
+use super::chains::{same_branch, thin_chains, Chains, DiagramSample, Kind, SlotDiagram};
 use super::classify::{Classifier, TetType};
 use super::complex::{outward_face, Complex};
 use super::cutting::Thinning;
@@ -166,10 +164,14 @@ pub(super) fn moebius_sites(input: &CellInput, s: usize, n: [f64; 3]) -> Vec<Sit
 
 /// Sample the section on a grid of spacing `h`, find each grid point's minimiser of r_b, and on every
 /// grid edge whose two minimisers are discontinuous place a point where r_b1 = r_b2 (bisection on the
-/// segment). Samples of one site pair on two edges of one grid square are consecutive (marching
-/// squares; a square with four, a saddle, is decided by the sign of r_b1 − r_b2 at its centre). The
-/// samples are thinned along these chains (`chains::thin_chains`): points closer than h/2 to a
-/// contour vertex or to another sample are dropped, their chain neighbours linked.
+/// segment). Two samples on edges of one grid square are consecutive when they are on the same
+/// branch: their site pairs match up continuously (`chains::same_branch`; the sites are section
+/// vertices and change from vertex to neighbouring vertex along a branch). Marching squares: a square
+/// with two samples of a branch links them; a square with four, a saddle, links them so that the
+/// corners whose minimiser is discontinuous with the centre's are cut off; a square with three (a
+/// missing crossing) links none. The samples are thinned along these chains
+/// (`chains::thin_chains`): points closer than h/2 to a contour vertex or to another sample are
+/// dropped, their chain neighbours linked.
 fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h: f64) -> Chains {
     let slot = &input.slots[s];
     let bit = 1u128 << s;
@@ -235,7 +237,7 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
     // candidates in grid order; per grid edge (2 (j w + i) + {0: along x, 1: along y}) its
     // candidate and the candidate's site indices (m0, m1), m0 the minimiser at the edge's start
     let mut cands: Vec<Option<DiagramSample>> = Vec::new();
-    let mut on_edge: HashMap<usize, (u32, (u32, u32))> = HashMap::new();
+    let mut on_edge: IdMap<usize, (u32, (u32, u32))> = IdMap::default();
     let mut pairs_checked: HashMap<(usize, usize), bool> = HashMap::new();
     for j in 0..=ny {
         for i in 0..=nx {
@@ -299,10 +301,37 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
             }
         }
     }
-    // marching squares: per grid square, its edges' candidates grouped by site pair
+    // continuity of two sites (cached point location of the segment's midpoint)
+    let mut cont = |a: u32, b: u32| {
+        a == b || (input.mask[a as usize] & input.mask[b as usize] != 0 && !cl.edge_external(a, b))
+    };
+    // marching squares: per grid square with candidates on its edges, those candidates grouped by
+    // branch
+    let mut squares: Vec<(usize, usize)> = Vec::new();
+    for &e in on_edge.keys() {
+        let (g, dir) = (e / 2, e % 2);
+        let (i, j) = (g % w, g / w);
+        if dir == 0 {
+            if j < ny {
+                squares.push((j, i));
+            }
+            if j > 0 {
+                squares.push((j - 1, i));
+            }
+        } else {
+            if i < nx {
+                squares.push((j, i));
+            }
+            if i > 0 {
+                squares.push((j, i - 1));
+            }
+        }
+    }
+    squares.sort_unstable();
+    squares.dedup();
     let mut links: Vec<(u32, u32)> = Vec::new();
-    for j in 0..ny {
-        for i in 0..nx {
+    {
+        for &(j, i) in &squares {
             // bottom, right, top, left (counter-clockwise from the corner (i, j))
             let sides = [
                 2 * (j * w + i),
@@ -322,7 +351,7 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
             let mut group: Vec<usize> = (0..found.len()).collect();
             for a in 0..found.len() {
                 for b in a + 1..found.len() {
-                    if group[b] == b && same_branch(input, found[a].2, found[b].2) {
+                    if group[b] == b && same_branch(found[a].2, found[b].2, &mut cont) {
                         group[b] = group[a];
                     }
                 }
@@ -343,7 +372,7 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
                         ) else {
                             continue;
                         };
-                        let corner_with_centre = continuous(input, sites[mc].0, sites[m00].0);
+                        let corner_with_centre = cont(sites[mc].0, sites[m00].0);
                         let by_side = |k: usize| g.iter().find(|x| x.0 == k).map(|x| x.1);
                         let (Some(b), Some(rt), Some(t), Some(l)) =
                             (by_side(0), by_side(1), by_side(2), by_side(3))
@@ -368,7 +397,7 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
     links.dedup();
     thin_chains(cands, &links, &mut thin, |x, y| {
         diagram
-            .between(input, x.uv, y.uv, x.sites, y.sites)
+            .between(input, x.uv, y.uv, x.sites, y.sites, &mut cont)
             .is_some()
     })
 }

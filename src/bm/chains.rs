@@ -135,7 +135,8 @@ impl SlotDiagram {
 
     /// The point where r_b1 = r_b2 (`sa`, else `sb`) on the perpendicular bisector of the chord
     /// pa pb nearest the chord's midpoint (within the chord's length of it), else the midpoint.
-    /// `None` when that point is not strictly inside the section, or the site with the smallest
+    /// `None` when that point or the chord's midpoint is not strictly inside the section (the edge
+    /// would be external, e.g. across a notch), or the site with the smallest
     /// radius there is none of the four sites, continuous with none of them (see [`continuous`]),
     /// and smaller than theirs beyond rounding: the diagram between the two samples leaves the
     /// section or runs into a third site's cell. (The sites are section vertices: along one branch
@@ -147,6 +148,7 @@ impl SlotDiagram {
         pb: [f64; 2],
         sa: (u32, u32),
         sb: (u32, u32),
+        cont: &mut impl FnMut(u32, u32) -> bool,
     ) -> Option<[f64; 2]> {
         let slot = &input.slots[self.s];
         let plane = slot.geom;
@@ -157,7 +159,11 @@ impl SlotDiagram {
         let x = diagram_point_across(pa, pb, site(sa.0), site(sa.1))
             .or_else(|| diagram_point_across(pa, pb, site(sb.0), site(sb.1)))
             .unwrap_or([0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]);
-        if !x.iter().all(|c| c.is_finite()) || slot.locator.locate(x) != Where::Inside {
+        let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+        if !x.iter().all(|c| c.is_finite())
+            || slot.locator.locate(x) != Where::Inside
+            || slot.locator.locate(mid) != Where::Inside
+        {
             return None;
         }
         let x3 = plane.to_3d(x);
@@ -186,7 +192,7 @@ impl SlotDiagram {
             return Some(x);
         }
         let m = self.sites[best.1].0;
-        four.iter().any(|&b| continuous(input, m, b)).then_some(x)
+        four.iter().any(|&b| cont(m, b)).then_some(x)
     }
 }
 
@@ -215,10 +221,10 @@ pub fn continuous(input: &CellInput, a: u32, b: u32) -> bool {
         })
 }
 
-/// Two site pairs are the same branch of a diagram: their sites match up continuously.
-pub fn same_branch(input: &CellInput, a: (u32, u32), b: (u32, u32)) -> bool {
-    (continuous(input, a.0, b.0) && continuous(input, a.1, b.1))
-        || (continuous(input, a.0, b.1) && continuous(input, a.1, b.0))
+/// Two site pairs are the same branch of a diagram: their sites match up continuously (`cont`,
+/// [`continuous`] or a cached equivalent).
+pub fn same_branch(a: (u32, u32), b: (u32, u32), cont: &mut impl FnMut(u32, u32) -> bool) -> bool {
+    (cont(a.0, b.0) && cont(a.1, b.1)) || (cont(a.0, b.1) && cont(a.1, b.0))
 }
 
 /// Two inserted samples consecutive along a diagram (local vertex ids).
@@ -254,6 +260,52 @@ pub fn is_grounded_edge(dt: &Delaunay, mask: &[Mask], s: usize, u: u32, v: u32) 
     })
 }
 
+/// Per pair, whether its ends are an edge of a grounded triangle on its slot of a non-flat tet of
+/// `dt` (one pass over the tets; every pair end is at least `min_id`, so tets with fewer than two
+/// such vertices are skipped at once).
+pub fn grounded_pair_edges(
+    dt: &Delaunay,
+    mask: &[Mask],
+    pairs: &[SamplePair],
+    min_id: u32,
+) -> Vec<bool> {
+    let mut found = vec![false; pairs.len()];
+    let mut wanted: IdMap<(u32, u32), Vec<u32>> = IdMap::default();
+    for (i, p) in pairs.iter().enumerate() {
+        wanted
+            .entry(super::cell_input::edge_key(p.ends.0, p.ends.1))
+            .or_default()
+            .push(i as u32);
+    }
+    for t in dt.tets() {
+        let tv = dt.tet_vertices(t);
+        if tv.iter().filter(|&&v| v >= min_id).count() < 2
+            || tv.iter().fold(!0 as Mask, |m, &w| m & mask[w as usize]) != 0
+        {
+            continue;
+        }
+        for (a, b) in super::complex::TET_EDGES {
+            let (u, v) = (tv[a], tv[b]);
+            if u < min_id || v < min_id {
+                continue;
+            }
+            let Some(list) = wanted.get(&super::cell_input::edge_key(u, v)) else {
+                continue;
+            };
+            for &i in list {
+                let bit: Mask = 1 << pairs[i as usize].slot;
+                if tv
+                    .iter()
+                    .any(|&w| w != u && w != v && mask[w as usize] & bit != 0)
+                {
+                    found[i as usize] = true;
+                }
+            }
+        }
+    }
+    found
+}
+
 /// Split every pair that is not an edge of its slot's grounded triangles in `dt` with a Steiner
 /// point on the diagram between its ends ([`SlotDiagram::between`]; a pair whose point falls
 /// outside the section is left as it is), inserted as a cell-local vertex, up to `max_rounds`
@@ -267,14 +319,15 @@ pub fn conform_pairs(
 ) -> crate::error::Result<PairConformity> {
     let mut out = PairConformity::default();
     let mut pairs = pairs;
+    let min_id = pairs
+        .iter()
+        .map(|p| p.ends.0.min(p.ends.1))
+        .min()
+        .unwrap_or(0);
     let mut diagrams: IdMap<usize, SlotDiagram> = IdMap::default();
     for _ in 0..max_rounds {
-        let missing: Vec<usize> = (0..pairs.len())
-            .filter(|&i| {
-                let p = &pairs[i];
-                !is_grounded_edge(dt, &input.mask, p.slot, p.ends.0, p.ends.1)
-            })
-            .collect();
+        let edge = grounded_pair_edges(dt, &input.mask, &pairs, min_id);
+        let missing: Vec<usize> = (0..pairs.len()).filter(|&i| !edge[i]).collect();
         if missing.is_empty() {
             break;
         }
@@ -287,7 +340,14 @@ pub fn conform_pairs(
                 .entry(p.slot)
                 .or_insert_with(|| SlotDiagram::new(input, p.slot));
             let uv = &input.slots[p.slot].uv;
-            let Some(x) = d.between(input, uv[u as usize], uv[v as usize], p.sites, p.sites) else {
+            let Some(x) = d.between(
+                input,
+                uv[u as usize],
+                uv[v as usize],
+                p.sites,
+                p.sites,
+                &mut |a, b| continuous(input, a, b),
+            ) else {
                 continue;
             };
             let p3 = input.slots[p.slot].geom.to_3d(x);
@@ -313,10 +373,10 @@ pub fn conform_pairs(
             break;
         }
     }
-    out.not_edges = pairs
-        .iter()
-        .filter(|p| !is_grounded_edge(dt, &input.mask, p.slot, p.ends.0, p.ends.1))
-        .copied()
+    let edge = grounded_pair_edges(dt, &input.mask, &pairs, min_id);
+    out.not_edges = (0..pairs.len())
+        .filter(|&i| !edge[i])
+        .map(|i| pairs[i])
         .collect();
     out.pairs = pairs;
     Ok(out)

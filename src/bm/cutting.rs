@@ -137,8 +137,13 @@ pub fn sample_chains(
             .map(|l| (l[0].min(l[1]), l[0].max(l[1])))
             .collect();
         links.sort_unstable();
+        let mut cont = |a: u32, b: u32| {
+            a == b
+                || (input.mask[a as usize] & input.mask[b as usize] != 0 && !cl.edge_external(a, b))
+        };
         out.extend(thin_chains(cands, &links, &mut thin, |x, y| {
-            d.between(input, x.uv, y.uv, x.sites, y.sites).is_some()
+            d.between(input, x.uv, y.uv, x.sites, y.sites, &mut cont)
+                .is_some()
         }));
     }
     out
