@@ -27,6 +27,7 @@
 //! `SLICE2SOLID_OVERLAY_DUMP_ALL` set, every input), the format of the tests' `testdata`.
 use crate::fxhash::FxHashMap;
 use crate::geom::predicates::orient2d;
+use smallvec::SmallVec;
 use spade::handles::{FixedFaceHandle, FixedVertexHandle, InnerTag};
 use spade::{
     ConstrainedDelaunayTriangulation, HasPosition, Intersection, LineIntersectionIterator, Point2,
@@ -91,8 +92,8 @@ fn area2(p: [f64; 2], q: [f64; 2], r: [f64; 2]) -> f64 {
 /// Overlay X_A (`a`) and X_B (`b`), both oriented outward from their own cell, vertices in global ids
 /// with their (u,v) in `uv`. `ccw_a`: a triangle oriented outward from A is counter-clockwise in
 /// (u,v). New vertices get ids from `first_new` on.
-pub fn overlay(
-    uv: &HashMap<u32, [f64; 2]>,
+pub fn overlay<S: UvHasher>(
+    uv: &HashMap<u32, [f64; 2], S>,
     a: &[[u32; 3]],
     b: &[[u32; 3]],
     ccw_a: bool,
@@ -104,8 +105,8 @@ pub fn overlay(
 /// [`overlay`] with a third layer `s`: A's triangulation of the whole section (attached or not,
 /// oriented like A's). Its edges are constraints too, and the triangles inside `s` but in neither
 /// X_A nor X_B are returned in [`Overlay::flat`] (the flat zones, for `thicken`).
-pub fn overlay_with_section(
-    uv: &HashMap<u32, [f64; 2]>,
+pub fn overlay_with_section<S: UvHasher>(
+    uv: &HashMap<u32, [f64; 2], S>,
     a: &[[u32; 3]],
     b: &[[u32; 3]],
     s: &[[u32; 3]],
@@ -115,8 +116,8 @@ pub fn overlay_with_section(
     overlay_layers(uv, a, b, Some(s), ccw_a, first_new)
 }
 
-fn overlay_layers(
-    uv: &HashMap<u32, [f64; 2]>,
+fn overlay_layers<S: UvHasher>(
+    uv: &HashMap<u32, [f64; 2], S>,
     a: &[[u32; 3]],
     b: &[[u32; 3]],
     s: Option<&[[u32; 3]]>,
@@ -139,8 +140,12 @@ fn overlay_layers(
 
 type Cdt = ConstrainedDelaunayTriangulation<Vx>;
 
-fn overlay_inner(
-    uv: &HashMap<u32, [f64; 2]>,
+/// The hasher of a (u,v) map (any: lookups only).
+pub trait UvHasher: std::hash::BuildHasher + std::panic::RefUnwindSafe {}
+impl<S: std::hash::BuildHasher + std::panic::RefUnwindSafe> UvHasher for S {}
+
+fn overlay_inner<S: UvHasher>(
+    uv: &HashMap<u32, [f64; 2], S>,
     a: &[[u32; 3]],
     b: &[[u32; 3]],
     s: Option<&[[u32; 3]]>,
@@ -158,7 +163,7 @@ fn overlay_inner(
             .ok_or_else(|| format!("vertex {v} has no (u,v)"))
     };
     let mut cdt = Cdt::new();
-    let mut handle: HashMap<u32, FixedVertexHandle> = HashMap::new();
+    let mut handle: FxHashMap<u32, FixedVertexHandle> = FxHashMap::default();
     let mut ids: Vec<u32> = layers
         .iter()
         .flat_map(|l| l.iter())
@@ -201,7 +206,7 @@ fn overlay_inner(
         };
         vid[v.fix().index()] = id;
     }
-    let mut chain_of: HashMap<(u32, u32), usize> = HashMap::new();
+    let mut chain_of: FxHashMap<(u32, u32), usize> = FxHashMap::default();
     for (i, (&key, chain)) in edge_list.iter().zip(&chains).enumerate() {
         chain_of.insert(key, i);
         if chain.len() > 2 {
@@ -372,13 +377,13 @@ fn ukey(p: FixedVertexHandle, q: FixedVertexHandle) -> (usize, usize) {
 /// unique and the same whichever direction it is walked.
 fn insert_constraints(
     cdt: &mut Cdt,
-    handle: &HashMap<u32, FixedVertexHandle>,
+    handle: &FxHashMap<u32, FixedVertexHandle>,
     edges: &[(u32, u32)],
 ) -> Result<Vec<Vec<FixedVertexHandle>>, String> {
     let mut chains: Vec<Vec<FixedVertexHandle>> = Vec::with_capacity(edges.len());
     // every sub-edge of every chain → the chains running along it (collinear input edges share
     // sub-edges); its number of keys is checked against spade's number of constraint edges
-    let mut owner: FxHashMap<(usize, usize), Vec<usize>> = FxHashMap::default();
+    let mut owner: FxHashMap<(usize, usize), SmallVec<[usize; 2]>> = FxHashMap::default();
     // Input vertices lying exactly on an edge (spade's exact line walk, before any constraint):
     // the edge is inserted as its pieces between them. Inserted whole, a constraint that is split
     // at a crossing goes on from the rounded crossing point and can miss such a vertex by an ulp,
@@ -440,7 +445,7 @@ fn insert_constraints(
             for w in chains[c].windows(2) {
                 let k = ukey(w[0], w[1]);
                 if let Some(cs) = owner.get_mut(&k) {
-                    cs.retain(|&d| d != c);
+                    cs.retain(|d| *d != c);
                     if cs.is_empty() {
                         owner.remove(&k);
                     }

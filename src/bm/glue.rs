@@ -177,7 +177,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     }
     laps.lap("collect", &mut g.timings);
     // original edge (min, max) → vertices the face overlays put inside it, from min to max
-    let mut edge_splits: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+    let mut edge_splits: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
     // flat zones attached from neither side, thickened after the faces are assembled
     let mut zones: Vec<Zone> = Vec::new();
     let mut face_ids: Vec<u32> = sides.keys().copied().collect();
@@ -191,10 +191,23 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
             .iter()
             .any(|t| t.1)
     };
-    let mut overlays: HashMap<u32, OverlayOutcome> = face_ids
-        .par_iter()
+    // largest first (by triangles on both sides), so that a big face does not start last and
+    // leave the other threads idle; the results are keyed by face, whatever the order
+    let mut to_overlay: Vec<(usize, u32)> = face_ids
+        .iter()
         .filter(|f| sides[f].iter().filter(|cs| attached(cs)).count() >= 2)
         .map(|&f| {
+            let size = sides[&f]
+                .iter()
+                .map(|&(c, s)| results[c].as_ref().unwrap().faces[s].triangles.len())
+                .sum::<usize>();
+            (size, f)
+        })
+        .collect();
+    to_overlay.sort_unstable_by(|x, y| y.cmp(x));
+    let mut overlays: HashMap<u32, OverlayOutcome> = to_overlay
+        .par_iter()
+        .map(|&(_, f)| {
             let list = &sides[&f];
             let first = overlay_face(pool, results, &maps, list, OVERLAY_BASE, false);
             // a flat zone: again with the whole section as a third layer, to get its triangles
@@ -392,17 +405,20 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     laps.lap("faces", &mut g.timings);
     split_at_edges(&mut tris, &mut kind, &mut positions, &edge_splits);
     // Cancel coincident opposite triangles (flat-zone sheets triangulated alike on both sides).
-    let mut by_key: HashMap<[u32; 3], Vec<usize>> = HashMap::new();
-    for (i, &t) in tris.iter().enumerate() {
-        by_key.entry(sorted(t)).or_default().push(i);
-    }
+    // (sorted triple, index), sorted: the triangles of each triple together, ascending
+    let mut by_key: Vec<([u32; 3], usize)> = tris
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| (sorted(t), i))
+        .collect();
+    by_key.par_sort_unstable();
     let mut drop = vec![false; tris.len()];
-    for idx in by_key.values() {
-        if idx.len() < 2 {
+    for g in by_key.chunk_by(|x, y| x.0 == y.0) {
+        if g.len() < 2 {
             continue;
         }
         let (mut pos, mut neg): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
-        for &i in idx {
+        for &(_, i) in g {
             if parity(tris[i]) {
                 pos.push(i)
             } else {
@@ -733,7 +749,7 @@ fn overlay_face(
     if list.len() != 2 {
         return Err(format!("{} sides", list.len()));
     }
-    let mut uv: HashMap<u32, [f64; 2]> = HashMap::new();
+    let mut uv: FxHashMap<u32, [f64; 2]> = FxHashMap::default();
     let mut x: [Vec<[u32; 3]>; 2] = [Vec::new(), Vec::new()];
     // A's whole triangulation of the section (the third layer, when asked)
     let mut whole: Vec<[u32; 3]> = Vec::new();
@@ -803,7 +819,7 @@ fn split_at_edges(
     tris: &mut Vec<[u32; 3]>,
     kind: &mut Vec<Kind>,
     positions: &mut Vec<[f64; 3]>,
-    splits: &HashMap<(u32, u32), Vec<u32>>,
+    splits: &FxHashMap<(u32, u32), Vec<u32>>,
 ) {
     if splits.is_empty() {
         return;
@@ -1026,7 +1042,7 @@ pub(super) fn sorted(mut t: [u32; 3]) -> [u32; 3] {
 /// Even permutation of the sorted triple.
 pub(super) fn parity(t: [u32; 3]) -> bool {
     let inv = (t[0] > t[1]) as u8 + (t[0] > t[2]) as u8 + (t[1] > t[2]) as u8;
-    inv % 2 == 0
+    inv.is_multiple_of(2)
 }
 
 /// Triangles on an edge used by more than two triangles (a sign of overlapping sheets).
@@ -1265,12 +1281,15 @@ impl Stars {
     }
 }
 
+/// An edge (min, max) used by more than two triangles, with its uses (triangle, slot k of the edge
+/// t[k]–t[k+1]).
+type CrowdedEdge = ((u32, u32), Vec<(usize, u8)>);
+
 /// Every edge (min, max) used by more than two triangles, ascending, with its uses (triangle, slot
 /// k of the edge t[k]–t[k+1]) ascending: found around each edge's smaller endpoint, in parallel.
-#[allow(clippy::type_complexity)]
-fn crowded_edges(at: &Stars, tris: &[[u32; 3]]) -> Vec<((u32, u32), Vec<(usize, u8)>)> {
+fn crowded_edges(at: &Stars, tris: &[[u32; 3]]) -> Vec<CrowdedEdge> {
     let n = at.start.len() - 1;
-    let chunks: Vec<Vec<((u32, u32), Vec<(usize, u8)>)>> = (0..n.div_ceil(4096))
+    let chunks: Vec<Vec<CrowdedEdge>> = (0..n.div_ceil(4096))
         .into_par_iter()
         .map(|c| {
             let mut out = Vec::new();
@@ -1553,7 +1572,7 @@ fn slot_of(t: &[u32; 3], v: u32, w: u32) -> u8 {
 fn pair_around_edges(
     positions: &[[f64; 3]],
     tris: &[[u32; 3]],
-    crowded: &[((u32, u32), Vec<(usize, u8)>)],
+    crowded: &[CrowdedEdge],
 ) -> [FxHashMap<(usize, u8), usize>; 2] {
     use crate::sections::{cross, dot, sub};
     let mut out = [FxHashMap::default(), FxHashMap::default()];
@@ -1807,7 +1826,7 @@ mod tests {
         ];
         let mut tris = vec![[0, 1, 2]];
         let mut kind = vec![Kind::Cell(0)];
-        let mut splits = HashMap::new();
+        let mut splits = FxHashMap::default();
         splits.insert((0, 1), vec![3]);
         split_at_edges(&mut tris, &mut kind, &mut pos, &splits);
         assert_eq!(tris, vec![[0, 3, 2], [3, 1, 2]]);
