@@ -755,6 +755,8 @@ fn overlay_face(
     let mut whole: Vec<[u32; 3]> = Vec::new();
     let mut section_area = 0.0f64;
     let mut ccw_a = true;
+    // every triangle of each side (global ids, attached, area)
+    let mut all: [Vec<([u32; 3], bool, f64)>; 2] = [Vec::new(), Vec::new()];
     for (k, &(c, s)) in list.iter().enumerate() {
         let r = results[c].as_ref().ok_or("cell without result")?;
         let inp = r.input.as_ref().ok_or("cell without input")?;
@@ -778,10 +780,12 @@ fn overlay_face(
         let mut area = 0.0;
         for &(t, att) in &r.faces[s].triangles {
             let q = t.map(proj);
-            area += 0.5
+            let a = 0.5
                 * ((q[1][0] - q[0][0]) * (q[2][1] - q[0][1])
                     - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0]))
                     .abs();
+            area += a;
+            all[k].push((t.map(|l| maps[c][l as usize]), att, a));
             if k == 0 && with_section {
                 for (l, p) in t.into_iter().zip(q) {
                     if !(p[0].is_finite() && p[1].is_finite()) {
@@ -804,12 +808,72 @@ fn overlay_face(
         }
         section_area = section_area.max(area);
     }
+    if let Some(o) = same_triangulation_overlay(&all, with_section) {
+        return Ok((o, section_area));
+    }
     let o = if with_section {
         overlay_with_section(&uv, &x[0], &x[1], &whole, ccw_a, first_new)?
     } else {
         overlay(&uv, &x[0], &x[1], ccw_a, first_new)?
     };
     Ok((o, section_area))
+}
+
+/// The overlay when both sides triangulated the section with the same triangles (about half the
+/// overlaid faces of the shared files): triangle by triangle, the symmetric difference of the two
+/// attached sets, each kept as its own side stored it (outward from that side), and the triangles
+/// attached from neither side as A's (the flat zones, with the section layer). No new vertices, no
+/// split edges. `None` when the triangulations differ.
+fn same_triangulation_overlay(
+    all: &[Vec<([u32; 3], bool, f64)>; 2],
+    with_section: bool,
+) -> Option<Overlay> {
+    if all[0].len() != all[1].len() {
+        return None;
+    }
+    let keyed = |k: usize| {
+        let mut v: Vec<([u32; 3], usize)> = all[k]
+            .iter()
+            .enumerate()
+            .map(|(i, (t, _, _))| (sorted(*t), i))
+            .collect();
+        v.sort_unstable();
+        v
+    };
+    let (ka, kb) = (keyed(0), keyed(1));
+    if ka.iter().zip(&kb).any(|(x, y)| x.0 != y.0) {
+        return None;
+    }
+    let mut o = Overlay {
+        new_vertices: Vec::new(),
+        triangles: Vec::new(),
+        splits: Vec::new(),
+        attached_area: 0.0,
+        output_area: 0.0,
+        flat: Vec::new(),
+    };
+    // in A's order, so the output does not depend on hashing
+    let mut b_of_a = vec![0usize; ka.len()];
+    for (x, y) in ka.iter().zip(&kb) {
+        b_of_a[x.1] = y.1;
+    }
+    for (i, &(ta, att_a, area)) in all[0].iter().enumerate() {
+        let (tb, att_b, _) = all[1][b_of_a[i]];
+        match (att_a, att_b) {
+            (true, true) => o.attached_area += area,
+            (true, false) | (false, true) => {
+                o.attached_area += area;
+                o.output_area += area;
+                o.triangles.push(if att_a { ta } else { tb });
+            }
+            (false, false) => {
+                if with_section {
+                    o.flat.push(ta);
+                }
+            }
+        }
+    }
+    Some(o)
 }
 
 /// Splits every triangle that has an edge with vertices inserted on it (by a face overlay), so the
