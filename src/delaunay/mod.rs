@@ -383,6 +383,12 @@ impl Delaunay {
         self.nfinite
     }
 
+    /// Number of tetrahedron slots: every [`TetId`] (alive or dead, finite or infinite) is below it,
+    /// so arrays indexed by tetrahedron can be sized by it.
+    pub fn num_tet_slots(&self) -> usize {
+        self.tds.tets.len()
+    }
+
     /// Vertices of `t`; finite tetrahedra have positive volume (see the module doc). Infinite ones
     /// contain [`INFINITE`] and are positive when ∞ is replaced by a point beyond their hull facet.
     #[inline]
