@@ -11,10 +11,10 @@
 //! Samples are thinned: none closer than half the face's median contour edge to another sample or to
 //! the edge's endpoints.
 use super::cell_input::CellInput;
+use super::cell_input::IdMap;
 use super::classify::{Classifier, TetType};
 use super::complex::{outward_face, Complex};
 use crate::sections::{dot, sub};
-use std::collections::HashMap;
 
 fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
     let d = sub(a, b);
@@ -97,7 +97,7 @@ pub fn samples(
         let h = contour_spacing(input, s);
         let n = into_cell_normal(input, s);
         // edges → (triangle apexes)
-        let mut by_edge: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+        let mut by_edge: IdMap<(u32, u32), Vec<u32>> = IdMap::default();
         for &(f, apex) in tri_apex {
             for k in 0..3 {
                 let (a, b) = (f[k], f[(k + 1) % 3]);
@@ -219,12 +219,12 @@ fn grid_samples(
     // thinning grid: cells of size h/2
     let cell = 0.5 * h;
     let key = |q: [f64; 2]| ((q[0] / cell).floor() as i64, (q[1] / cell).floor() as i64);
-    let mut occupied: HashMap<(i64, i64), Vec<[f64; 2]>> = HashMap::new();
+    let mut occupied: IdMap<(i64, i64), Vec<[f64; 2]>> = IdMap::default();
     for &v in &on_face {
         let q = slot.uv[v as usize];
         occupied.entry(key(q)).or_default().push(q);
     }
-    let near = |occ: &HashMap<(i64, i64), Vec<[f64; 2]>>, q: [f64; 2]| {
+    let near = |occ: &IdMap<(i64, i64), Vec<[f64; 2]>>, q: [f64; 2]| {
         let (kx, ky) = key(q);
         (kx - 1..=kx + 1).any(|x| {
             (ky - 1..=ky + 1).any(|y| {
@@ -236,7 +236,7 @@ fn grid_samples(
         })
     };
     let mut out = Vec::new();
-    let mut pairs_checked: HashMap<(usize, usize), bool> = HashMap::new();
+    let mut pairs_checked: IdMap<(usize, usize), bool> = IdMap::default();
     for j in 0..=ny {
         for i in 0..=nx {
             let Some(m0) = minimiser[j * w + i] else {
