@@ -210,8 +210,10 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
                     }
                 }
             }
-            // inserted into the triangulation we have (same result as re-triangulating everything)
+            // inserted into the triangulation we have, in one batch (same result as re-triangulating
+            // everything)
             let first_cut = input.points.len() + samples.len();
+            let mut batch = Vec::with_capacity(samples.len() + cuts.len());
             for (s, q, p3) in samples.into_iter().chain(cuts) {
                 if !p3.iter().all(|c| c.is_finite()) {
                     return Err(crate::Error::input(
@@ -220,12 +222,18 @@ pub fn run_cell(mut input: CellInput, sampling: Sampling, check_only: bool) -> R
                     ));
                 }
                 let l = input.add_local_vertex(s, q, p3);
-                let id = dt.insert(p3);
-                debug_assert!(id <= l);
+                batch.push(p3);
                 if l as usize >= first_cut {
                     cut_ids.push(l);
                 }
             }
+            let ids = dt.insert_batch(&batch);
+            // ids in local order (a duplicate gets the earlier vertex's id)
+            let first = input.points.len() - batch.len();
+            debug_assert!(ids
+                .iter()
+                .enumerate()
+                .all(|(i, &id)| id as usize <= first + i));
             cx = Complex::from_delaunay(input.points.len(), &dt);
             timing.delaunay += lap(&mut clock);
         }
