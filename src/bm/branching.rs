@@ -17,7 +17,6 @@ use super::classify::{Classifier, TetType};
 use super::complex::{outward_face, Complex};
 use super::cutting::Thinning;
 use crate::sections::{dot, sub};
-use std::collections::HashMap;
 
 fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
     let d = sub(a, b);
@@ -113,7 +112,7 @@ pub fn sample_chains(
         let h = contour_spacing(input, s);
         let n = into_cell_normal(input, s);
         // edges → (triangle apexes)
-        let mut by_edge: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+        let mut by_edge: IdMap<(u32, u32), Vec<u32>> = IdMap::default();
         for &(f, apex) in tri_apex {
             for k in 0..3 {
                 let (a, b) = (f[k], f[(k + 1) % 3]);
@@ -238,7 +237,7 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
     // candidate and the candidate's site indices (m0, m1), m0 the minimiser at the edge's start
     let mut cands: Vec<Option<DiagramSample>> = Vec::new();
     let mut on_edge: IdMap<usize, (u32, (u32, u32))> = IdMap::default();
-    let mut pairs_checked: HashMap<(usize, usize), bool> = HashMap::new();
+    let mut pairs_checked: IdMap<(usize, usize), bool> = IdMap::default();
     for j in 0..=ny {
         for i in 0..=nx {
             let Some(m0) = minimiser[j * w + i] else {

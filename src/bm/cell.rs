@@ -252,9 +252,11 @@ fn run_cell_with(
                     }
                 }
             }
-            // inserted into the triangulation we have (same result as re-triangulating everything)
+            // inserted into the triangulation we have, in one batch (same result as re-triangulating
+            // everything)
             let first_cut = input.points.len() + samples.len();
             let first_sample = input.points.len() as u32;
+            let mut batch = Vec::with_capacity(samples.len() + cuts.len());
             for (s, q, p3) in samples.into_iter().chain(cuts) {
                 if !p3.iter().all(|c| c.is_finite()) {
                     return Err(crate::Error::input(
@@ -263,12 +265,18 @@ fn run_cell_with(
                     ));
                 }
                 let l = input.add_local_vertex(s, q, p3);
-                let id = dt.insert(p3);
-                debug_assert!(id <= l);
+                batch.push(p3);
                 if l as usize >= first_cut {
                     cut_ids.push(l);
                 }
             }
+            let ids = dt.insert_batch(&batch);
+            // ids in local order (a duplicate gets the earlier vertex's id)
+            let first = input.points.len() - batch.len();
+            debug_assert!(ids
+                .iter()
+                .enumerate()
+                .all(|(i, &id)| id as usize <= first + i));
             timing.delaunay += lap(&mut clock);
             // consecutive samples along a diagram become edges (Steiner points on the diagram)
             let pairs: Vec<SamplePair> = chains

@@ -133,7 +133,7 @@ impl Complex {
     /// the kernel instead of matched by hashing facets.
     pub fn from_delaunay(n_vertices: usize, dt: &Delaunay) -> Complex {
         // (canonical tet, kernel slot, kernel position of each of its vertices)
-        let mut rows: Vec<([u32; 4], u32, [u8; 4])> = dt
+        let rows: Vec<([u32; 4], u32, [u8; 4])> = dt
             .tets()
             .map(|t| {
                 let v = dt.tet_vertices(t);
@@ -142,10 +142,30 @@ impl Complex {
                 (c, t, pos.map(|k| [0u8, 1, 3, 2][k as usize]))
             })
             .collect();
-        // distinct tets: the order does not depend on the sort's stability
-        rows.sort_unstable_by_key(|r| r.0);
-        let slots = rows.iter().map(|r| r.1 as usize + 1).max().unwrap_or(0);
-        let mut rank = vec![NONE; slots];
+        // Sorted by canonical tet: counting sort on the first (smallest) vertex, then each bucket
+        // (a few tets) by the rest; tets are distinct, so the order is unique.
+        let nv = rows.iter().map(|r| r.0[0] as usize + 1).max().unwrap_or(0);
+        let mut start = vec![0u32; nv + 1];
+        for r in &rows {
+            start[r.0[0] as usize + 1] += 1;
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut order = vec![0u32; rows.len()];
+        let mut next = start.clone();
+        for (k, r) in rows.iter().enumerate() {
+            let v = r.0[0] as usize;
+            order[next[v] as usize] = k as u32;
+            next[v] += 1;
+        }
+        for v in 0..nv {
+            order[start[v] as usize..start[v + 1] as usize]
+                .sort_unstable_by_key(|&k| rows[k as usize].0);
+        }
+        let rows: Vec<([u32; 4], u32, [u8; 4])> = order.iter().map(|&k| rows[k as usize]).collect();
+        // kernel slot → index here (NONE for infinite and dead slots)
+        let mut rank = vec![NONE; dt.num_tet_slots()];
         for (k, r) in rows.iter().enumerate() {
             rank[r.1 as usize] = k as u32;
         }
@@ -153,14 +173,7 @@ impl Complex {
             .iter()
             .map(|&(_, t, pos)| {
                 let n = dt.tet_neighbors(t);
-                pos.map(|p| {
-                    let m = n[p as usize];
-                    if dt.is_infinite(m) {
-                        NONE
-                    } else {
-                        rank[m as usize]
-                    }
-                })
+                pos.map(|p| rank[n[p as usize] as usize])
             })
             .collect();
         let tets: Vec<[u32; 4]> = rows.into_iter().map(|r| r.0).collect();
