@@ -217,8 +217,8 @@ mod tests {
             assert!((dot(p.u, p.u) - 1.0).abs() < 1e-15);
             assert!(dot(p.u, p.v).abs() < 1e-15);
             let c = cross(p.u, p.v);
-            for k in 0..3 {
-                assert!((c[k] - p.normal[k]).abs() < 1e-15);
+            for (ck, nk) in c.iter().zip(p.normal) {
+                assert!((ck - nk).abs() < 1e-15);
             }
             assert!(p.signed_distance(p.origin).abs() < 1e-14);
             let q = p.to_3d([0.3, -0.7]);

@@ -334,9 +334,9 @@ fn run_cell_with(
             }
             let mut k = f;
             k.sort_unstable();
-            for s in 0..n_slots {
+            for (s, on_slot) in top.iter_mut().enumerate() {
                 if m >> s & 1 == 1 {
-                    top[s].entry(k).or_insert((f, t as u32));
+                    on_slot.entry(k).or_insert((f, t as u32));
                 }
             }
         }
@@ -375,8 +375,8 @@ fn run_cell_with(
     timing.prune += lap(&mut clock);
     if std::env::var("BM_DEBUG").is_ok() {
         let mut h: std::collections::BTreeMap<String, (u32, u32, u32)> = Default::default();
-        for t in 0..cx.len() {
-            let e = h.entry(format!("{:?}", cl.ty[t])).or_default();
+        for (t, ty) in cl.ty.iter().enumerate() {
+            let e = h.entry(format!("{ty:?}")).or_default();
             e.0 += 1;
             e.1 += cl.external[t] as u32;
             e.2 += alive[t] as u32;

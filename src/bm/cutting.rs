@@ -82,8 +82,8 @@ pub fn sample_chains(
     contour_pairs.sort_unstable();
     contour_pairs.dedup();
     let mut out = Chains::default();
-    for s in 0..input.slots.len() {
-        let tri_apex = &apex[s];
+    // one list per slot
+    for (s, tri_apex) in apex.iter().enumerate() {
         if tri_apex.is_empty() {
             continue;
         }
@@ -295,10 +295,10 @@ fn join_around_apex(
             let mut stack = vec![t0];
             while let Some(t) = stack.pop() {
                 let tv = cx.tets[t as usize];
-                for k in 0..4 {
+                for (k, &opposite) in tv.iter().enumerate() {
                     let nb = cx.nbr[t as usize][k];
                     // faces containing a: opposite the other three vertices
-                    if tv[k] == a || nb == NONE {
+                    if opposite == a || nb == NONE {
                         continue;
                     }
                     if let Some(&j) = claimed.get(&nb) {

@@ -395,6 +395,7 @@ impl Field {
                 .collect();
             field.fill(keys.into_iter());
             field.flood_waves += 1;
+            #[allow(clippy::manual_is_multiple_of)] // `is_multiple_of` needs Rust 1.87
             if field.flood_waves % 16 == 0 {
                 progress("zero-set closure", field.evaluations);
             }
