@@ -5,6 +5,7 @@
 //! hashing).
 use super::cell_input::IdMap;
 use crate::delaunay::Delaunay;
+use crate::mesh::Stars;
 
 pub const NONE: u32 = u32::MAX;
 
@@ -18,54 +19,6 @@ pub struct Complex {
     pub nbr: Vec<[u32; 4]>,
     /// Tetrahedra incident to each vertex.
     pub star: Stars,
-}
-
-/// Tetrahedra incident to each vertex, ascending, in one array (`star[v]` is a slice).
-#[derive(Clone, Debug, Default)]
-pub struct Stars {
-    /// `tets[start[v]..start[v + 1]]` is vertex v's star.
-    start: Vec<u32>,
-    tets: Vec<u32>,
-}
-
-impl Stars {
-    /// The stars of `n_vertices` vertices in `tets` (each list ascending).
-    fn new(n_vertices: usize, tets: &[[u32; 4]]) -> Stars {
-        let mut start = vec![0u32; n_vertices + 1];
-        for t in tets {
-            for &v in t {
-                start[v as usize + 1] += 1;
-            }
-        }
-        for v in 0..n_vertices {
-            start[v + 1] += start[v];
-        }
-        let mut next = start.clone();
-        let mut out = vec![0u32; start[n_vertices] as usize];
-        for (ti, t) in tets.iter().enumerate() {
-            for &v in t {
-                out[next[v as usize] as usize] = ti as u32;
-                next[v as usize] += 1;
-            }
-        }
-        Stars { start, tets: out }
-    }
-
-    /// Number of vertices.
-    pub fn len(&self) -> usize {
-        self.start.len().saturating_sub(1)
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-}
-
-impl std::ops::Index<usize> for Stars {
-    type Output = [u32];
-    fn index(&self, v: usize) -> &[u32] {
-        &self.tets[self.start[v] as usize..self.start[v + 1] as usize]
-    }
 }
 
 /// Face opposite local vertex `i`, oriented outward for a positively oriented tetrahedron.

@@ -27,7 +27,7 @@ use super::face_overlay::{overlay, overlay_with_section, Overlay};
 use super::thicken::{thicken, Zone};
 use crate::arrangement::{Arrangement, VertexPool};
 use crate::fxhash::{FxHashMap, FxHashSet};
-use crate::mesh::{TetMesh, TriMesh};
+use crate::mesh::{Stars, TetMesh, TriMesh};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -1140,7 +1140,7 @@ fn unpinch(
     kind: &[Kind],
     copies: &mut Vec<(u32, u32)>,
 ) -> FxHashSet<u32> {
-    let at = Stars::new(positions.len(), tris);
+    let at: Stars<usize> = Stars::new(positions.len(), tris);
     let crowded = crowded_edges(&at, tris);
     let partners = pair_around_edges(positions, tris, &crowded);
     // the triangles of each edge used by more than two (ascending; a triangle using the edge twice
@@ -1211,7 +1211,7 @@ fn unpinch(
     let diag = bbox_diagonal(positions);
     // all fans from the original ids, before any vertex is split (independent: in parallel)
     let vs: Vec<u32> = (0..positions.len() as u32)
-        .filter(|&v| !at.of(v).is_empty())
+        .filter(|&v| !at[v as usize].is_empty())
         .collect();
     let all_fans: Vec<(u32, Vec<Vec<usize>>)> = vs
         .par_iter()
@@ -1220,7 +1220,7 @@ fn unpinch(
         .collect();
     let mut split = FxHashSet::default();
     for (v, mut fans) in all_fans {
-        let list = at.of(v).to_vec();
+        let list = at[v as usize].to_vec();
         let planar = |f: &Vec<usize>| {
             f.iter()
                 .filter(|&&i| matches!(kind[i], Kind::Face(_)))
@@ -1310,49 +1310,14 @@ enum Pairing {
     Together,
 }
 
-/// The triangles around each vertex, ascending (a triangle listed once per corner at the vertex).
-struct Stars {
-    start: Vec<usize>,
-    tri: Vec<usize>,
-}
-
-impl Stars {
-    fn new(n_vertices: usize, tris: &[[u32; 3]]) -> Stars {
-        let mut start = vec![0usize; n_vertices + 1];
-        for t in tris {
-            for &v in t {
-                start[v as usize + 1] += 1;
-            }
-        }
-        for v in 0..n_vertices {
-            start[v + 1] += start[v];
-        }
-        let mut fill = start.clone();
-        let mut tri = vec![0usize; start[n_vertices]];
-        for (i, t) in tris.iter().enumerate() {
-            for &v in t {
-                tri[fill[v as usize]] = i;
-                fill[v as usize] += 1;
-            }
-        }
-        Stars { start, tri }
-    }
-    fn of(&self, v: u32) -> &[usize] {
-        match self.start.get(v as usize + 1) {
-            Some(&end) => &self.tri[self.start[v as usize]..end],
-            None => &[],
-        }
-    }
-}
-
 /// An edge (min, max) used by more than two triangles, with its uses (triangle, slot k of the edge
 /// t[k]–t[k+1]).
 type CrowdedEdge = ((u32, u32), Vec<(usize, u8)>);
 
 /// Every edge (min, max) used by more than two triangles, ascending, with its uses (triangle, slot
 /// k of the edge t[k]–t[k+1]) ascending: found around each edge's smaller endpoint, in parallel.
-fn crowded_edges(at: &Stars, tris: &[[u32; 3]]) -> Vec<CrowdedEdge> {
-    let n = at.start.len() - 1;
+fn crowded_edges(at: &Stars<usize>, tris: &[[u32; 3]]) -> Vec<CrowdedEdge> {
+    let n = at.len();
     let chunks: Vec<Vec<CrowdedEdge>> = (0..n.div_ceil(4096))
         .into_par_iter()
         .map(|c| {
@@ -1361,7 +1326,7 @@ fn crowded_edges(at: &Stars, tris: &[[u32; 3]]) -> Vec<CrowdedEdge> {
             for v in (c * 4096) as u32..((c + 1) * 4096).min(n) as u32 {
                 uses.clear();
                 let mut prev = usize::MAX;
-                for &i in at.of(v) {
+                for &i in &at[v as usize] {
                     if i == prev {
                         continue;
                     }
@@ -1389,7 +1354,7 @@ fn crowded_edges(at: &Stars, tris: &[[u32; 3]]) -> Vec<CrowdedEdge> {
 
 /// What the fans of a vertex are computed from (`unpinch`).
 struct Fans<'a> {
-    at: &'a Stars,
+    at: &'a Stars<usize>,
     tris: &'a [[u32; 3]],
     kind: &'a [Kind],
     partners: &'a [FxHashMap<(usize, u8), usize>; 2],
@@ -1433,7 +1398,7 @@ impl Fans<'_> {
             }
             x
         }
-        let list = self.at.of(v);
+        let list = &self.at[v as usize];
         // first position of triangle i in the (ascending) star
         let pos = |i: usize| {
             let p = list.partition_point(|&j| j < i);

@@ -1,7 +1,7 @@
 //! Combinatorial checks of a triangle mesh: edges and their uses, closedness, edge and vertex
 //! manifoldness, orientation consistency, components (connected through shared edges), Euler
 //! characteristic and genus; plus signed volume and area (floating point).
-use crate::mesh::TriMesh;
+use crate::mesh::{Stars, TriMesh};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -291,31 +291,11 @@ pub fn is_closed(mesh: &TriMesh) -> bool {
 /// node of degree ≤ 2 it is a disjoint union of cycles and paths, and must have exactly one piece.
 fn vertex_fans_are_disks(mesh: &TriMesh, repeated: &[bool]) -> Vec<bool> {
     let n = mesh.vertices.len();
-    let mut start = vec![0u32; n + 1];
-    for (ti, t) in mesh.triangles.iter().enumerate() {
-        if !repeated[ti] {
-            for &x in t {
-                start[x as usize + 1] += 1;
-            }
-        }
-    }
-    for i in 0..n {
-        start[i + 1] += start[i];
-    }
-    let mut fill = start.clone();
-    let mut inc = vec![0u32; start[n] as usize];
-    for (ti, t) in mesh.triangles.iter().enumerate() {
-        if !repeated[ti] {
-            for &x in t {
-                inc[fill[x as usize] as usize] = ti as u32;
-                fill[x as usize] += 1;
-            }
-        }
-    }
+    let stars: Stars = Stars::new_where(n, &mesh.triangles, |ti| !repeated[ti]);
     (0..n)
         .into_par_iter()
         .map(|vi| {
-            let fan = &inc[start[vi] as usize..start[vi + 1] as usize];
+            let fan = &stars[vi];
             if fan.is_empty() {
                 return false;
             }
