@@ -329,27 +329,38 @@ impl Delaunay {
             "Delaunay::insert: non-finite coordinate"
         );
         let e = self.int.len() as u32;
+        self.int.push(NONE);
+        match self.place(e, norm(p)) {
+            Some(kept) => {
+                self.dups.push((e, kept));
+                kept
+            }
+            None => e,
+        }
+    }
+
+    /// Inserts the (normalised) point of external id `e`, whose `int` slot exists. Returns the kept
+    /// vertex's external id when a vertex is already at that position (nothing is added then).
+    fn place(&mut self, e: u32, p: P) -> Option<VertexId> {
         let k = self.pts.len() as u32;
-        self.cover(norm(p));
-        self.pts.push(norm(p));
+        self.cover(p);
+        self.pts.push(p);
         self.ext.push(e);
         self.vtet.push(NONE);
-        self.int.push(k);
+        self.int[e as usize] = k;
         let w = if self.dim < 3 {
             self.add_pending(k)
         } else {
             self.insert_vertex(k)
         };
-        if w != k {
-            self.pts.pop();
-            self.ext.pop();
-            self.vtet.pop();
-            self.int[e as usize] = w;
-            let kept = self.ext[w as usize];
-            self.dups.push((e, kept));
-            return kept;
+        if w == k {
+            return None;
         }
-        e
+        self.pts.pop();
+        self.ext.pop();
+        self.vtet.pop();
+        self.int[e as usize] = w;
+        Some(self.ext[w as usize])
     }
 
     /// Inserts `points` as [`Delaunay::insert`] would one after the other (the same ids, the same
@@ -375,25 +386,9 @@ impl Delaunay {
                 continue;
             }
             let e = e0 + i;
-            let p = norm(points[i as usize]);
-            let k = self.pts.len() as u32;
-            self.cover(p);
-            self.pts.push(p);
-            self.ext.push(e);
-            self.vtet.push(NONE);
-            self.int[e as usize] = k;
-            let w = if self.dim < 3 {
-                self.add_pending(k)
-            } else {
-                self.insert_vertex(k)
-            };
-            if w != k {
-                // an earlier vertex (never one of this batch: those are at distinct positions)
-                self.pts.pop();
-                self.ext.pop();
-                self.vtet.pop();
-                self.int[e as usize] = w;
-                new_dups.push((e, self.ext[w as usize]));
+            // a kept vertex is an earlier one (never of this batch: those are at distinct positions)
+            if let Some(kept) = self.place(e, norm(points[i as usize])) {
+                new_dups.push((e, kept));
             }
         }
         for (i, &j) in same_as.iter().enumerate() {
