@@ -83,21 +83,8 @@ pub(super) fn into_cell_normal(input: &CellInput, s: usize) -> [f64; 3] {
     }
 }
 
-/// Branching samples: (slot, (u,v) in the slot's plane, 3D position).
-/// `apex` is [`apex_triangles`] of the same triangulation.
-pub fn samples(
-    input: &CellInput,
-    cl: &mut Classifier,
-    apex: &[Vec<([u32; 3], u32)>],
-) -> Vec<(usize, [f64; 2], [f64; 3])> {
-    sample_chains(input, cl, apex)
-        .samples
-        .into_iter()
-        .map(|d| (d.slot, d.uv, d.p3))
-        .collect()
-}
-
-/// [`samples`] with their diagram identity (slot, site pair) and chain links (see [`grid_samples`]).
+/// Branching samples of every slot of the cell, with their diagram identity (slot, site pair)
+/// and chain links (see [`grid_samples`]). `apex` is [`apex_triangles`] of the same triangulation.
 pub fn sample_chains(
     input: &CellInput,
     cl: &mut Classifier,

@@ -27,7 +27,7 @@ impl Default for Sampling {
         }
     }
 }
-use super::chains::{conform_pairs, Kind, SamplePair};
+use super::chains::{conform_pairs, DiagramSample, Kind, SamplePair};
 use super::complex::{outward_face, Complex, NONE};
 use super::prune::{prune, PruneCounts};
 use crate::error::Result;
@@ -215,35 +215,32 @@ fn run_cell_with(
             } else {
                 Default::default()
             };
-            let samples: Vec<(usize, [f64; 2], [f64; 3])> = branch_chains
-                .samples
-                .iter()
-                .map(|d| (d.slot, d.uv, d.p3))
-                .collect();
             timing.branching += lap(&mut clock);
             // from the same triangulation, kept apart from the branching samples
             let cut_chains = if sampling.cutting {
-                super::cutting::sample_chains(&input, &cx, &ty, &mut cl, &apex, &samples)
+                super::cutting::sample_chains(
+                    &input,
+                    &cx,
+                    &ty,
+                    &mut cl,
+                    &apex,
+                    &branch_chains.samples,
+                )
             } else {
                 Default::default()
             };
-            let cuts: Vec<(usize, [f64; 2], [f64; 3])> = cut_chains
-                .samples
-                .iter()
-                .map(|d| (d.slot, d.uv, d.p3))
-                .collect();
             timing.cutting += lap(&mut clock);
             drop(cl);
-            if samples.is_empty() && cuts.is_empty() {
+            let (n_branch_round, n_cut_round) =
+                (branch_chains.samples.len(), cut_chains.samples.len());
+            if n_branch_round + n_cut_round == 0 {
                 break;
             }
-            let mut chains = branch_chains;
-            chains.extend(cut_chains);
-            n_branch += samples.len() as u64;
-            n_cut += cuts.len() as u64;
-            if !cuts.is_empty() && std::env::var("BM_DEBUG").is_ok() {
+            n_branch += n_branch_round as u64;
+            n_cut += n_cut_round as u64;
+            if n_cut_round > 0 && std::env::var("BM_DEBUG").is_ok() {
                 for (s, slot) in input.slots.iter().enumerate() {
-                    let k = cuts.iter().filter(|c| c.0 == s).count();
+                    let k = cut_chains.samples.iter().filter(|c| c.slot == s).count();
                     if k > 0 {
                         eprintln!(
                             "cell {}: face {}: {k} cutting samples",
@@ -254,10 +251,15 @@ fn run_cell_with(
             }
             // inserted into the triangulation we have, in one batch (same result as re-triangulating
             // everything)
-            let first_cut = input.points.len() + samples.len();
+            let mut chains = branch_chains;
+            chains.extend(cut_chains);
+            let first_cut = input.points.len() + n_branch_round;
             let first_sample = input.points.len() as u32;
-            let mut batch = Vec::with_capacity(samples.len() + cuts.len());
-            for (s, q, p3) in samples.into_iter().chain(cuts) {
+            let mut batch = Vec::with_capacity(chains.samples.len());
+            for &DiagramSample {
+                slot: s, uv: q, p3, ..
+            } in &chains.samples
+            {
                 if !p3.iter().all(|c| c.is_finite()) {
                     return Err(crate::Error::input(
                         format!("cell {} diagram sample", input.cell),
@@ -470,26 +472,7 @@ fn run_cell_with(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bm::cutting::tests::slab;
-
-    fn circle(cx: f64, cy: f64, r: f64, n: usize) -> Vec<[f64; 2]> {
-        (0..n)
-            .map(|i| {
-                let a = std::f64::consts::TAU * i as f64 / n as f64;
-                [cx + r * a.cos(), cy + r * a.sin()]
-            })
-            .collect()
-    }
-
-    /// The paper's configuration (Fig. 4d): one circle on z = 0 facing four circles on z = 1; the
-    /// bottom face's branching diagram is the cross between the four circles' projections.
-    fn one_facing_four() -> CellInput {
-        let four: Vec<Vec<[f64; 2]>> = [(-0.6, -0.6), (0.6, -0.6), (0.6, 0.6), (-0.6, 0.6)]
-            .iter()
-            .map(|&(x, y)| circle(x, y, 0.4, 24))
-            .collect();
-        slab(&[circle(0.0, 0.0, 1.2, 48)], &four)
-    }
+    use crate::bm::cutting::tests::one_facing_four;
 
     /// Pairs of `r` that are not edges of its face's internal section triangles.
     fn pairs_off_triangles(r: &CellResult) -> Vec<(usize, u32, u32)> {

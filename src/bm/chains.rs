@@ -441,15 +441,6 @@ mod tests {
         assert_eq!(c.pairs, vec![(0, 1), (1, 2), (2, 3), (4, 5), (5, 6)]);
     }
 
-    fn circle(cx: f64, cy: f64, r: f64, n: usize) -> Vec<[f64; 2]> {
-        (0..n)
-            .map(|i| {
-                let a = std::f64::consts::TAU * i as f64 / n as f64;
-                [cx + r * a.cos(), cy + r * a.sin()]
-            })
-            .collect()
-    }
-
     /// Local id of the vertex at (x, y) on slot `s` of `input`.
     fn vertex_at(input: &CellInput, s: usize, x: f64, y: f64) -> u32 {
         (0..input.points.len() as u32)
@@ -469,11 +460,7 @@ mod tests {
     /// with no rounds the pair stays a non-edge.
     #[test]
     fn a_pair_blocked_by_another_branch_is_split_on_the_diagram() {
-        let four: Vec<Vec<[f64; 2]>> = [(-0.6, -0.6), (0.6, -0.6), (0.6, 0.6), (-0.6, 0.6)]
-            .iter()
-            .map(|&(x, y)| circle(x, y, 0.4, 24))
-            .collect();
-        let base = crate::bm::cutting::tests::slab(&[circle(0.0, 0.0, 1.2, 48)], &four);
+        let base = crate::bm::cutting::tests::one_facing_four();
         // sites: (-0.2, -0.6) on the lower left circle, (0.2, -0.6) on the lower right one
         let sites = {
             let (a, b) = (

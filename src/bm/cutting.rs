@@ -40,28 +40,10 @@ use super::classify::{tet_type, Classifier, TetType};
 use super::complex::{Complex, NONE};
 use crate::sections::{dot, sub};
 
-/// A diagram sample: (slot, (u,v) in the slot's plane, 3D position).
-pub type Sample = (usize, [f64; 2], [f64; 3]);
-
 /// Cutting-diagram samples of every slot of the cell. `taken` are samples already placed this round
 /// (the branching samples): new samples keep half the contour spacing away from them too.
 /// `apex` is `branching::apex_triangles` of the triangulation `cx` (tet types `ty`).
-pub fn samples(
-    input: &CellInput,
-    cx: &Complex,
-    ty: &[TetType],
-    cl: &mut Classifier,
-    apex: &[Vec<([u32; 3], u32)>],
-    taken: &[Sample],
-) -> Vec<Sample> {
-    sample_chains(input, cx, ty, cl, apex, taken)
-        .samples
-        .into_iter()
-        .map(|d| (d.slot, d.uv, d.p3))
-        .collect()
-}
-
-/// [`samples`] with their diagram identity and chain links: two samples are consecutive when their
+/// Each sample carries its diagram identity; two are consecutive (linked) when their
 /// source edges (same site pair) share an endpoint that no third source edge of the pair has, and
 /// the diagram between them stays in the section and the two sites' cells (`chains`).
 pub fn sample_chains(
@@ -70,7 +52,7 @@ pub fn sample_chains(
     ty: &[TetType],
     cl: &mut Classifier,
     apex: &[Vec<([u32; 3], u32)>],
-    taken: &[Sample],
+    taken: &[DiagramSample],
 ) -> Chains {
     // neighbours along a contour: the contour edges of every slot (an apex on slot g is a contour
     // vertex of g; its neighbours are the ends of its contour edges)
@@ -102,10 +84,8 @@ pub fn sample_chains(
                 thin.occupy(slot.uv[v]);
             }
         }
-        for &(ts, q, _) in taken {
-            if ts == s {
-                thin.occupy(q);
-            }
+        for t in taken.iter().filter(|t| t.slot == s) {
+            thin.occupy(t.uv);
         }
         let d = SlotDiagram::new(input, s);
         let n = d.n;
@@ -524,6 +504,26 @@ pub(super) mod tests {
     use crate::bm::classify::tet_type;
     use crate::sections::Plane;
 
+    /// A closed polygon of `n` vertices on the circle of centre (cx, cy) and radius `r`.
+    pub(crate) fn circle(cx: f64, cy: f64, r: f64, n: usize) -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                [cx + r * a.cos(), cy + r * a.sin()]
+            })
+            .collect()
+    }
+
+    /// The paper's configuration (Fig. 4d): one circle on z = 0 facing four circles on z = 1; the
+    /// bottom face's branching diagram is the cross between the four circles' projections.
+    pub(crate) fn one_facing_four() -> CellInput {
+        let four: Vec<Vec<[f64; 2]>> = [(-0.6, -0.6), (0.6, -0.6), (0.6, 0.6), (-0.6, 0.6)]
+            .iter()
+            .map(|&(x, y)| circle(x, y, 0.4, 24))
+            .collect();
+        slab(&[circle(0.0, 0.0, 1.2, 48)], &four)
+    }
+
     /// The slab cell between z = 0 (slot 0, below) and z = 1 (slot 1, above) with the given contour
     /// loops (x, y) on each plane.
     pub(crate) fn slab(bottom: &[Vec<[f64; 2]>], top: &[Vec<[f64; 2]>]) -> CellInput {
@@ -607,7 +607,7 @@ pub(super) mod tests {
         vec![[0.3, 0.0], [0.0, 0.3], [-0.3, 0.0], [0.0, -0.3]]
     }
 
-    fn run(input: &CellInput) -> (Complex, Vec<TetType>, Vec<Sample>) {
+    fn run(input: &CellInput) -> (Complex, Vec<TetType>, Vec<DiagramSample>) {
         let cx = Complex::new(input.points.len(), delaunay_tets(&input.points).unwrap());
         let ty: Vec<TetType> = cx
             .tets
@@ -616,7 +616,7 @@ pub(super) mod tests {
             .collect();
         let mut cl = Classifier::new(input);
         let apex = apex_triangles(input, &cx, &ty, &cl);
-        let samples = samples(input, &cx, &ty, &mut cl, &apex, &[]);
+        let samples = sample_chains(input, &cx, &ty, &mut cl, &apex, &[]).samples;
         (cx, ty, samples)
     }
 
@@ -666,32 +666,32 @@ pub(super) mod tests {
             let (pa, pb) = (input.points[*a as usize], input.points[*b as usize]);
             assert!(pa[1] == 0.0 && pb[0] == 0.0, "{pa:?} {pb:?}");
         }
-        let on_bottom: Vec<&Sample> = samples.iter().filter(|s| s.0 == 0).collect();
+        let on_bottom: Vec<&DiagramSample> = samples.iter().filter(|s| s.slot == 0).collect();
         eprintln!(
             "{} samples, {} on the bottom",
             samples.len(),
             on_bottom.len()
         );
         for s in &on_bottom {
-            eprintln!("{:?}", s.2);
+            eprintln!("{:?}", s.p3);
         }
         // every bottom sample is on a diagonal (bisector of two diamond vertices), inside a rectangle
         for s in &on_bottom {
-            let [x, y, z] = s.2;
+            let [x, y, z] = s.p3;
             assert_eq!(z, 0.0);
             assert!(
                 (x.abs() - y.abs()).abs() < 1e-9,
                 "{:?} is off the diagram",
-                s.2
+                s.p3
             );
-            assert!(x.abs() > 0.2 && x.abs() < 1.0, "{:?}", s.2);
+            assert!(x.abs() > 0.2 && x.abs() < 1.0, "{:?}", s.p3);
         }
         // on all four arcs (one per quadrant)
         for (sx, sy) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
             assert!(
                 on_bottom
                     .iter()
-                    .any(|s| s.2[0] * sx > 0.0 && s.2[1] * sy > 0.0),
+                    .any(|s| s.p3[0] * sx > 0.0 && s.p3[1] * sy > 0.0),
                 "no sample in quadrant ({sx}, {sy})"
             );
         }
