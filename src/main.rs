@@ -77,6 +77,10 @@ pub struct ReconstructArgs {
     /// No progress bar
     #[arg(short, long)]
     pub quiet: bool,
+    /// Print every warning (by default each kind is shown three times, then counted; the report
+    /// always has them all)
+    #[arg(long)]
+    pub all_warnings: bool,
 }
 
 #[derive(clap::Args)]

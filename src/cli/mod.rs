@@ -7,3 +7,4 @@ pub mod delaunay;
 pub mod info;
 pub mod reconstruct;
 pub mod slice;
+pub mod warnings;

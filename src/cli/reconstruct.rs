@@ -29,8 +29,12 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
             }
         }
     }
-    for w in &solid.report.warnings {
-        eprintln!("warning: {w}");
+    for line in super::warnings::lines(
+        &solid.report.warnings,
+        args.all_warnings,
+        args.report.as_deref(),
+    ) {
+        eprintln!("{line}");
     }
     if let Some(path) = &args.report {
         let text = serde_json::to_string_pretty(&solid.report).expect("report serialises");
