@@ -90,13 +90,34 @@ fn sphere_cut_by_cube_faces_gives_the_hull_of_the_contours() {
     }
     if let Some((comps, genus, vol)) = run("sphere-cube", &sections) {
         assert_eq!((comps, genus), (1, 0));
-        // the hull of six circles of radius r on the faces of the cube [-a,a]^3 lies strictly between
-        // the octahedron-like hull of the circles' extreme points and the cube
+        // One cell holds every contour, nothing is pruned: the solid is the convex hull of the
+        // contour vertices, whose volume is that of any tetrahedralisation of them (our kernel's).
+        let pts: Vec<[f64; 3]> = sections
+            .sections
+            .iter()
+            .flat_map(|s| s.regions[0].outer.points3.clone())
+            .collect();
+        let dt = slice2solid::delaunay::Delaunay::new(&pts);
+        let hull: f64 = dt
+            .tets()
+            .map(|t| {
+                let [a, b, c, d] = dt.tet_vertices(t).map(|v| dt.point(v));
+                let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
+                (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+                    + u[2] * (v[0] * w[1] - v[1] * w[0]))
+                    .abs()
+                    / 6.0
+            })
+            .sum();
         assert!(
-            vol > 4.0 / 3.0 * (a + r).powi(3) * 0.5 && vol < 8.0 * a * a * a,
-            "{vol}"
+            (vol - hull).abs() <= 1e-9 * hull,
+            "volume {vol} is not the hull's {hull}"
         );
     }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 #[test]

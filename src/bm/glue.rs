@@ -17,7 +17,9 @@
 //! * neither attaches: the whole section is a flat zone, not output, reported with its area.
 //!
 //! Where pieces touch along edges or at vertices (singularities), `unpinch` splits vertices with one
-//! sheet pairing decided per edge; branching samples are lifted off the plane (`lift_samples`).
+//! sheet pairing decided per edge; branching samples on the surface are lifted off the plane
+//! (`lift_samples`), except where their star lies in one face's section (a cap, or where only one
+//! side attaches: no other diagram can cross them there).
 //!
 //! All vertices are global (pool ids, Steiner points, then branching samples), so the pieces weld.
 //! The tetrahedral mesh is the union of the kept tets; it is non-conforming across a face where the
@@ -59,6 +61,8 @@ pub struct Glued {
     pub overlay_fallbacks: u64,
     /// Displaced vertices moved to another candidate position because the first one crossed the surface.
     pub lifts_redirected: u64,
+    /// Diagram samples not lifted off their plane: their star lies in one face's section.
+    pub samples_kept_on_plane: u64,
     /// Connected flat zones thickened into a thin slab (`thicken`), and their total area.
     pub flat_zones_thickened: u64,
     pub flat_zone_area_thickened: f64,
@@ -120,8 +124,8 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     let mut laps = Laps::new();
     let mut positions = pool.positions.clone();
     // global id per cell-local vertex (branching samples get new ids)
-    // branching samples: (global id, unit direction into their cell)
-    let mut samples: Vec<(u32, [f64; 3])> = Vec::new();
+    // branching samples: (global id, unit direction into their cell, face)
+    let mut samples: Vec<(u32, [f64; 3], u32)> = Vec::new();
     let maps: Vec<Vec<u32>> = results
         .iter()
         .map(|r| match r.as_ref().and_then(|r| r.input.as_ref()) {
@@ -141,7 +145,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                             } else {
                                 1.0
                             };
-                            samples.push((id, [d * n[0], d * n[1], d * n[2]]));
+                            samples.push((id, [d * n[0], d * n[1], d * n[2]], slot.face));
                         }
                         id
                     } else {
@@ -492,7 +496,14 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     let split = unpinch(arr, &mut positions, &mut tris, &kind, &mut copies);
     g.pinched_vertices = split.len() as u64;
     laps.lap("unpinch", &mut g.timings);
-    lift_samples(&mut positions, &tris, &samples, &split);
+    // vertices from here on (slab copies, pinch copies) may be off their plane
+    let first_off_plane = if slab_vertices.start < slab_vertices.end {
+        slab_vertices.start
+    } else {
+        after_thicken
+    };
+    g.samples_kept_on_plane =
+        lift_samples(&mut positions, &tris, &kind, &samples, &split, first_off_plane);
     let mut crease_mids = Vec::new();
     let n_split_edges = split_mixed_edges(&mut positions, &mut tris, &mut kind, &mut crease_mids);
     if n_split_edges > 0 {
@@ -641,7 +652,7 @@ fn debug_crossings(
     before: &[[f64; 3]],
     tris: &[[u32; 3]],
     kind: &[Kind],
-    samples: &[(u32, [f64; 3])],
+    samples: &[(u32, [f64; 3], u32)],
     copies: &[(u32, u32)],
     crease_mids: &[(u32, [f64; 3])],
 ) {
@@ -1661,35 +1672,57 @@ fn pair_around_edges(
 fn lift_samples(
     positions: &mut [[f64; 3]],
     tris: &[[u32; 3]],
-    samples: &[(u32, [f64; 3])],
+    kind: &[Kind],
+    samples: &[(u32, [f64; 3], u32)],
     split: &FxHashSet<u32>,
-) {
+    first_off_plane: u32,
+) -> u64 {
     // shortest incident edge per vertex (None: on no triangle)
     let mut shortest: Vec<Option<f64>> = vec![None; positions.len()];
-    for t in tris {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
+    // the sample's star lies in its own face's section: every incident triangle is a section
+    // triangle of that face whose vertices are all on the plane by construction (pool, overlay and
+    // sample vertices; not slab or pinch copies, not split vertices)
+    let face_of: FxHashMap<u32, u32> = samples.iter().map(|s| (s.0, s.2)).collect();
+    let mut planar_star: FxHashMap<u32, bool> = FxHashMap::default();
+    for (t, k) in tris.iter().zip(kind) {
+        for i in 0..3 {
+            let (a, b) = (t[i], t[(i + 1) % 3]);
             let d = crate::sections::sub(positions[a as usize], positions[b as usize]);
             let l = crate::sections::dot(d, d).sqrt();
             for v in [a, b] {
                 let e = shortest[v as usize].get_or_insert(f64::INFINITY);
                 *e = e.min(l);
             }
+            if let Some(&f) = face_of.get(&t[i]) {
+                let on_plane = *k == Kind::Face(f)
+                    && t.iter().all(|&w| w < first_off_plane && !split.contains(&w));
+                let e = planar_star.entry(t[i]).or_insert(true);
+                *e &= on_plane;
+            }
         }
     }
-    for &(v, d) in samples {
+    let mut kept = 0;
+    for &(v, d, _) in samples {
         if split.contains(&v) {
             continue;
         }
         let Some(l) = shortest[v as usize] else {
             continue;
         };
+        // Inside a region of one face's output (a cap, or where only one side attaches) the sample
+        // is an interior point of a flat disk: no diagram of the other cell crosses it there, so
+        // there is no singularity to avoid (Fig. 12a/b), and lifting would only dent the section.
+        if planar_star.get(&v).copied().unwrap_or(false) {
+            kept += 1;
+            continue;
+        }
         let delta = 1e-6 * l;
         let p = &mut positions[v as usize];
         for k in 0..3 {
             p[k] += delta * d[k];
         }
     }
+    kept
 }
 
 #[cfg(test)]

@@ -264,6 +264,7 @@ pub fn reconstruct(
     report.count("nonconforming_faces", glued.nonconforming_faces);
     report.count("pinched_vertices_lifted", glued.pinched_vertices);
     report.count("lifts_redirected", glued.lifts_redirected);
+    report.count("samples_kept_on_plane", glued.samples_kept_on_plane);
     report.count("overlay_faces", glued.overlay_faces);
     report.count("overlay_vertices", glued.overlay_vertices);
     report.count("overlay_fallbacks", glued.overlay_fallbacks);
