@@ -100,7 +100,7 @@ fn shifted_circle_does_not_branch() {
         .iter()
         .map(|&(x, y)| (circle(x, y, 0.4, 24), vec![]))
         .collect();
-    run(
+    let report = run(
         "shifted",
         &[
             (0.0, vec![(circle(0.6, 0.6, 0.5, 32), vec![])]),
@@ -114,6 +114,8 @@ fn shifted_circle_does_not_branch() {
             flat_zones: true,
         },
     );
+    // the shifted circle faces one circle only: no branching (Fig. 16d)
+    assert_eq!(report.counts.get("branching_samples").copied(), Some(0));
 }
 
 #[test]
