@@ -1,0 +1,98 @@
+//! The whole pipeline and the kernel on the pipeline's own point sets.
+//!
+//! * `reconstruct/<file>`: `slice2solid::reconstruct` (Delaunay method) on the shipped example and,
+//!   when the shared data is beside the checkout (`../shared`, or `$SLICE2SOLID_SHARED`), on the
+//!   heaviest shared files.
+//! * `cell_kernel/*`: the Delaunay kernel on the contour vertices of every cell of Elephant (what
+//!   each cell triangulates first: points on the cell's faces, massively coplanar and cocircular), and
+//!   on uniform random sets of the same sizes, so the cost of the sections' degeneracy is one ratio.
+//!
+//! `cargo bench --bench reconstruct` (criterion; compare runs on the same machine in the same session).
+use criterion::{criterion_group, BenchmarkId, Criterion};
+use slice2solid::arrangement::{Arrangement, ArrangementOptions};
+use slice2solid::bm::{cell_input::CellInput, conform};
+use slice2solid::delaunay::{gen, Delaunay};
+use slice2solid::{io::read_sections, Options};
+use std::path::{Path, PathBuf};
+
+fn shared_csl() -> Option<PathBuf> {
+    let dir = std::env::var_os("SLICE2SOLID_SHARED")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared"))
+        .join("data/csl");
+    dir.is_dir().then_some(dir)
+}
+
+fn inputs() -> Vec<(String, PathBuf)> {
+    let mut v = vec![(
+        "eight_15".to_string(),
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("data/eight_15.csl"),
+    )];
+    if let Some(dir) = shared_csl() {
+        for name in ["hand", "Armadillo-23-better", "Elephant"] {
+            let p = dir.join(format!("{name}.csl"));
+            if p.is_file() {
+                v.push((name.to_string(), p));
+            }
+        }
+    }
+    v
+}
+
+fn reconstruct(c: &mut Criterion) {
+    let mut g = c.benchmark_group("reconstruct");
+    g.sample_size(10);
+    for (name, path) in inputs() {
+        let sections = read_sections(&path).expect("read sections");
+        g.bench_with_input(BenchmarkId::from_parameter(&name), &sections, |b, s| {
+            b.iter(|| {
+                slice2solid::reconstruct(s, &Options::default())
+                    .expect("reconstruct")
+                    .surface
+                    .triangles
+                    .len()
+            })
+        });
+    }
+    g.finish();
+}
+
+/// The contour vertices of every cell with sections (before any Steiner split).
+fn cell_point_sets(path: &Path) -> Vec<Vec<[f64; 3]>> {
+    let sections = read_sections(path).expect("read sections");
+    let arr = Arrangement::build(&sections, &ArrangementOptions::default()).expect("arrangement");
+    let loops = conform::face_loops(&arr, &conform::Splits::default());
+    (0..arr.cells.len() as u32)
+        .filter_map(|c| CellInput::build(&arr, &arr.pool, &loops, c))
+        .map(|i| i.points)
+        .filter(|p| p.len() >= 4)
+        .collect()
+}
+
+fn cell_kernel(c: &mut Criterion) {
+    let Some(dir) = shared_csl() else {
+        eprintln!("cell_kernel: no shared data beside the checkout, skipped");
+        return;
+    };
+    let cells = cell_point_sets(&dir.join("Elephant.csl"));
+    let uniform: Vec<Vec<[f64; 3]>> = cells
+        .iter()
+        .enumerate()
+        .map(|(i, p)| gen::uniform(p.len(), i as u64 + 1))
+        .collect();
+    let mut g = c.benchmark_group("cell_kernel");
+    g.sample_size(20);
+    for (name, sets) in [("Elephant_cells", &cells), ("uniform_same_sizes", &uniform)] {
+        g.bench_with_input(BenchmarkId::from_parameter(name), sets, |b, sets| {
+            b.iter(|| {
+                sets.iter()
+                    .map(|p| Delaunay::new(p).num_finite_tets())
+                    .sum::<usize>()
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, reconstruct, cell_kernel);
+criterion::criterion_main!(benches);
