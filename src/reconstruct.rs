@@ -1,6 +1,6 @@
 //! The library's front door: `reconstruct(&Sections, &Options) -> Solid`, whichever method.
 use crate::arrangement::{Arrangement, ArrangementOptions};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::mesh::{TetMesh, TriMesh};
 use crate::sections::Sections;
 use serde::Serialize;
@@ -103,6 +103,29 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
         ..Default::default()
     };
     report.warnings.extend(sections.warnings.iter().cloned());
+    if let Some(l) = options.label {
+        let mut present: Vec<i32> = sections
+            .sections
+            .iter()
+            .flat_map(|s| s.regions.iter().map(|r| r.label))
+            .collect();
+        present.sort_unstable();
+        present.dedup();
+        if !present.contains(&l) {
+            let list: Vec<String> = present.iter().map(i32::to_string).collect();
+            return Err(Error::input(
+                format!("--label {l}"),
+                format!(
+                    "no region of the input has this label (labels present: {})",
+                    if list.is_empty() {
+                        "none".to_string()
+                    } else {
+                        list.join(", ")
+                    }
+                ),
+            ));
+        }
+    }
     let selected = sections.select_label(options.label);
     let arrangement = report.time("arrangement", || {
         Arrangement::build(&selected, &options.arrangement)
