@@ -502,8 +502,14 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     } else {
         after_thicken
     };
-    g.samples_kept_on_plane =
-        lift_samples(&mut positions, &tris, &kind, &samples, &split, first_off_plane);
+    g.samples_kept_on_plane = lift_samples(
+        &mut positions,
+        &tris,
+        &kind,
+        &samples,
+        &split,
+        first_off_plane,
+    );
     let mut crease_mids = Vec::new();
     let n_split_edges = split_mixed_edges(&mut positions, &mut tris, &mut kind, &mut crease_mids);
     if n_split_edges > 0 {
@@ -1695,7 +1701,8 @@ fn lift_samples(
             }
             if let Some(&f) = face_of.get(&t[i]) {
                 let on_plane = *k == Kind::Face(f)
-                    && t.iter().all(|&w| w < first_off_plane && !split.contains(&w));
+                    && t.iter()
+                        .all(|&w| w < first_off_plane && !split.contains(&w));
                 let e = planar_star.entry(t[i]).or_insert(true);
                 *e &= on_plane;
             }

@@ -17,7 +17,8 @@ fn kind(text: &str) -> String {
                 && (b[i].is_ascii_digit()
                     || b[i] == b'.' && b.get(i + 1).is_some_and(u8::is_ascii_digit)
                     || (b[i] == b'e' || b[i] == b'E')
-                        && b.get(i + 1).is_some_and(|c| c.is_ascii_digit() || *c == b'-' || *c == b'+'))
+                        && b.get(i + 1)
+                            .is_some_and(|c| c.is_ascii_digit() || *c == b'-' || *c == b'+'))
             {
                 i += if b[i] == b'e' || b[i] == b'E' { 2 } else { 1 };
             }
@@ -58,7 +59,9 @@ pub fn lines(warnings: &[String], all: bool, report: Option<&std::path::Path>) -
             out.push(format!("warning: {w}"));
             let rest = total[k.as_str()] - SHOWN_PER_KIND;
             if *n == SHOWN_PER_KIND && rest > 0 {
-                out.push(format!("warning: ... and {rest} more like the one above ({full})"));
+                out.push(format!(
+                    "warning: ... and {rest} more like the one above ({full})"
+                ));
             }
         }
     }
@@ -85,8 +88,13 @@ mod tests {
 
     #[test]
     fn each_kind_is_shown_three_times_then_counted() {
-        let mut w: Vec<String> = (0..10).map(|f| zone(f, &format!("{}.5e-{}", f, f + 1))).collect();
-        w.insert(4, "tetrahedral mesh is non-conforming across 57 faces".into());
+        let mut w: Vec<String> = (0..10)
+            .map(|f| zone(f, &format!("{}.5e-{}", f, f + 1)))
+            .collect();
+        w.insert(
+            4,
+            "tetrahedral mesh is non-conforming across 57 faces".into(),
+        );
         w.push("face 99 (plane 2): flat zone of area 1e-3 attached from neither side, not thickened (3 crossings with δ up to 5.90e-7 (0 before)): not in the solid".into());
         let l = lines(&w, false, None);
         assert_eq!(l.len(), 3 + 1 + 1 + 1, "{l:#?}");
