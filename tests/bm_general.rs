@@ -192,3 +192,71 @@ fn island_attached_from_neither_side_is_thickened() {
         assert_eq!((comps, genus), (2, 0));
     }
 }
+
+/// A square on z = `z` (counter-clockwise seen from +z).
+fn square_section(plane: Plane, z: f64, index: usize) -> Section {
+    let pts: Vec<[f64; 2]> = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]
+        .iter()
+        .map(|&[x, y]| plane.to_2d([x, y, z]))
+        .collect();
+    Section {
+        plane,
+        regions: vec![Region {
+            label: 1,
+            outer: Contour::from_2d(&plane, pts),
+            holes: vec![],
+        }],
+        source_index: index,
+        max_off_plane: 0.0,
+    }
+}
+
+/// Whether `report` names a flat zone thickened into a slab.
+fn thickened(report: &slice2solid::Report) -> usize {
+    report
+        .warnings
+        .iter()
+        .filter(|w| w.contains("flat zone") && w.contains("thickened into"))
+        .count()
+}
+
+/// One section alone bounds no volume in any cell: it is a flat zone attached from neither side,
+/// and becomes a thin slab (it used to vanish, with an empty surface and no warning).
+#[test]
+fn a_single_section_is_a_thin_slab() {
+    let plane = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+    let sections = Sections {
+        sections: vec![square_section(plane, 0.0, 0)],
+        n_labels: 1,
+        warnings: vec![],
+    };
+    let solid = slice2solid::reconstruct(&sections, &Options::default()).unwrap();
+    assert_eq!(thickened(&solid.report), 1, "{:?}", solid.report.warnings);
+    let (comps, genus, vol) = run("single", &sections).unwrap();
+    assert_eq!((comps, genus), (1, 0));
+    assert!(vol > 0.0 && vol < 4.0 * 1e-3, "{vol}");
+}
+
+/// Two squares with an empty plane between them: the solid may not cross the empty plane, so each
+/// square is a flat zone of its own (two slabs), and the empty plane's section stays empty.
+#[test]
+fn sections_apart_from_an_empty_plane_between_them_are_kept() {
+    let planes: Vec<Plane> = (0..3)
+        .map(|k| Plane::from_equation([0.0, 0.0, 1.0], -(k as f64)).unwrap())
+        .collect();
+    let mut empty = square_section(planes[1], 1.0, 1);
+    empty.regions.clear();
+    let sections = Sections {
+        sections: vec![
+            square_section(planes[0], 0.0, 0),
+            empty,
+            square_section(planes[2], 2.0, 2),
+        ],
+        n_labels: 1,
+        warnings: vec![],
+    };
+    let solid = slice2solid::reconstruct(&sections, &Options::default()).unwrap();
+    assert_eq!(thickened(&solid.report), 2, "{:?}", solid.report.warnings);
+    let (comps, genus, _) = run("empty-middle", &sections).unwrap();
+    assert_eq!((comps, genus), (2, 0));
+}

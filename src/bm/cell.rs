@@ -71,6 +71,9 @@ pub struct CellResult {
     pub flat_area: f64,
     /// CPU seconds spent in this run's sub-phases.
     pub timing: CellTiming,
+    /// The cell has no volume (every vertex on one plane): no tets, and its `faces` are each slot's
+    /// section triangulated in 2D, none attached.
+    pub flat_only: bool,
 }
 
 /// CPU seconds per sub-phase of one cell run (summed over cells and rounds in the report).
@@ -175,8 +178,11 @@ fn run_cell_with(
 ) -> Result<CellResult> {
     let all = input.mask.iter().fold(!0u128, |a, &m| a & m);
     if all != 0 || input.points.len() < 4 {
-        // every vertex on one plane: no volume to reconstruct in this cell
+        // every vertex on one plane: no volume to reconstruct in this cell, but its sections are
+        // there (unattached), so that a section no cell with volume sees is still a flat zone
         return Ok(CellResult {
+            faces: flat_cell_faces(&input),
+            flat_only: true,
             input: Some(input),
             ..Default::default()
         });
@@ -466,7 +472,83 @@ fn run_cell_with(
         cutting_on_flat_border,
         flat_area,
         timing,
+        flat_only: false,
     })
+}
+
+/// Per slot, its section (the loops, in the slot's (u,v)) triangulated in 2D by a constrained
+/// Delaunay triangulation, every triangle unattached and oriented outward from the cell: the faces
+/// of a cell without volume. A slot whose loops cannot all be constraints (crossing, which
+/// validated sections do not have) gets no triangles.
+fn flat_cell_faces(input: &CellInput) -> Vec<FaceSide> {
+    use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
+    input
+        .slots
+        .iter()
+        .map(|slot| {
+            let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> = Default::default();
+            let mut local_of = Vec::new();
+            let mut handle: IdMap<u32, spade::handles::FixedVertexHandle> = IdMap::default();
+            let mut ok = true;
+            for l in &slot.loops {
+                for &v in l {
+                    if handle.contains_key(&v) {
+                        continue;
+                    }
+                    let q = slot.uv[v as usize];
+                    match cdt.insert(Point2::new(q[0], q[1])) {
+                        Ok(h) => {
+                            if h.index() >= local_of.len() {
+                                local_of.resize(h.index() + 1, u32::MAX);
+                            }
+                            // two loop vertices at one (u,v) would be merged: not a valid section
+                            ok &= local_of[h.index()] == u32::MAX;
+                            local_of[h.index()] = v;
+                            handle.insert(v, h);
+                        }
+                        Err(_) => ok = false,
+                    }
+                }
+            }
+            for l in &slot.loops {
+                for i in 0..l.len() {
+                    let (a, b) = (handle.get(&l[i]), handle.get(&l[(i + 1) % l.len()]));
+                    if let (Some(&a), Some(&b)) = (a, b) {
+                        if a != b && cdt.try_add_constraint(a, b).is_empty() {
+                            ok &= cdt.exists_constraint(a, b);
+                        }
+                    }
+                }
+            }
+            let mut triangles = Vec::new();
+            if ok {
+                for f in cdt.inner_faces() {
+                    let [a, b, c] = f.vertices().map(|v| v.fix().index());
+                    let q = [a, b, c].map(|i| slot.uv[local_of[i] as usize]);
+                    let centroid = [
+                        (q[0][0] + q[1][0] + q[2][0]) / 3.0,
+                        (q[0][1] + q[1][1] + q[2][1]) / 3.0,
+                    ];
+                    if slot.locator.locate(centroid) != super::cell_input::Where::Inside {
+                        continue;
+                    }
+                    // counter-clockwise in (u,v) faces along the plane normal (u × v = n)
+                    let t = [local_of[a], local_of[b], local_of[c]];
+                    let t = if slot.outward_is_plane_normal {
+                        t
+                    } else {
+                        [t[0], t[2], t[1]]
+                    };
+                    triangles.push((t, false));
+                }
+            }
+            triangles.sort_unstable();
+            FaceSide {
+                face: slot.face,
+                triangles,
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]

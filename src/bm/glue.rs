@@ -175,10 +175,26 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
                 m[t[3] as usize],
             ]
         }));
-        for (s, fs) in r.faces.iter().enumerate() {
-            sides.entry(fs.face).or_default().push((c, s));
+        if !r.flat_only {
+            for (s, fs) in r.faces.iter().enumerate() {
+                sides.entry(fs.face).or_default().push((c, s));
+            }
         }
     }
+    // A cell without volume contributes its sections only to faces no cell with volume has: there
+    // they are flat zones (e.g. a single section, or one between empty planes), thickened like any.
+    let mut flat_sides: HashMap<u32, Vec<(usize, usize)>> = HashMap::new();
+    for (c, r) in results.iter().enumerate() {
+        let Some(r) = r.as_ref().filter(|r| r.flat_only) else {
+            continue;
+        };
+        for (s, fs) in r.faces.iter().enumerate() {
+            if !sides.contains_key(&fs.face) && !fs.triangles.is_empty() {
+                flat_sides.entry(fs.face).or_default().push((c, s));
+            }
+        }
+    }
+    sides.extend(flat_sides);
     laps.lap("collect", &mut g.timings);
     // original edge (min, max) → vertices the face overlays put inside it, from min to max
     let mut edge_splits: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();

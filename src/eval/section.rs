@@ -34,9 +34,15 @@ pub struct SectionAgreement {
     pub area_mesh: f64,
     /// Area of the symmetric difference.
     pub sym_diff: f64,
-    /// `sym_diff / area_input` (0 when both are empty, infinite — null in JSON — when only the input is).
+    /// `sym_diff / area_input`; for an empty input section 0 when the mesh's section there is empty up
+    /// to [`EMPTY_SECTION_NOISE`], else infinite (null in JSON).
     pub relative: f64,
 }
+
+/// A mesh section of at most this × the squared bounding-box diagonal on a plane whose input section
+/// is empty is slicing noise, not a crossing: the offset planes cut slivers of width ~offset along
+/// mesh edges lying in the plane (a section's edge on an empty plane: 2e-11 on a 6-unit model).
+pub const EMPTY_SECTION_NOISE: f64 = 1e-9;
 
 pub type Segment = ([f64; 2], [f64; 2]);
 
@@ -77,7 +83,7 @@ pub fn section_agreement(mesh: &TriMesh, sections: &Sections) -> Vec<SectionAgre
                 .expect("at least one offset");
             let relative = if a.area_a > 0.0 {
                 a.sym_diff / a.area_a
-            } else if a.sym_diff == 0.0 {
+            } else if a.sym_diff <= EMPTY_SECTION_NOISE * diagonal * diagonal {
                 0.0
             } else {
                 f64::INFINITY
@@ -462,5 +468,32 @@ mod flat_face_tests {
         // And a plane beside the solid sees nothing of it.
         let a = &section_agreement(&cube, &square_section(1.5))[0];
         assert!(a.relative > 0.99, "{a:?}");
+    }
+
+    /// A plane with an empty input section: a solid crossing it disagrees infinitely, one only
+    /// touching it along an edge (slicing noise, within `EMPTY_SECTION_NOISE`) agrees.
+    #[test]
+    fn an_empty_section_is_crossed_or_touched() {
+        let empty = |normal: [f64; 3], offset: f64| Sections {
+            sections: vec![Section {
+                plane: Plane::from_equation(normal, offset).unwrap(),
+                regions: vec![],
+                source_index: 0,
+                max_off_plane: 0.0,
+            }],
+            n_labels: 1,
+            warnings: vec![],
+        };
+        let cube = cuboid([0.0; 3], [1.0; 3]);
+        let crossed = &section_agreement(&cube, &empty([0.0, 0.0, 1.0], -0.5))[0];
+        assert!(crossed.relative.is_infinite(), "{crossed:?}");
+        // x + z = 2 meets the cube only along its edge x = z = 1
+        let touched = &section_agreement(&cube, &empty([1.0, 0.0, 1.0], -2.0))[0];
+        assert_eq!(touched.relative, 0.0, "{touched:?}");
+        let edge = &section_agreement(&cube, &empty([1.0, 0.0, 1.0], -1.0))[0];
+        assert!(
+            edge.relative.is_infinite(),
+            "the diagonal plane x + z = 1 cuts the cube: {edge:?}"
+        );
     }
 }
