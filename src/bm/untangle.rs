@@ -7,7 +7,9 @@
 //! displaced vertex is therefore checked exactly (orient3d triangle tests) against the triangles
 //! near it, and when its star crosses one, other candidate positions are tried in a fixed order:
 //! a tenth of the step, the opposite step, a step (and a tenth of one) into the solid along the
-//! star's inward normal, the same two out of it (into the void the star faces), and finally the
+//! star's inward normal, the same two out of it (into the void the star faces), a step and ten
+//! steps towards the centroid of its star's link (into its own fan's cone, away from another sheet
+//! that meets it only at the original point: two copies of one pinch point), and finally the
 //! position it came from (a coincident copy: a pinch point, but no crossing). The first position
 //! whose star crosses nothing is kept; if none is free, the one with fewest crossings.
 //!
@@ -139,6 +141,10 @@ pub fn untangle(
                 .get(&v)
                 .map(|s| inward_normal(positions, tris, s))
                 .unwrap_or([0.0; 3]);
+            let to_link = star
+                .get(&v)
+                .map(|s| towards_link(positions, tris, s, v))
+                .unwrap_or([0.0; 3]);
             let candidates = [
                 first[&v],
                 add(origin, scale(step, 0.1)),
@@ -147,6 +153,8 @@ pub fn untangle(
                 add(origin, scale(inward, 0.1 * len)),
                 sub(origin, scale(inward, len)),
                 sub(origin, scale(inward, 0.1 * len)),
+                add(origin, scale(to_link, len)),
+                add(origin, scale(to_link, 10.0 * len)),
                 origin,
             ];
             for c in candidates {
@@ -232,6 +240,31 @@ fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
 }
 
 /// Unit vector into the solid at `v`: minus the area-weighted sum of its star's outward normals.
+/// Unit direction from `v` to the centroid of its star's other vertices: a step along it pulls the
+/// tip of `v`'s fan into the fan's own cone, away from another sheet that meets it only at `v`'s
+/// original position (two copies of one pinch point, each fan crossing the other's sheet).
+fn towards_link(positions: &[[f64; 3]], tris: &[[u32; 3]], star: &[u32], v: u32) -> [f64; 3] {
+    let (mut c, mut n) = ([0.0; 3], 0.0);
+    for &i in star {
+        for &w in &tris[i as usize] {
+            if w != v {
+                c = add(c, positions[w as usize]);
+                n += 1.0;
+            }
+        }
+    }
+    if n == 0.0 {
+        return [0.0; 3];
+    }
+    let d = sub(scale(c, 1.0 / n), positions[v as usize]);
+    let l = dot(d, d).sqrt();
+    if l > 0.0 {
+        scale(d, 1.0 / l)
+    } else {
+        [0.0; 3]
+    }
+}
+
 fn inward_normal(positions: &[[f64; 3]], tris: &[[u32; 3]], star: &[u32]) -> [f64; 3] {
     let mut n = [0.0; 3];
     for &i in star {
