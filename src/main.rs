@@ -5,11 +5,6 @@ use std::process::ExitCode;
 
 mod cli;
 
-// The cells and the gluing allocate many small, short-lived maps and vectors from two threads; with
-// mimalloc's thread-local free lists Elephant takes about 6% less CPU than with glibc's malloc.
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 #[derive(Parser)]
 #[command(
     name = "slice2solid",
