@@ -8,7 +8,8 @@ use slice2solid::io::{mesh::read_trimesh, read_sections, write_sections};
 use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
 use slice2solid::Options;
 
-fn sweep(mesh: &str, plane_counts: &[usize], seeds: &[u64]) {
+/// The cases (`mesh: n planes, seed s`) whose result is not clean.
+fn sweep(mesh: &str, plane_counts: &[usize], seeds: &[u64]) -> Vec<String> {
     let m = read_trimesh(&shared_dir().join(format!("data/reference/{mesh}.stl"))).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let mut bad = Vec::new();
@@ -28,11 +29,11 @@ fn sweep(mesh: &str, plane_counts: &[usize], seeds: &[u64]) {
                 c.closed, c.manifold, c.oriented, c.self_intersections, c.overlapping_coplanar_pairs
             );
             if !ok {
-                bad.push(format!("{n} planes, seed {seed}"));
+                bad.push(format!("{mesh}: {n} planes, seed {seed}"));
             }
         }
     }
-    assert!(bad.is_empty(), "{mesh}: {bad:?}");
+    bad
 }
 
 /// Includes hand cut by 5 random planes, seed 1: two pinch copies of one contour vertex whose fans
@@ -40,10 +41,32 @@ fn sweep(mesh: &str, plane_counts: &[usize], seeds: &[u64]) {
 /// fan's own link (4 crossings before).
 #[test]
 fn hand_cut_by_random_planes() {
-    sweep("hand", &[3, 5, 8, 12], &[1, 2, 3]);
+    let bad = sweep("hand", &[3, 5, 8, 12], &[1, 2, 3]);
+    assert!(bad.is_empty(), "{bad:?}");
 }
 
 #[test]
 fn figure_eight_cut_by_random_planes() {
-    sweep("eight_15", &[3, 5, 8, 12], &[1, 2, 3]);
+    let bad = sweep("eight_15", &[3, 5, 8, 12], &[1, 2, 3]);
+    assert!(bad.is_empty(), "{bad:?}");
+}
+
+/// Open: with 20 or 30 random planes, 8 of these 20 cases keep 3–15 crossing pairs (each a pinch
+/// copy from `glue::unpinch` next to section or slab triangles, e.g. two slabs of one cell meeting at
+/// a vertex; `reconstruct` warns "displaced vertices still make their triangles cross others"). Run
+/// with `cargo test --release --test bm_random_planes -- --ignored`; it lists the failing cases.
+#[test]
+#[ignore = "open: pinch copies next to slabs cross with many random planes"]
+fn many_random_planes() {
+    let bad: Vec<String> = [
+        "hand",
+        "eight_15",
+        "balloondog",
+        "balloondog_box",
+        "Elephant",
+    ]
+    .iter()
+    .flat_map(|m| sweep(m, &[20, 30], &[4, 5]))
+    .collect();
+    assert!(bad.is_empty(), "{} of 20 cases: {bad:?}", bad.len());
 }
