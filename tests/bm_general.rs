@@ -13,6 +13,11 @@ fn circle_section(plane: Plane, center: [f64; 3], r: f64, n: usize, index: usize
             [c[0] + r * a.cos(), c[1] + r * a.sin()]
         })
         .collect();
+    polygon_section(plane, pts, index)
+}
+
+/// One region (label 1) bounded by `pts` (in the plane's frame) on `plane`.
+fn polygon_section(plane: Plane, pts: Vec<[f64; 2]>, index: usize) -> Section {
     Section {
         plane,
         regions: vec![Region {
@@ -199,16 +204,7 @@ fn square_section(plane: Plane, z: f64, index: usize) -> Section {
         .iter()
         .map(|&[x, y]| plane.to_2d([x, y, z]))
         .collect();
-    Section {
-        plane,
-        regions: vec![Region {
-            label: 1,
-            outer: Contour::from_2d(&plane, pts),
-            holes: vec![],
-        }],
-        source_index: index,
-        max_off_plane: 0.0,
-    }
+    polygon_section(plane, pts, index)
 }
 
 /// Whether `report` names a flat zone thickened into a slab.
