@@ -104,15 +104,9 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
     };
     report.warnings.extend(sections.warnings.iter().cloned());
     if let Some(l) = options.label {
-        let mut present: Vec<i32> = sections
-            .sections
-            .iter()
-            .flat_map(|s| s.regions.iter().map(|r| r.label))
-            .collect();
-        present.sort_unstable();
-        present.dedup();
-        if !present.contains(&l) {
-            let list: Vec<String> = present.iter().map(i32::to_string).collect();
+        let present = sections.regions_per_label();
+        if !present.contains_key(&l) {
+            let list: Vec<String> = present.keys().map(i32::to_string).collect();
             return Err(Error::input(
                 format!("--label {l}"),
                 format!(

@@ -176,6 +176,15 @@ impl Sections {
         Some((lo, hi))
     }
 
+    /// Number of regions per label, by label.
+    pub fn regions_per_label(&self) -> std::collections::BTreeMap<i32, usize> {
+        let mut labels = std::collections::BTreeMap::new();
+        for r in self.sections.iter().flat_map(|x| &x.regions) {
+            *labels.entry(r.label).or_default() += 1;
+        }
+        labels
+    }
+
     /// Keep only the regions of one label (`Some(l)`), or every region (`None`): what `--label` selects.
     pub fn select_label(&self, label: Option<i32>) -> Sections {
         let mut out = self.clone();

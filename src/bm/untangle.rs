@@ -239,7 +239,6 @@ fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 
-/// Unit vector into the solid at `v`: minus the area-weighted sum of its star's outward normals.
 /// Unit direction from `v` to the centroid of its star's other vertices: a step along it pulls the
 /// tip of `v`'s fan into the fan's own cone, away from another sheet that meets it only at `v`'s
 /// original position (two copies of one pinch point, each fan crossing the other's sheet).
@@ -265,6 +264,7 @@ fn towards_link(positions: &[[f64; 3]], tris: &[[u32; 3]], star: &[u32], v: u32)
     }
 }
 
+/// Unit vector into the solid at `v`: minus the area-weighted sum of its star's outward normals.
 fn inward_normal(positions: &[[f64; 3]], tris: &[[u32; 3]], star: &[u32]) -> [f64; 3] {
     let mut n = [0.0; 3];
     for &i in star {

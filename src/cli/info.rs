@@ -21,10 +21,7 @@ pub fn run(args: InfoArgs) -> Result<ExitCode> {
         .map(|r| r.holes.len())
         .sum();
     let empty = s.sections.iter().filter(|x| x.regions.is_empty()).count();
-    let mut labels: BTreeMap<i32, usize> = BTreeMap::new();
-    for r in s.sections.iter().flat_map(|x| &x.regions) {
-        *labels.entry(r.label).or_default() += 1;
-    }
+    let labels = s.regions_per_label();
     let max_off = s
         .sections
         .iter()
