@@ -14,12 +14,14 @@ pub mod geom;
 pub mod implicit;
 pub mod io;
 pub mod mesh;
-pub mod reconstruct;
+pub mod pipeline;
 pub mod sections;
 pub mod slice;
+pub mod solid;
 pub mod validate;
 
 pub use error::{Error, Result};
 pub use mesh::{TetMesh, TriMesh};
-pub use reconstruct::{reconstruct, Method, Options, Report, Solid};
+pub use pipeline::reconstruct;
 pub use sections::{Contour, Plane, Region, Section, Sections};
+pub use solid::{DelaunayOptions, Method, Options, Report, Solid};

@@ -76,6 +76,15 @@ pub struct ReconstructArgs {
     /// always has them all)
     #[arg(long)]
     pub all_warnings: bool,
+    /// Delaunay method: do not sample the branching diagram (to study what it contributes)
+    #[arg(long)]
+    pub no_branching: bool,
+    /// Delaunay method: do not sample the cutting diagram
+    #[arg(long)]
+    pub no_cutting: bool,
+    /// Delaunay method: leave flat zones out of the solid instead of thickening them (warned)
+    #[arg(long)]
+    pub no_thicken: bool,
 }
 
 #[derive(clap::Args)]

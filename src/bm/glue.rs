@@ -119,7 +119,14 @@ pub(super) fn tri_area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
     0.5 * crate::sections::dot(w, w).sqrt()
 }
 
-pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]) -> Glued {
+/// Glue the cells' results into one surface and tetrahedral mesh; `thicken_flat_zones` thickens flat zones
+/// (else they are left out and warned).
+pub fn glue(
+    arr: &Arrangement,
+    pool: &VertexPool,
+    results: &[Option<CellResult>],
+    thicken_flat_zones: bool,
+) -> Glued {
     let mut g = Glued::default();
     let mut laps = Laps::new();
     let mut positions = pool.positions.clone();
@@ -460,7 +467,7 @@ pub fn glue(arr: &Arrangement, pool: &VertexPool, results: &[Option<CellResult>]
     let mut kind = kind;
     laps.lap("split_cancel", &mut g.timings);
     let mut slab_vertices = 0..0u32;
-    if std::env::var("SLICE2SOLID_NO_THICKEN").is_ok() {
+    if !thicken_flat_zones {
         for z in &zones {
             g.flat_zones_left += 1;
             g.warnings.push(format!(

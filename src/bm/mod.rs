@@ -25,7 +25,8 @@
 //! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
 //! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
 //! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
-//! Set `SLICE2SOLID_NO_BRANCHING` / `SLICE2SOLID_NO_CUTTING` to skip branching / cutting samples, `BM_DEBUG` for per-cell diagnostics.
+//! `Options::delaunay` switches branching and cutting samples and flat-zone thickening off; `BM_DEBUG`
+//! prints per-cell diagnostics (it changes no result).
 pub mod branching;
 pub mod cell;
 pub mod cell_input;
@@ -42,8 +43,8 @@ pub mod untangle;
 
 use crate::arrangement::Arrangement;
 use crate::error::Result;
-use crate::reconstruct::{Options, Report, Solid};
 use crate::sections::Sections;
+use crate::solid::{Options, Report, Solid};
 use cell::{run_cell, CellResult, CellTiming, Sampling};
 use cell_input::CellInput;
 use rayon::prelude::*;
@@ -91,13 +92,24 @@ fn run_timed(
     Ok(Some(r))
 }
 
-/// Reconstruct with the Delaunay pruning method. Fills `report` (phases, counts, warnings).
-pub fn reconstruct(
-    _sections: &Sections,
-    arrangement: &Arrangement,
-    options: &Options,
-    report: &mut Report,
-) -> Result<Solid> {
+/// The cells after global conformity splitting: what `glue` joins into one solid.
+pub struct CellRuns {
+    /// The arrangement's vertex pool with the conformity Steiner points added.
+    pub pool: crate::arrangement::VertexPool,
+    /// Per cell, its result (`None`: a cell with no section on its faces).
+    pub results: Vec<Option<CellResult>>,
+    pub rounds: usize,
+    /// Every contour edge became an edge of every cell's section triangulation.
+    pub conforming: bool,
+    pub steiner_points: usize,
+    pub cell_runs: u64,
+    pub timing: CellTiming,
+    pub seconds: f64,
+}
+
+/// Run every cell (in parallel), splitting contour edges globally until every cell's section
+/// triangulations have them as edges (or `MAX_ROUNDS` ran out: `conforming` is false).
+pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRuns> {
     let arr = arrangement;
     let mut pool = arr.pool.clone();
     let mut splits = conform::Splits::default();
@@ -106,8 +118,8 @@ pub fn reconstruct(
     let mut dirty: Vec<bool> = vec![true; n_cells];
     let mut prev_loops: Vec<usize> = vec![usize::MAX; arr.faces.len()];
     let sampling = Sampling {
-        branching: std::env::var("SLICE2SOLID_NO_BRANCHING").is_err(),
-        cutting: std::env::var("SLICE2SOLID_NO_CUTTING").is_err(),
+        branching: options.delaunay.branching,
+        cutting: options.delaunay.cutting,
     };
     let progress = if options.progress {
         let pb = indicatif::ProgressBar::new(n_cells as u64);
@@ -182,9 +194,6 @@ pub fn reconstruct(
     }
     // Cells stopped at the conformity check (only possible when rounds ran out) are finished now.
     if !conforming {
-        report.warnings.push(format!(
-            "conformity splitting stopped after {MAX_ROUNDS} rounds: some contour edges are not Delaunay edges"
-        ));
         let loops = conform::face_loops(arr, &splits);
         let redo = biggest_first(
             arr,
@@ -212,9 +221,44 @@ pub fn reconstruct(
     if let Some(pb) = &progress {
         pb.finish_and_clear();
     }
-    report.phases.push(crate::reconstruct::Phase {
-        name: "cells (delaunay, conformity, pruning)".into(),
+    Ok(CellRuns {
+        pool,
+        results,
+        rounds,
+        conforming,
+        steiner_points: splits.mid.len(),
+        cell_runs,
+        timing,
         seconds: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// Reconstruct with the Delaunay pruning method. Fills `report` (phases, counts, warnings).
+pub fn reconstruct(
+    _sections: &Sections,
+    arrangement: &Arrangement,
+    options: &Options,
+    report: &mut Report,
+) -> Result<Solid> {
+    let arr = arrangement;
+    let CellRuns {
+        pool,
+        results,
+        rounds,
+        conforming,
+        steiner_points,
+        cell_runs,
+        timing,
+        seconds,
+    } = run_cells(arr, options)?;
+    if !conforming {
+        report.warnings.push(format!(
+            "conformity splitting stopped after {MAX_ROUNDS} rounds: some contour edges are not Delaunay edges"
+        ));
+    }
+    report.phases.push(crate::solid::Phase {
+        name: "cells (delaunay, conformity, pruning)".into(),
+        seconds,
     });
     report.count("conformity_rounds", rounds as u64);
     report.count("cell_runs", cell_runs);
@@ -223,7 +267,7 @@ pub fn reconstruct(
             .values
             .insert(format!("cell_cpu_seconds.{name}"), secs);
     }
-    report.count("steiner_points", splits.mid.len() as u64);
+    report.count("steiner_points", steiner_points as u64);
     report.count("points", (pool.positions.len()) as u64);
     for r in results.iter().flatten() {
         report.count("tets_delaunay", r.tets);
@@ -250,7 +294,9 @@ pub fn reconstruct(
         report.count("cutting_samples_on_flat_border", r.cutting_on_flat_border);
         *report.values.entry("cell_flat_area".into()).or_insert(0.0) += r.flat_area;
     }
-    let glued = report.time("glue", || glue::glue(arr, &pool, &results));
+    let glued = report.time("glue", || {
+        glue::glue(arr, &pool, &results, options.delaunay.thicken_flat_zones)
+    });
     report.count("flat_zone_faces", glued.flat_zone_faces);
     report
         .values

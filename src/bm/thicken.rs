@@ -94,14 +94,7 @@ pub(super) fn thicken(
     let mut centres: HashMap<u32, [f64; 3]> = HashMap::new();
     let mut out = Vec::new();
     let mut index = TriIndex::new(positions, tris);
-    // debugging: BM_THICKEN_ONLY=f1,f2 thickens only those faces
-    let only: Option<Vec<u32>> = std::env::var("BM_THICKEN_ONLY")
-        .ok()
-        .map(|v| v.split(',').filter_map(|x| x.trim().parse().ok()).collect());
     for z in zones {
-        if only.as_ref().is_some_and(|o| !o.contains(&z.face)) {
-            continue;
-        }
         let mut o = ZoneOutcome {
             face: z.face,
             plane: z.plane,

@@ -14,6 +14,11 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
         label: args.label,
         depth: args.depth,
         progress: !args.quiet && std::io::stderr().is_terminal(),
+        delaunay: slice2solid::DelaunayOptions {
+            branching: !args.no_branching,
+            cutting: !args.no_cutting,
+            thicken_flat_zones: !args.no_thicken,
+        },
         ..Default::default()
     };
     let solid = slice2solid::reconstruct(&sections, &options)?;

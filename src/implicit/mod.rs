@@ -10,8 +10,8 @@ pub mod octree;
 use crate::arrangement::Arrangement;
 use crate::error::Result;
 use crate::mesh::TriMesh;
-use crate::reconstruct::{Options, Report, Solid};
 use crate::sections::Sections;
+use crate::solid::{Options, Report, Solid};
 use indicator::{FaceKind, Indicator};
 use octree::{Field, Grid, Refinement};
 

@@ -18,28 +18,81 @@ pub fn json_of_success(out: &Output) -> serde_json::Value {
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
-/// The shared data directory: `$SLICE2SOLID_SHARED`, else `$CARGO_MANIFEST_DIR/../shared` if it
-/// exists, else `/work/shared`.
+/// The twelve CSL files of the shared data (stems). A test over "every shared file" runs exactly
+/// these: one missing, or one more that no test names, fails.
+pub const SHARED_CSL: [&str; 12] = [
+    "Armadillo-23-better",
+    "Elephant",
+    "Heart-simplified",
+    "Horsers",
+    "ParallelEight",
+    "ParallelEightMore",
+    "SideBishop",
+    "balloondog",
+    "balloondog_box",
+    "eight_15",
+    "eight_20",
+    "hand",
+];
+
+/// The shared reference meshes (stems of `data/reference/*.stl`; each CSL file of that name was
+/// sliced from it).
+pub const SHARED_REFERENCES: [&str; 6] = [
+    "Elephant",
+    "balloondog",
+    "balloondog_box",
+    "eight_15",
+    "eight_20",
+    "hand",
+];
+
+/// The shared data directory: `$SLICE2SOLID_SHARED`, else `../shared` beside the checkout. It must
+/// exist: the tests read it and fail rather than skip without it.
 pub fn shared_dir() -> PathBuf {
-    if let Some(d) = std::env::var_os("SLICE2SOLID_SHARED") {
-        return PathBuf::from(d);
-    }
-    let sibling = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared"));
-    if sibling.exists() {
-        return sibling;
-    }
-    PathBuf::from("/work/shared")
+    let dir = match std::env::var_os("SLICE2SOLID_SHARED") {
+        Some(d) => PathBuf::from(d),
+        None => PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared")),
+    };
+    assert!(
+        dir.join("data/csl").is_dir(),
+        "shared data not found at {} (set SLICE2SOLID_SHARED or place shared/ beside the checkout)",
+        dir.display()
+    );
+    dir
 }
 
-/// Every `*.csl` file of the shared data, sorted.
+/// The shared CSL file `name` (panics naming the path when it is missing).
+pub fn shared_csl(name: &str) -> PathBuf {
+    let p = shared_dir().join(format!("data/csl/{name}.csl"));
+    assert!(p.is_file(), "missing shared file {}", p.display());
+    p
+}
+
+/// The shared reference mesh `name` (panics naming the path when it is missing).
+pub fn shared_reference(name: &str) -> PathBuf {
+    let p = shared_dir().join(format!("data/reference/{name}.stl"));
+    assert!(p.is_file(), "missing shared reference {}", p.display());
+    p
+}
+
+/// Every `*.csl` file of the shared data, sorted; exactly the files of [`SHARED_CSL`].
 pub fn shared_csl_files() -> Vec<PathBuf> {
     let dir = shared_dir().join("data/csl");
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .filter_map(|e| e.ok().map(|e| e.path()))
+        .map(|e| {
+            e.unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+                .path()
+        })
         .filter(|p| p.extension().is_some_and(|x| x == "csl"))
         .collect();
     files.sort();
-    assert!(!files.is_empty(), "no CSL files in {}", dir.display());
+    let stems: Vec<String> = files
+        .iter()
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    let mut expected: Vec<&str> = SHARED_CSL.to_vec();
+    expected.sort();
+    assert_eq!(stems, expected, "shared CSL files in {}", dir.display());
     files
 }

@@ -1,8 +1,8 @@
-//! The library's front door: `reconstruct(&Sections, &Options) -> Solid`, whichever method.
-use crate::arrangement::{Arrangement, ArrangementOptions};
-use crate::error::{Error, Result};
+//! What a reconstruction is asked and what it gives back, shared by the pipeline and both engines:
+//! [`Options`], [`Solid`], [`Report`]. Imports no engine, so engines and pipeline depend on it and not
+//! on each other.
+use crate::arrangement::ArrangementOptions;
 use crate::mesh::{TetMesh, TriMesh};
-use crate::sections::Sections;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -24,6 +24,31 @@ pub struct Options {
     /// Show a progress bar (the CLI sets it when stderr is a terminal).
     pub progress: bool,
     pub arrangement: ArrangementOptions,
+    /// Stages of the Delaunay pruning engine that can be switched off (to study what each contributes).
+    pub delaunay: DelaunayOptions,
+}
+
+/// Stages of the Delaunay pruning engine; all on by default. Switching one off changes the result:
+/// they are options (never environment variables) so that a caller sees what it asked for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DelaunayOptions {
+    /// Sample the branching (Moebius) diagram of every section (paper §3).
+    pub branching: bool,
+    /// Sample the cutting diagram where a site's cell on a face is disconnected.
+    pub cutting: bool,
+    /// Thicken flat zones (section regions neither neighbouring cell attaches to) into thin slabs;
+    /// off, they are left out of the solid and warned.
+    pub thicken_flat_zones: bool,
+}
+
+impl Default for DelaunayOptions {
+    fn default() -> Self {
+        DelaunayOptions {
+            branching: true,
+            cutting: true,
+            thicken_flat_zones: true,
+        }
+    }
 }
 
 impl Default for Options {
@@ -34,6 +59,7 @@ impl Default for Options {
             depth: 9,
             progress: false,
             arrangement: ArrangementOptions::default(),
+            delaunay: DelaunayOptions::default(),
         }
     }
 }
@@ -91,59 +117,4 @@ pub struct Solid {
     pub surface: TriMesh,
     pub tets: Option<TetMesh>,
     pub report: Report,
-}
-
-pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
-    let start = Instant::now();
-    let mut report = Report {
-        method: match options.method {
-            Method::Delaunay => "delaunay".into(),
-            Method::Implicit => "implicit".into(),
-        },
-        ..Default::default()
-    };
-    report.warnings.extend(sections.warnings.iter().cloned());
-    if let Some(l) = options.label {
-        let present = sections.regions_per_label();
-        if !present.contains_key(&l) {
-            let list: Vec<String> = present.keys().map(i32::to_string).collect();
-            return Err(Error::input(
-                format!("--label {l}"),
-                format!(
-                    "no region of the input has this label (labels present: {})",
-                    if list.is_empty() {
-                        "none".to_string()
-                    } else {
-                        list.join(", ")
-                    }
-                ),
-            ));
-        }
-    }
-    let selected = sections.select_label(options.label);
-    let arrangement = report.time("arrangement", || {
-        Arrangement::build(&selected, &options.arrangement)
-    })?;
-    report.count("cells", arrangement.cells.len() as u64);
-    report.count("faces", arrangement.faces.len() as u64);
-    report.warnings.extend(arrangement.warnings.iter().cloned());
-    let mut solid = match options.method {
-        Method::Delaunay => crate::bm::reconstruct(&selected, &arrangement, options, &mut report)?,
-        Method::Implicit => {
-            crate::implicit::reconstruct(&selected, &arrangement, options, &mut report)?
-        }
-    };
-    report.total_seconds = start.elapsed().as_secs_f64();
-    let topo = crate::eval::topology::analyze(&solid.surface);
-    report.surface = Some(SurfaceTopology {
-        triangles: solid.surface.triangles.len(),
-        closed: topo.closed,
-        manifold: topo.manifold,
-        oriented: topo.oriented,
-        components: topo.components.len(),
-        euler: topo.euler,
-        genus: topo.components.iter().filter_map(|c| c.genus).sum(),
-    });
-    solid.report = report;
-    Ok(solid)
 }

@@ -1,0 +1,62 @@
+//! The library's front door: `reconstruct(&Sections, &Options) -> Solid`, whichever method: select the
+//! label, build the arrangement, dispatch to an engine, measure the surface's topology.
+use crate::arrangement::Arrangement;
+use crate::error::{Error, Result};
+use crate::sections::Sections;
+use crate::solid::{Method, Options, Report, Solid, SurfaceTopology};
+use std::time::Instant;
+
+pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
+    let start = Instant::now();
+    let mut report = Report {
+        method: match options.method {
+            Method::Delaunay => "delaunay".into(),
+            Method::Implicit => "implicit".into(),
+        },
+        ..Default::default()
+    };
+    report.warnings.extend(sections.warnings.iter().cloned());
+    if let Some(l) = options.label {
+        let present = sections.regions_per_label();
+        if !present.contains_key(&l) {
+            let list: Vec<String> = present.keys().map(i32::to_string).collect();
+            return Err(Error::input(
+                format!("--label {l}"),
+                format!(
+                    "no region of the input has this label (labels present: {})",
+                    if list.is_empty() {
+                        "none".to_string()
+                    } else {
+                        list.join(", ")
+                    }
+                ),
+            ));
+        }
+    }
+    let selected = sections.select_label(options.label);
+    let arrangement = report.time("arrangement", || {
+        Arrangement::build(&selected, &options.arrangement)
+    })?;
+    report.count("cells", arrangement.cells.len() as u64);
+    report.count("faces", arrangement.faces.len() as u64);
+    report.warnings.extend(arrangement.warnings.iter().cloned());
+    let mut solid = match options.method {
+        Method::Delaunay => crate::bm::reconstruct(&selected, &arrangement, options, &mut report)?,
+        Method::Implicit => {
+            crate::implicit::reconstruct(&selected, &arrangement, options, &mut report)?
+        }
+    };
+    report.total_seconds = start.elapsed().as_secs_f64();
+    let topo = crate::eval::topology::analyze(&solid.surface);
+    report.surface = Some(SurfaceTopology {
+        triangles: solid.surface.triangles.len(),
+        closed: topo.closed,
+        manifold: topo.manifold,
+        oriented: topo.oriented,
+        components: topo.components.len(),
+        euler: topo.euler,
+        genus: topo.components.iter().filter_map(|c| c.genus).sum(),
+    });
+    solid.report = report;
+    Ok(solid)
+}
