@@ -7,6 +7,8 @@
 //!   each cell triangulates first: points on the cell's faces, massively coplanar and cocircular), and
 //!   on uniform random sets of the same sizes, so the cost of the sections' degeneracy is one ratio.
 //!
+//! * `read_sections/<file>`: reading and validating the same files.
+//!
 //! `cargo bench --bench reconstruct` (criterion; compare runs on the same machine in the same session).
 use criterion::{criterion_group, BenchmarkId, Criterion};
 use slice2solid::arrangement::{Arrangement, ArrangementOptions};
@@ -57,6 +59,18 @@ fn reconstruct(c: &mut Criterion) {
     g.finish();
 }
 
+/// Reading and validating a CSL file (was a 100 ms wall-clock bound in a test, which fails on a slow
+/// machine; Elephant reads in ~5 ms).
+fn read(c: &mut Criterion) {
+    let mut g = c.benchmark_group("read_sections");
+    for (name, path) in inputs() {
+        g.bench_with_input(BenchmarkId::from_parameter(&name), &path, |b, p| {
+            b.iter(|| read_sections(p).expect("read sections").vertex_count())
+        });
+    }
+    g.finish();
+}
+
 /// The contour vertices of every cell with sections (before any Steiner split).
 fn cell_point_sets(path: &Path) -> Vec<Vec<[f64; 3]>> {
     let sections = read_sections(path).expect("read sections");
@@ -94,5 +108,5 @@ fn cell_kernel(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, reconstruct, cell_kernel);
+criterion_group!(benches, read, reconstruct, cell_kernel);
 criterion::criterion_main!(benches);

@@ -76,7 +76,15 @@ fn check_invariants(arr: &Arrangement, sections: &Sections) {
             .map(|&v| arr.uv(v, face.plane).expect("tag"))
             .collect();
         assert!(arr.loop_area(face.plane, &face.polygon) > 0.0);
-        let _ = uv;
+        // convex: every corner turns left or goes straight (exact orient2d in the plane's frame)
+        for k in 0..uv.len() {
+            let (a, b, c) = (uv[k], uv[(k + 1) % uv.len()], uv[(k + 2) % uv.len()]);
+            assert!(
+                slice2solid::geom::predicates::orient2d(a, b, c) >= 0.0,
+                "face {f}: reflex corner at polygon vertex {}",
+                (k + 1) % uv.len()
+            );
+        }
     }
     // Pieces: tags include the plane; areas add up to the section area.
     for (i, s) in sections.sections.iter().enumerate() {

@@ -5,7 +5,7 @@
 mod common;
 use slice2solid::arrangement::{Arrangement, ArrangementOptions};
 use slice2solid::eval::check::check_mesh;
-use slice2solid::{Error, Options};
+use slice2solid::Options;
 
 fn horsers() -> slice2solid::Sections {
     let path = common::shared_dir().join("data/csl/Horsers.csl");
@@ -76,13 +76,7 @@ fn horsers_arrangement_has_one_vertex_where_four_planes_nearly_meet() {
 #[test]
 fn horsers_surface_has_no_rounding_apart_vertices() {
     let s = horsers();
-    let solid = match slice2solid::reconstruct(&s, &Options::default()) {
-        Err(Error::Unavailable(m)) => {
-            eprintln!("skipped ({m})");
-            return;
-        }
-        r => r.expect("reconstruct Horsers"),
-    };
+    let solid = slice2solid::reconstruct(&s, &Options::default()).expect("reconstruct Horsers");
     let v = &solid.surface.vertices;
     let diag = diagonal(v);
     let close = closest_pair(v, 1e-9 * diag);

@@ -10,6 +10,8 @@ struct Expect {
     components: usize,
     genus: i64,
     flat_zones: bool,
+    /// The solid's volume (today's value, or the exact one where the shape is known).
+    volume: f64,
 }
 
 fn run(name: &str, layers: &[(f64, Vec<Poly>)], expect: Expect) -> Report {
@@ -30,11 +32,19 @@ fn run(name: &str, layers: &[(f64, Vec<Poly>)], expect: Expect) -> Report {
     );
     assert_eq!(c.components, expect.components, "{name}: components");
     assert_eq!(c.genus, expect.genus, "{name}: genus");
-    assert_eq!(
-        c.self_intersections_vertex_disjoint, 0,
-        "{name}: self-intersections"
+    assert!(
+        c.self_intersection_free,
+        "{name}: {} crossing pairs, {} overlapping near-coplanar pairs",
+        c.self_intersections, c.overlapping_coplanar_pairs
     );
-    assert!(c.volume > 0.0);
+    assert_eq!(c.degenerate_triangles, 0, "{name}: degenerate triangles");
+    eprintln!("{name}: volume {:.12e} worst {worst:.3e}", c.volume);
+    assert!(
+        (c.volume - expect.volume).abs() <= 1e-9 * expect.volume,
+        "{name}: volume {} expected {}",
+        c.volume,
+        expect.volume
+    );
     if expect.flat_zones {
         // flat zones are reported, and thickened into thin slabs (bm::thicken) that keep the section
         assert!(
@@ -45,7 +55,12 @@ fn run(name: &str, layers: &[(f64, Vec<Poly>)], expect: Expect) -> Report {
             "{name}: flat zones reported and thickened"
         );
     }
-    assert!(worst < 0.02, "{name}: section disagreement {worst}");
+    let exact = c.worst_section.as_ref().map_or(0.0, |w| w.relative);
+    assert!(exact < 1e-9, "{name}: section disagreement (exact) {exact}");
+    assert!(
+        worst < 2e-5,
+        "{name}: section disagreement (shifted) {worst}"
+    );
     report
 }
 
@@ -65,6 +80,7 @@ fn two_squares_make_a_box() {
             components: 1,
             genus: 0,
             flat_zones: false,
+            volume: 1.0,
         },
     );
 }
@@ -85,6 +101,7 @@ fn one_circle_facing_four_circles_branches() {
             components: 1,
             genus: 0,
             flat_zones: false,
+            volume: 3.23270353115158,
         },
     );
     // the branching samples form chains along the diagram, each consecutive pair a Delaunay edge
@@ -112,6 +129,7 @@ fn shifted_circle_does_not_branch() {
             components: 4,
             genus: 0,
             flat_zones: true,
+            volume: 0.6344018619641119,
         },
     );
     // the shifted circle faces one circle only: no branching (Fig. 16d)
@@ -148,6 +166,8 @@ fn non_convex_sections() {
             components: 1,
             genus: 0,
             flat_zones: false,
+            // the L and the U overlap in the L minus nothing: exact
+            volume: 2.25,
         },
     );
 }
@@ -167,6 +187,9 @@ fn section_with_a_hole() {
             components: 1,
             genus: 1,
             flat_zones: false,
+            // today's value, 0.2% above the prism's 1.641491611865 (the identical rings' walls are
+            // not vertical: the degenerate quads between them are split by the tie-breaking)
+            volume: 1.645092721948874,
         },
     );
 }
@@ -190,6 +213,8 @@ fn nested_contours() {
             components: 2,
             genus: 1,
             flat_zones: false,
+            // the prisms: 0.8 × (area of the 40-gon − 32-gon + 20-gon)
+            volume: 3.752518608391759,
         },
     );
 }
@@ -233,6 +258,7 @@ fn disconnected_moebius_cells_get_cutting_samples() {
             components: 1,
             genus: 0,
             flat_zones: false,
+            volume: 4.553357333333332,
         },
     );
     assert!(

@@ -2,7 +2,6 @@
 //! (`slice`, written as CSL and read back like a user's file), reconstructed and checked. Each result
 //! must be a closed, oriented manifold without self-intersections whose sections agree with the input.
 mod common;
-use common::shared_dir;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::io::{mesh::read_trimesh, read_sections, write_sections};
 use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
@@ -10,7 +9,7 @@ use slice2solid::Options;
 
 /// The cases (`mesh: n planes, seed s`) whose result is not clean.
 fn sweep(mesh: &str, plane_counts: &[usize], seeds: &[u64]) -> Vec<String> {
-    let m = read_trimesh(&shared_dir().join(format!("data/reference/{mesh}.stl"))).unwrap();
+    let m = read_trimesh(&common::shared_reference(mesh)).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let mut bad = Vec::new();
     for &n in plane_counts {
@@ -51,12 +50,23 @@ fn figure_eight_cut_by_random_planes() {
     assert!(bad.is_empty(), "{bad:?}");
 }
 
-/// Open: with 20 or 30 random planes, 8 of these 20 cases keep 3–15 crossing pairs (each a pinch
-/// copy from `glue::unpinch` next to section or slab triangles, e.g. two slabs of one cell meeting at
-/// a vertex; `reconstruct` warns "displaced vertices still make their triangles cross others"). Run
-/// with `cargo test --release --test bm_random_planes -- --ignored`; it lists the failing cases.
+/// The cases of `many_random_planes` that are not clean today: a listed expectation, so that both a
+/// fix (a case leaves the list: remove it here) and a regression (a case joins it) fail the test.
+/// Each keeps 3–15 crossing pairs where a pinch copy from `glue::unpinch` meets section or slab
+/// triangles (`reconstruct` warns "displaced vertices still make their triangles cross others").
+const KNOWN_UNCLEAN: &[&str] = &[
+    "eight_15: 20 planes, seed 4",
+    "balloondog: 30 planes, seed 4",
+    "balloondog: 30 planes, seed 5",
+    "balloondog_box: 20 planes, seed 5",
+    "balloondog_box: 30 planes, seed 4",
+    "balloondog_box: 30 planes, seed 5",
+    "Elephant: 30 planes, seed 4",
+    "Elephant: 30 planes, seed 5",
+];
+
+/// Open: with 20 or 30 random planes, 8 of these 20 cases are not clean (`KNOWN_UNCLEAN`).
 #[test]
-#[ignore = "open: pinch copies next to slabs cross with many random planes"]
 fn many_random_planes() {
     let bad: Vec<String> = [
         "hand",
@@ -68,5 +78,8 @@ fn many_random_planes() {
     .iter()
     .flat_map(|m| sweep(m, &[20, 30], &[4, 5]))
     .collect();
-    assert!(bad.is_empty(), "{} of 20 cases: {bad:?}", bad.len());
+    assert_eq!(
+        bad, KNOWN_UNCLEAN,
+        "unclean cases (update KNOWN_UNCLEAN when one is fixed)"
+    );
 }

@@ -4,7 +4,7 @@ mod common;
 
 use slice2solid::eval::check::check_mesh;
 use slice2solid::io::read_sections;
-use slice2solid::{reconstruct, Error, Method, Options};
+use slice2solid::{reconstruct, Method, Options};
 
 #[test]
 fn every_shared_csl_reconstructs_to_a_closed_manifold() {
@@ -15,15 +15,8 @@ fn every_shared_csl_reconstructs_to_a_closed_manifold() {
             depth: 6,
             ..Default::default()
         };
-        let solid = match reconstruct(&sections, &options) {
-            Ok(s) => s,
-            // Until the arrangement is merged into this branch the pipeline stops before us.
-            Err(Error::Unavailable(m)) if m.contains("arrangement") => {
-                eprintln!("skipped {}: {m}", path.display());
-                return;
-            }
-            Err(e) => panic!("{}: {e}", path.display()),
-        };
+        let solid =
+            reconstruct(&sections, &options).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         let r = check_mesh(&solid.surface, None);
         assert!(
             r.closed && r.manifold,

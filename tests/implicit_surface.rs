@@ -164,38 +164,3 @@ fn annulus_between_two_empty_planes_gives_a_torus() {
     assert_eq!(chi, 0, "a torus expected");
     assert!(signed_volume(&mesh) > 0.0);
 }
-
-/// Timing on a sliced sphere (12 planes, 200 vertices each): `cargo test --test implicit_surface
-/// -- --ignored --nocapture` (depths from IMPLICIT_DEPTHS, default "7,8"). Prints evaluations and phase times per depth.
-#[test]
-#[ignore]
-fn sliced_sphere_timing() {
-    let levels: Vec<Level> = (0..12)
-        .map(|i| {
-            let z = -0.77 + 1.4 * i as f64 / 11.0;
-            Level {
-                z,
-                pieces: vec![(circle([0.0, 0.0], (0.81 - z * z).sqrt(), 200), vec![])],
-            }
-        })
-        .collect();
-    let arr = horizontal_slabs([-1.0; 3], [1.0; 3], &levels);
-    let depths = std::env::var("IMPLICIT_DEPTHS").unwrap_or_else(|_| "7,8".into());
-    for depth in depths.split(',').map(|d| d.trim().parse::<u32>().unwrap()) {
-        let mut report = Report::default();
-        let t = std::time::Instant::now();
-        let mesh = surface(&arr, depth, false, &mut report).unwrap();
-        let chi = check_closed_oriented(&mesh);
-        println!(
-            "depth {depth}: {:.2} s, {} triangles, χ = {chi}, phases {:?}, counts {:?}",
-            t.elapsed().as_secs_f64(),
-            mesh.triangles.len(),
-            report
-                .phases
-                .iter()
-                .map(|p| format!("{} {:.2}", p.name, p.seconds))
-                .collect::<Vec<_>>(),
-            report.counts
-        );
-    }
-}

@@ -305,7 +305,17 @@ fn eval_finds_no_difference_between_mesh_and_its_slices() {
         let s = slice_mesh(&mesh, &make_planes(&mesh, 6, 11, SliceMode::Random)).unwrap();
         let agreement = slice2solid::eval::section::section_agreement(&mesh, &s);
         assert_eq!(agreement.len(), s.sections.len());
-        let worst = agreement.iter().map(|a| a.relative).fold(0.0, f64::max);
+        let worst = agreement
+            .iter()
+            .map(|a| a.relative)
+            // NaN (a broken measurement) must not vanish in the max
+            .fold(0.0_f64, |m, r| {
+                if r.is_nan() || m.is_nan() {
+                    f64::NAN
+                } else {
+                    m.max(r)
+                }
+            });
         println!("{name}: worst relative symmetric difference {worst:e}");
         assert!(worst < 1e-9, "{name}: {worst}");
     }

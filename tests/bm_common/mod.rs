@@ -176,5 +176,12 @@ pub fn worst_section(mesh: &slice2solid::TriMesh, s: &Sections) -> f64 {
     a.iter()
         .zip(b.iter())
         .map(|(x, y)| x.relative.min(y.relative))
-        .fold(0.0, f64::max)
+        // NaN (a broken measurement) must not vanish in the max
+        .fold(0.0_f64, |m, r| {
+            if r.is_nan() || m.is_nan() {
+                f64::NAN
+            } else {
+                m.max(r)
+            }
+        })
 }

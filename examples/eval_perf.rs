@@ -1,5 +1,5 @@
-//! Timing of `check` and `compare` on a 1.3 M-triangle mesh (icosphere, 8 subdivisions).
-//! Ignored by default: `cargo test --release --test eval_perf -- --ignored --nocapture`.
+//! Timing of `check` and `compare` on a 1.3 M-triangle mesh (icosphere, 8 subdivisions), whole and
+//! by phase: `cargo run --release --example eval_perf`.
 use slice2solid::eval::check::check_mesh;
 use slice2solid::eval::compare::compare_meshes;
 use slice2solid::eval::shapes::{icosphere, translated};
@@ -18,8 +18,6 @@ fn cpu() -> f64 {
     (f.get(11).unwrap_or(&0.0) + f.get(12).unwrap_or(&0.0)) / 100.0
 }
 
-#[test]
-#[ignore]
 fn million_triangles() {
     let (t, c) = (Instant::now(), cpu());
     let a = icosphere([0.0; 3], 1.0, 8);
@@ -50,8 +48,6 @@ fn million_triangles() {
     assert!(r2.iou > 0.9 && r2.iou < 1.0);
 }
 
-#[test]
-#[ignore]
 fn million_triangles_phases() {
     use slice2solid::eval::check::self_intersections;
     use slice2solid::eval::compare::{compare_meshes_with_lines, surface_samples};
@@ -77,4 +73,9 @@ fn million_triangles_phases() {
         t.elapsed(),
         cpu() - c
     );
+}
+
+fn main() {
+    million_triangles();
+    million_triangles_phases();
 }
