@@ -35,7 +35,8 @@ pub enum SliceMode {
 enum Command {
     /// Reconstruct a solid from cross-sections (CSL or JSON)
     Reconstruct(ReconstructArgs),
-    /// Check a triangle mesh: closed, manifold, oriented, self-intersections, genus; optionally its sections
+    /// Check a triangle mesh (closed, manifold, oriented, self-intersections, genus; optionally its sections)
+    /// or a tetrahedral mesh (conforming, inverted/flat tets, boundary; optionally against a surface)
     Check(CheckArgs),
     /// Compare a mesh with a reference: IoU, Chamfer, Hausdorff
     Compare(CompareArgs),
@@ -89,10 +90,14 @@ pub struct ReconstructArgs {
 
 #[derive(clap::Args)]
 pub struct CheckArgs {
+    /// A triangle surface (.obj, .ply, .stl, .off) or a tetrahedral mesh (.vtk, .mesh)
     pub mesh: PathBuf,
-    /// Compare the mesh's sections with these input sections (CSL or JSON)
+    /// Compare the surface's sections with these input sections (CSL or JSON; surfaces only)
     #[arg(long)]
     pub sections: Option<PathBuf>,
+    /// Tetrahedral mesh only: compare its boundary with this surface (exact vertex positions)
+    #[arg(long)]
+    pub surface: Option<PathBuf>,
     #[arg(long)]
     pub json: bool,
 }

@@ -1,5 +1,6 @@
 //! `slice2solid check MESH [--sections INPUT] [--json]`: exit status 1 when the mesh is not a closed
-//! manifold, so scripts can gate on it.
+//! manifold, so scripts can gate on it. A `.vtk` or `.mesh` file is a tetrahedral mesh and goes to
+//! [`super::check_tets`].
 use crate::CheckArgs;
 use slice2solid::eval::check::{check_mesh, CheckReport};
 use slice2solid::io::mesh::read_trimesh;
@@ -8,6 +9,18 @@ use slice2solid::{Error, Result};
 use std::process::ExitCode;
 
 pub fn run(args: CheckArgs) -> Result<ExitCode> {
+    if super::check_tets::is_tet_mesh(&args.mesh) {
+        return super::check_tets::run(args);
+    }
+    if let Some(s) = &args.surface {
+        return Err(Error::input(
+            s.display().to_string(),
+            format!(
+                "--surface compares a tetrahedral mesh's boundary with a surface, but {} is not a tetrahedral mesh (.vtk or .mesh)",
+                args.mesh.display()
+            ),
+        ));
+    }
     let mesh = read_trimesh(&args.mesh)?;
     let sections = match &args.sections {
         Some(p) => Some(read_sections(p)?),

@@ -5,11 +5,14 @@
 //!   exact section with the input section.
 //! * [`compare::compare_meshes`]: volumetric IoU, Chamfer L1/L2 and Hausdorff distances against a
 //!   reference, normalised by the reference's bounding-box diagonal.
+//! * [`tets::check_tets`]: a tetrahedral mesh is conforming (exact), with no inverted, flat or
+//!   overlapping tetrahedra, and its boundary is a given surface.
 pub mod check;
 pub mod compare;
 pub mod near_coplanar;
 pub mod section;
 pub mod shapes;
+pub mod tets;
 pub mod topology;
 
 // moved to geom (the engine uses them too); kept reachable under their old paths
@@ -17,3 +20,4 @@ pub use crate::geom::{bvh, tri_tri};
 
 pub use check::{check_mesh, CheckReport};
 pub use compare::{compare_meshes, CompareReport};
+pub use tets::{check_tets, TetCheck};
