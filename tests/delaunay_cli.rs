@@ -1,7 +1,34 @@
 //! `slice2solid delaunay` end to end: JSON keys, the tets file, errors, and the TetGen oracle switch.
 mod common;
+mod delaunay_check;
 use common::{bin, json_of_success};
 use slice2solid::delaunay::{gen, xyz};
+use std::path::Path;
+
+/// The tetrahedra of a `--tets` file (four vertex indices a line); a malformed line fails.
+fn read_tets(path: &Path) -> Vec<[u32; 4]> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines()
+        .map(|l| {
+            let v: Vec<u32> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            assert_eq!(v.len(), 4, "{}: line {l:?}", path.display());
+            [v[0], v[1], v[2], v[3]]
+        })
+        .collect()
+}
+
+/// `slice2solid delaunay POINTS --json --tets FILE [extra]`: the JSON and the tetrahedra written.
+fn run_delaunay(points: &Path, tets: &Path, extra: &[&str]) -> (serde_json::Value, Vec<[u32; 4]>) {
+    let out = bin()
+        .arg("delaunay")
+        .arg(points)
+        .args(["--json", "--tets"])
+        .arg(tets)
+        .args(extra)
+        .output()
+        .unwrap();
+    (json_of_success(&out), read_tets(tets))
+}
 
 #[test]
 fn delaunay_cli_json_and_tets_file() {
@@ -10,32 +37,14 @@ fn delaunay_cli_json_and_tets_file() {
     let mut pts = gen::uniform(200, 5);
     pts.push(pts[0]); // a duplicate
     xyz::write_xyz(&pts_path, &pts).unwrap();
-    let tets_path = dir.path().join("t.txt");
-    let out = bin()
-        .args(["delaunay", pts_path.to_str().unwrap(), "--json", "--tets"])
-        .arg(&tets_path)
-        .output()
-        .unwrap();
-    let j = json_of_success(&out);
+    let (j, tets) = run_delaunay(&pts_path, &dir.path().join("t.txt"), &[]);
     assert_eq!(j["points"], 201);
     assert_eq!(j["vertices"], 200);
     let secs = j["seconds"].as_f64().unwrap();
     assert!(secs > 0.0 && secs.is_finite(), "seconds {secs}");
     assert!(j["peak_bytes"].as_u64().unwrap() > 0);
-    let text = std::fs::read_to_string(&tets_path).unwrap();
-    let tets: Vec<[usize; 4]> = text
-        .lines()
-        .map(|l| {
-            let v: Vec<usize> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
-            [v[0], v[1], v[2], v[3]]
-        })
-        .collect();
     assert_eq!(tets.len() as u64, j["tets"].as_u64().unwrap());
-    assert!(tets.iter().flatten().all(|&v| v < 200));
-    for t in &tets {
-        let p = |k: usize| pts[t[k]];
-        assert!(slice2solid::delaunay::pred::orient(p(0), p(1), p(2), p(3)) > 0.0);
-    }
+    delaunay_check::check_tets(&pts, &tets, true);
 }
 
 #[test]
@@ -69,13 +78,22 @@ fn delaunay_cli_oracle_switch() {
         .unwrap();
     if cfg!(feature = "tetgen") {
         assert!(out.status.success());
-        let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-        let ours = bin()
-            .args(["delaunay", p.to_str().unwrap(), "--json"])
-            .output()
-            .unwrap();
-        let o: serde_json::Value = serde_json::from_slice(&ours.stdout).unwrap();
+        // both files through the same exact validator; in general position they are also equal
+        let (j, theirs) = run_delaunay(&p, &dir.path().join("tetgen.txt"), &["--oracle", "tetgen"]);
+        let (o, ours) = run_delaunay(&p, &dir.path().join("ours.txt"), &[]);
+        let pts = xyz::read_xyz(&p).unwrap();
+        delaunay_check::check_tets(&pts, &theirs, true);
+        delaunay_check::check_tets(&pts, &ours, true);
         assert_eq!(j["tets"], o["tets"]);
+        assert_eq!(theirs.len() as u64, j["tets"].as_u64().unwrap());
+        // a degenerate set: ties are broken differently, so only the validator decides
+        let q = dir.path().join("lattice.xyz");
+        let lattice = gen::lattice(5);
+        xyz::write_xyz(&q, &lattice).unwrap();
+        for (extra, file) in [(&["--oracle", "tetgen"][..], "lt.txt"), (&[][..], "lo.txt")] {
+            let (_, tets) = run_delaunay(&q, &dir.path().join(file), extra);
+            delaunay_check::check_tets(&lattice, &tets, true);
+        }
     } else {
         assert_eq!(out.status.code(), Some(2));
         assert!(String::from_utf8_lossy(&out.stderr).contains("not available"));

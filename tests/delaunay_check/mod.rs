@@ -19,21 +19,64 @@ pub fn check_all(pts: &[P], dt: &Delaunay) -> Summary {
     check_tets(pts, &tets, dt.dimension() == 3)
 }
 
+/// Every check of a tetrahedra list `tets` of `pts`, from the list alone, so that any kernel's
+/// output (ours, TetGen's, the CLI's file) goes through the same oracle; panics on the first failure.
+/// `full_dim`: the points span 3D (then there are tetrahedra and every distinct point is a vertex).
 pub fn check_tets(pts: &[P], tets: &[[u32; 4]], full_dim: bool) -> Summary {
+    assert!(
+        tets.iter().flatten().all(|&v| (v as usize) < pts.len()),
+        "a vertex index is out of range"
+    );
+    positive_orientation(pts, tets);
+    let hull = matched_facets(tets);
+    assert_eq!(
+        full_dim,
+        !tets.is_empty(),
+        "tets exist iff the points span 3D"
+    );
+    closed_surface(&hull);
+    points_inside_hull(pts, &hull);
+    let used = every_point_used(pts, tets, full_dim);
+    let (volume, hull_volume) = volumes(pts, tets, &hull, used.first().copied());
+    let scale = volume.abs().max(hull_volume.abs()).max(1e-300);
+    assert!(
+        (volume - hull_volume).abs() <= 1e-12 * scale,
+        "volume {volume} != hull volume {hull_volume}"
+    );
+    empty_spheres(pts, tets);
+    Summary {
+        tets: tets.len(),
+        volume,
+        hull_volume,
+    }
+}
+
+/// Every tetrahedron positively oriented, by the exact orientation predicate.
+fn positive_orientation(pts: &[P], tets: &[[u32; 4]]) {
     let p = |v: u32| pts[v as usize];
-    // 1. positive orientation, exactly
     for t in tets {
         assert!(
             pred::orient(p(t[0]), p(t[1]), p(t[2]), p(t[3])) > 0.0,
             "tet {t:?} not positively oriented"
         );
     }
-    // 2. every facet in at most two tets, with opposite orientations; count==1 facets are the hull
+}
+
+/// `tri` rotated so that its smallest vertex comes first (same cyclic orientation).
+fn rotated(tri: [u32; 3]) -> [u32; 3] {
+    let k = (0..3).min_by_key(|&k| tri[k]).unwrap();
+    [tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]]
+}
+
+/// Facets: each in at most two tetrahedra, which then see it with opposite orientations (they lie
+/// on opposite sides). Returns the facets of one tetrahedron only (the boundary), oriented so that
+/// the tetrahedron is on their positive side.
+fn matched_facets(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
     let mut facets: HashMap<[u32; 3], Vec<[u32; 3]>> = HashMap::new();
     const F: [[usize; 3]; 4] = [[1, 3, 2], [0, 2, 3], [0, 3, 1], [0, 1, 2]];
     for t in tets {
         for f in F {
-            let tri = [t[f[0]], t[f[1]], t[f[2]]];
+            let tri = rotated([t[f[0]], t[f[1]], t[f[2]]]);
             let mut key = tri;
             key.sort_unstable();
             facets.entry(key).or_default().push(tri);
@@ -44,76 +87,90 @@ pub fn check_tets(pts: &[P], tets: &[[u32; 4]], full_dim: bool) -> Summary {
         assert!(v.len() <= 2, "facet {k:?} shared by {} tets", v.len());
         if v.len() == 1 {
             hull.push(v[0]);
+        } else {
+            assert_ne!(v[0], v[1], "facet {k:?}: both tets on the same side");
         }
     }
-    assert_eq!(
-        full_dim,
-        !tets.is_empty(),
-        "tets exist iff the points span 3D"
-    );
-    // 3. hull facets (normal into the solid) see every point on their inner side or on them
-    let mut used: Vec<u32> = tets.iter().flatten().copied().collect();
-    used.sort_unstable();
-    used.dedup();
-    let stride = if pts.len() * hull.len() > 4_000_000 {
-        (pts.len() * hull.len() / 4_000_000).max(1)
-    } else {
-        1
-    };
-    for h in &hull {
-        for (i, q) in pts.iter().enumerate().step_by(stride) {
-            let _ = i;
+    hull
+}
+
+/// The boundary facets form a closed, consistently oriented surface: every directed edge once, and
+/// its reverse once.
+fn closed_surface(hull: &[[u32; 3]]) {
+    let mut edges: HashMap<(u32, u32), u32> = HashMap::new();
+    for h in hull {
+        for k in 0..3 {
+            *edges.entry((h[k], h[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    for (&(a, b), &n) in &edges {
+        assert_eq!(
+            n, 1,
+            "boundary edge {a}-{b} directed the same way {n} times"
+        );
+        assert!(edges.contains_key(&(b, a)), "boundary edge {a}-{b} is open");
+    }
+}
+
+/// Every input point on the inner side of (or on) every boundary facet, exactly: the boundary is
+/// convex and holds all points, so it is the convex hull's boundary.
+fn points_inside_hull(pts: &[P], hull: &[[u32; 3]]) {
+    let p = |v: u32| pts[v as usize];
+    for h in hull {
+        for (i, q) in pts.iter().enumerate() {
             assert!(
                 pred::orient(p(h[0]), p(h[1]), p(h[2]), *q) >= 0.0,
-                "hull facet {h:?} has a point outside"
+                "hull facet {h:?} has point {i} outside"
             );
         }
     }
-    // every distinct input point is a vertex (Delaunay triangulations use every point)
+}
+
+/// The vertices used, sorted; with `full_dim`, every distinct input point must be one of them
+/// (a Delaunay triangulation uses every point; duplicates may be left out).
+fn every_point_used(pts: &[P], tets: &[[u32; 4]], full_dim: bool) -> Vec<u32> {
+    let mut used: Vec<u32> = tets.iter().flatten().copied().collect();
+    used.sort_unstable();
+    used.dedup();
     if full_dim {
-        let mut distinct: Vec<[u64; 3]> = pts
-            .iter()
-            .map(|q| {
-                [
-                    (q[0] + 0.0).to_bits(),
-                    (q[1] + 0.0).to_bits(),
-                    (q[2] + 0.0).to_bits(),
-                ]
-            })
-            .collect();
+        let bits = |q: &P| {
+            [
+                (q[0] + 0.0).to_bits(),
+                (q[1] + 0.0).to_bits(),
+                (q[2] + 0.0).to_bits(),
+            ]
+        };
+        let mut distinct: Vec<[u64; 3]> = pts.iter().map(bits).collect();
         distinct.sort_unstable();
         distinct.dedup();
+        let mut used_pos: Vec<[u64; 3]> = used.iter().map(|&v| bits(&pts[v as usize])).collect();
+        used_pos.sort_unstable();
+        used_pos.dedup();
+        assert_eq!(used_pos.len(), used.len(), "two vertices at one position");
         assert_eq!(
             distinct.len(),
             used.len(),
             "some distinct point is not a vertex"
         );
     }
-    // 4. volume of the tets equals the volume enclosed by the hull facets (divergence theorem)
+    used
+}
+
+/// Total volume of the tetrahedra, and the volume enclosed by the boundary facets (cones from a
+/// vertex `apex`, divergence theorem).
+fn volumes(pts: &[P], tets: &[[u32; 4]], hull: &[[u32; 3]], apex: Option<u32>) -> (f64, f64) {
+    let p = |v: u32| pts[v as usize];
     let volume: f64 = tets
         .iter()
-        .map(|t| pred::orient(p(t[0]), p(t[1]), p(t[2]), p(t[3])).abs() / 6.0)
+        .map(|t| signed_vol(p(t[0]), p(t[1]), p(t[2]), p(t[3])).abs())
         .sum();
-    let c = used.first().map(|&v| p(v)).unwrap_or([0.0; 3]);
+    let c = apex.map(p).unwrap_or([0.0; 3]);
+    // facet normals point inwards: the cone (h, c) from a point c of the hull is positive
     let hull_volume: f64 = hull
         .iter()
-        .map(|h| {
-            // facet normals point inwards: the cone (h, c) from a point c of the hull is positive
-            signed_vol(p(h[0]), p(h[1]), p(h[2]), c)
-        })
+        .map(|h| signed_vol(p(h[0]), p(h[1]), p(h[2]), c))
         .sum();
-    let scale = volume.abs().max(hull_volume.abs()).max(1e-300);
-    assert!(
-        (volume - hull_volume).abs() <= 1e-9 * scale,
-        "volume {volume} != hull volume {hull_volume}"
-    );
-    // 5. no input point strictly inside any circumsphere (exact insphere, grid for candidates)
-    empty_spheres(pts, tets);
-    Summary {
-        tets: tets.len(),
-        volume,
-        hull_volume,
-    }
+    (volume, hull_volume)
 }
 
 fn signed_vol(a: P, b: P, c: P, d: P) -> f64 {
