@@ -2,8 +2,8 @@
 //! with the reference mesh it was sliced from (IoU, Chamfer L1, Hausdorff over the reference's
 //! bounding-box diagonal). Every value is pinned near the one measured when the pin was set, so an
 //! IoU loss of 0.03 (or a few percent more distance) on any file fails and names file, method and
-//! metric. Re-measure with `cargo test --release --features tetgen --test reference_accuracy --
-//! --ignored --nocapture`.
+//! metric with the measured value. To re-measure a pin's seed spread: `slice2solid compare OUT REF
+//! --samples N --seed S` for seeds 1-4.
 mod common;
 use common::shared_dir;
 use slice2solid::eval::compare::{compare_meshes_with_lines, CompareReport};
@@ -148,43 +148,4 @@ fn delaunay_method_matches_references() {
 #[test]
 fn implicit_method_matches_references() {
     check_method(Method::Implicit);
-}
-
-/// The pin table's source lines (seed 1; Hausdorff: the largest over seeds 1-4, see [`PINS`]) and
-/// each metric's spread over the four seeds relative to its margin.
-#[test]
-#[ignore]
-fn measure_table() {
-    for p in &PINS {
-        let start = Instant::now();
-        let mesh = reconstruction(p.name, p.method);
-        let built = start.elapsed().as_secs_f64();
-        let reference = reference(p.name);
-        let rs: Vec<CompareReport> = (SEED..SEED + 4)
-            .map(|s| compare(&mesh, &reference, p.method, s))
-            .collect();
-        let secs = (start.elapsed().as_secs_f64() - built) / 4.0;
-        let spread = |f: fn(&CompareReport) -> f64| {
-            let v: Vec<f64> = rs.iter().map(f).collect();
-            let (lo, hi) = v
-                .iter()
-                .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
-            (lo, hi)
-        };
-        let (i0, i1) = spread(|r| r.iou);
-        let (c0, c1) = spread(|r| r.chamfer_l1);
-        let (h0, h1) = spread(|r| r.hausdorff);
-        println!(
-            "pin({:?}, {}, {:.4}, {:.4e}, {:.4e}), // {built:.1} + {secs:.1} s; spread IoU {:.5} Chamfer {:.1}% Hausdorff {:.1}% (seed 1 {:.4e})",
-            p.name,
-            if p.method == D { "D" } else { "I" },
-            rs[0].iou,
-            rs[0].chamfer_l1,
-            h1,
-            i1 - i0,
-            100.0 * (c1 - c0) / c0,
-            100.0 * (h1 - h0) / h0,
-            rs[0].hausdorff
-        );
-    }
 }

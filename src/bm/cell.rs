@@ -137,8 +137,8 @@ fn lap(t: &mut std::time::Instant) -> f64 {
 }
 
 /// Triangulate `points` with our exact kernel; finite tets in input vertex ids, positively oriented
-/// in `robust`'s convention (`orient3d > 0`, as `TetMesh` wants; the kernel hands out the opposite
-/// orientation, positive volume, so two vertices are swapped), in canonical order (see
+/// in `robust`'s convention (`orient3d > 0`, the pruning's convention; the kernel hands out the
+/// opposite orientation, so two vertices are swapped; `glue` swaps them back for `TetMesh`), in canonical order (see
 /// [`finite_tets`]). Exact duplicates are merged by the kernel into the smallest index.
 pub fn delaunay_tets(points: &[[f64; 3]]) -> Result<Vec<[u32; 4]>> {
     Ok(finite_tets(&crate::delaunay::Delaunay::try_new(points)?))

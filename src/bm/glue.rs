@@ -652,14 +652,16 @@ pub fn glue(
         vertices: verts.clone(),
         triangles,
     };
+    // the cells' tets have robust::orient3d > 0; TetMesh (and VTK, MEDIT) want positive volume,
+    // orient3d < 0: swap the last two vertices
     let tets: Vec<[u32; 4]> = tets
         .iter()
         .map(|t| {
             [
                 id(t[0], &mut verts),
                 id(t[1], &mut verts),
-                id(t[2], &mut verts),
                 id(t[3], &mut verts),
+                id(t[2], &mut verts),
             ]
         })
         .collect();
