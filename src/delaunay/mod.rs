@@ -1,12 +1,28 @@
 //! Our exact 3D Delaunay kernel. Contract used by the engines:
-//! ```ignore
-//! let mut dt = Delaunay::new(&points);          // merged duplicates reported in dt.duplicates()
-//! dt.insert(p) -> VertexId                      // more points later (conformity splitting)
-//! dt.tets() -> impl Iterator<Item = TetId>      // finite, alive tetrahedra
-//! dt.tet_vertices(t) -> [VertexId; 4]           // positively oriented
-//! dt.tet_neighbors(t) -> [TetId; 4]             // neighbour i is opposite vertex i (infinite tets have a ghost vertex)
-//! dt.is_infinite(t), dt.point(v), dt.vertex_tets(v), dt.locate(p)
 //! ```
+//! use slice2solid::delaunay::Delaunay;
+//! // the unit cube's corners (cospherical: the tie-breaking decides the diagonals), one duplicate
+//! let mut points: Vec<[f64; 3]> = (0..8)
+//!     .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, (i >> 2) as f64])
+//!     .collect();
+//! points.push([1.0, 1.0, 1.0]);
+//! let mut dt = Delaunay::new(&points); // merged duplicates reported in dt.duplicates()
+//! assert_eq!(dt.duplicates().len(), 1);
+//! let v = dt.insert([0.5, 0.5, 0.5]); // more points later (conformity splitting)
+//! assert_eq!(dt.point(v), [0.5, 0.5, 0.5]);
+//! let volume: f64 = dt
+//!     .tets() // finite, alive tetrahedra
+//!     .map(|t| {
+//!         let [a, b, c, d] = dt.tet_vertices(t).map(|v| dt.point(v)); // positively oriented
+//!         let (u, v, w) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]], [d[0] - a[0], d[1] - a[1], d[2] - a[2]]);
+//!         (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])) / 6.0
+//!     })
+//!     .sum();
+//! assert!((volume - 1.0).abs() < 1e-12);
+//! dt.is_valid().unwrap();
+//! ```
+//! Also `dt.tet_neighbors(t)` (neighbour i is opposite vertex i; infinite tets have a ghost vertex),
+//! `dt.is_infinite(t)`, `dt.vertex_tets(v)`, `dt.locate(p)`.
 //! Vertex ids are the input indices (0..n) for `new`, then increasing for `insert`.
 //!
 //! **Orientation convention.** Every finite tetrahedron `[p0,p1,p2,p3]` returned by
