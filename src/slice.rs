@@ -49,71 +49,111 @@ pub const PLANE_CLEARANCE: f64 = 1e-7;
 /// Empty when the mesh has no vertices. Axis-aligned planes closer than [`PLANE_CLEARANCE`] to a
 /// vertex are shifted by a few millionths of the extent; such random planes are drawn again.
 pub fn make_planes(mesh: &TriMesh, n: usize, seed: u64, mode: SliceMode) -> Vec<Plane> {
-    let Some((lo, hi)) = bounding_box(&mesh.vertices) else {
+    let Some(b) = Bounds::of(mesh) else {
         return Vec::new();
     };
-    let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-    let eps = PLANE_CLEARANCE * (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt();
-    let clear = |p: &Plane| {
-        mesh.vertices
-            .iter()
-            .all(|&v| p.signed_distance(v).abs() > eps)
-    };
-    let at = |k: usize, f: f64| -> Plane {
-        let plane_at = |f: f64| {
-            let mut normal = [0.0; 3];
-            normal[k] = 1.0;
-            let mut p = lo;
-            p[k] = lo[k] + ext[k] * f;
-            Plane::from_point_normal(p, normal).expect("unit axis normal")
-        };
-        // f, f+δ, f−δ, f+2δ, ...: the nearest clear position.
-        (0..41i32)
-            .map(|j| plane_at(f + 1e-6 * f64::from(if j % 2 == 1 { (j + 1) / 2 } else { -j / 2 })))
-            .find(|p| clear(p))
-            .unwrap_or_else(|| plane_at(f))
-    };
     match mode {
-        SliceMode::Random => {
-            let mut rng = ChaCha8Rng::seed_from_u64(seed);
-            let mut planes = Vec::with_capacity(n);
-            let mut attempts = 0usize;
-            while planes.len() < n {
-                attempts += 1;
-                let d: [f64; 3] = [
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                ];
-                let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                if !(1e-4..=1.0).contains(&len2) {
-                    continue; // rejection sampling of the ball gives uniform directions
-                }
-                let p: [f64; 3] = std::array::from_fn(|k| lo[k] + ext[k] * rng.gen_range(0.1..0.9));
-                if let Some(pl) = Plane::from_point_normal(p, d) {
-                    if clear(&pl) || attempts > 100 * (n + 10) {
-                        planes.push(pl);
-                    }
-                }
-            }
-            planes
-        }
+        SliceMode::Random => random_planes(&b, n, seed),
         SliceMode::Parallel => {
-            let k = (0..3)
-                .max_by(|&a, &b| ext[a].total_cmp(&ext[b]))
-                .unwrap_or(2);
+            let k = b.longest();
             (0..n)
-                .map(|i| at(k, (i + 1) as f64 / (n + 1) as f64))
+                .map(|i| b.axis_plane(k, (i + 1) as f64 / (n + 1) as f64))
                 .collect()
         }
         SliceMode::Axes => (0..n)
             .map(|i| {
                 let k = i % 3;
                 let per_axis = (n - k).div_ceil(3);
-                at(k, (i / 3 + 1) as f64 / (per_axis + 1) as f64)
+                b.axis_plane(k, (i / 3 + 1) as f64 / (per_axis + 1) as f64)
             })
             .collect(),
     }
+}
+
+/// The mesh's bounding box and the clearance every generated plane keeps from its vertices.
+struct Bounds<'a> {
+    mesh: &'a TriMesh,
+    lo: [f64; 3],
+    ext: [f64; 3],
+    /// [`PLANE_CLEARANCE`] times the bounding-box diagonal.
+    eps: f64,
+}
+
+impl<'a> Bounds<'a> {
+    fn of(mesh: &'a TriMesh) -> Option<Bounds<'a>> {
+        let (lo, hi) = bounding_box(&mesh.vertices)?;
+        let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+        let eps = PLANE_CLEARANCE * (ext[0] * ext[0] + ext[1] * ext[1] + ext[2] * ext[2]).sqrt();
+        Some(Bounds { mesh, lo, ext, eps })
+    }
+
+    /// No mesh vertex within `eps` of `p`: the section is generic (see [`PLANE_CLEARANCE`]).
+    fn clear(&self, p: &Plane) -> bool {
+        self.mesh
+            .vertices
+            .iter()
+            .all(|&v| p.signed_distance(v).abs() > self.eps)
+    }
+
+    /// The longest bounding-box axis (the last one on ties).
+    fn longest(&self) -> usize {
+        (0..3)
+            .max_by(|&a, &b| self.ext[a].total_cmp(&self.ext[b]))
+            .unwrap_or(2)
+    }
+
+    /// The plane perpendicular to axis `k` at fraction `f` of the box, or the nearest clear one at
+    /// f, f+δ, f−δ, f+2δ, ... (δ = 10⁻⁶); `f` itself when none of 41 is clear.
+    fn axis_plane(&self, k: usize, f: f64) -> Plane {
+        let plane_at = |f: f64| {
+            let mut normal = [0.0; 3];
+            normal[k] = 1.0;
+            let mut p = self.lo;
+            p[k] = self.lo[k] + self.ext[k] * f;
+            Plane::from_point_normal(p, normal).expect("unit axis normal")
+        };
+        (0..41i32)
+            .map(|j| plane_at(f + 1e-6 * f64::from(alternate(j))))
+            .find(|p| self.clear(p))
+            .unwrap_or_else(|| plane_at(f))
+    }
+}
+
+/// 0, 1, −1, 2, −2, ...: the j-th retry offset, nearest first.
+fn alternate(j: i32) -> i32 {
+    if j % 2 == 1 {
+        (j + 1) / 2
+    } else {
+        -j / 2
+    }
+}
+
+/// Random unit normals (rejection sampling of the ball) through random points of the central 80%
+/// of the box; a plane too close to a vertex is drawn again (kept after 100 (n + 10) attempts).
+fn random_planes(b: &Bounds, n: usize, seed: u64) -> Vec<Plane> {
+    let (lo, ext) = (b.lo, b.ext);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut planes = Vec::with_capacity(n);
+    let mut attempts = 0usize;
+    while planes.len() < n {
+        attempts += 1;
+        let d: [f64; 3] = [
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+        ];
+        let len2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if !(1e-4..=1.0).contains(&len2) {
+            continue; // rejection sampling of the ball gives uniform directions
+        }
+        let p: [f64; 3] = std::array::from_fn(|k| lo[k] + ext[k] * rng.gen_range(0.1..0.9));
+        if let Some(pl) = Plane::from_point_normal(p, d) {
+            if b.clear(&pl) || attempts > 100 * (n + 10) {
+                planes.push(pl);
+            }
+        }
+    }
+    planes
 }
 
 /// Cut `mesh` by every plane; planes whose section is empty are skipped. `source_index` of each
