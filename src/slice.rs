@@ -196,12 +196,6 @@ struct Pivot {
 }
 
 impl Pivot {
-    /// The world axis the line runs along (the one not in `across`).
-    #[cfg(test)]
-    fn axis(&self) -> usize {
-        3 - self.across[0] - self.across[1]
-    }
-
     fn plane(&self, theta: f64) -> Plane {
         let mut n = [0.0; 3];
         n[self.across[0]] = theta.cos();
@@ -744,6 +738,7 @@ fn bounding_box(pts: &[[f64; 3]]) -> Option<([f64; 3], [f64; 3])> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sections::{cross, dot, normalize};
 
     /// Axis-aligned box [0,1]^3 split into a 2×2×2 grid of vertices per face (vertex layers at 0, ½, 1).
     fn cube() -> TriMesh {
@@ -921,39 +916,179 @@ mod tests {
         assert!(s.sections[0].regions.iter().all(|r| r.holes.is_empty()));
     }
 
+    const ALL_MODES: [SliceMode; 6] = [
+        SliceMode::Random,
+        SliceMode::Parallel,
+        SliceMode::Axes,
+        SliceMode::Fan,
+        SliceMode::Sweep,
+        SliceMode::Tilt,
+    ];
+
+    /// A box [10,13]×[20,22]×[30,31] away from the origin: three distinct extents (x longest, then
+    /// y, then z) make every mode's choice of axes unambiguous.
+    fn slab() -> TriMesh {
+        grid_box([10.0, 20.0, 30.0], [13.0, 22.0, 31.0], 3)
+    }
+
+    fn diagonal(m: &TriMesh) -> f64 {
+        let (lo, hi) = bounding_box(&m.vertices).unwrap();
+        (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
+    }
+
+    /// The line where planes `a` and `b` meet: a point of it and its unit direction.
+    fn meeting_line(a: &Plane, b: &Plane) -> ([f64; 3], [f64; 3]) {
+        let d = cross(a.normal, b.normal);
+        let dd = dot(d, d);
+        assert!(dd > 1e-6, "planes almost parallel");
+        let (p, q) = (cross(b.normal, d), cross(d, a.normal));
+        let x = std::array::from_fn(|k| (-a.offset * p[k] - b.offset * q[k]) / dd);
+        (x, normalize(d))
+    }
+
+    /// Every plane contains the line (two points of it `diag` apart, within 10⁻¹² of the diagonal).
+    fn assert_all_contain(planes: &[Plane], (x, d): ([f64; 3], [f64; 3]), diag: f64) {
+        for (i, p) in planes.iter().enumerate() {
+            for t in [-0.5 * diag, 0.5 * diag] {
+                let y = std::array::from_fn(|k| x[k] + t * d[k]);
+                let s = p.signed_distance(y).abs();
+                assert!(s <= 1e-12 * diag, "plane {i}: {s:e} off the common line");
+            }
+        }
+    }
+
+    #[test]
+    fn fan_planes_share_the_line_along_the_longest_axis_through_the_centre() {
+        // The cube's tie picks z; its face-centre vertices lie on that line, which moves off them.
+        for (m, longest, n) in [(slab(), 0, 16), (cube(), 2, 16), (slab(), 0, 5)] {
+            let diag = diagonal(&m);
+            for seed in [0, 5] {
+                let planes = make_planes(&m, n, seed, SliceMode::Fan);
+                assert_eq!(planes.len(), n);
+                let line = meeting_line(&planes[0], &planes[n / 2]);
+                assert_all_contain(&planes, line, diag);
+                assert!(line.1[longest].abs() > 1.0 - 1e-12, "{:?}", line.1);
+                let (lo, hi) = bounding_box(&m.vertices).unwrap();
+                let off: f64 = (0..3)
+                    .filter(|&k| k != longest)
+                    .map(|k| (line.0[k] - 0.5 * (lo[k] + hi[k])).powi(2))
+                    .sum();
+                assert!(
+                    off.sqrt() <= 1e-3 * diag,
+                    "line {:e} from the centre",
+                    off.sqrt()
+                );
+                // Distinct: consecutive normals π/n apart (up to the clearance turns).
+                let cos_min_gap = (0.9 * std::f64::consts::PI / n as f64).cos();
+                for (i, a) in planes.iter().enumerate() {
+                    for b in &planes[i + 1..] {
+                        assert!(dot(a.normal, b.normal).abs() < cos_min_gap);
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn sweep_planes_tilt_at_most_15_degrees_and_advance_inside_the_box() {
+        let m = slab();
+        let (lo, hi) = bounding_box(&m.vertices).unwrap();
+        let centre: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
+        let planes = make_planes(&m, 12, 5, SliceMode::Sweep);
+        assert_eq!(planes.len(), 12);
+        let cos_max = (SWEEP_MAX_TILT_DEG.to_radians() + 1e-12).cos();
+        let mut last = lo[0];
+        let mut most_tilted: f64 = 0.0;
+        for p in &planes {
+            assert!(p.normal[0].abs() >= cos_max, "tilt {:?}", p.normal);
+            most_tilted = most_tilted.max(p.normal[0].abs().acos().to_degrees());
+            // Where the plane meets the central axis (centre + t·x).
+            let at = centre[0] - p.signed_distance(centre) / p.normal[0];
+            assert!(
+                last < at && at < hi[0],
+                "{at} after {last}, box ends at {}",
+                hi[0]
+            );
+            last = at;
+        }
+        assert!(most_tilted > 5.0, "planes barely tilted: {most_tilted}°");
+        assert_ne!(planes, make_planes(&m, 12, 6, SliceMode::Sweep));
+    }
+
+    #[test]
+    fn tilt_planes_share_a_line_outside_the_box_and_cross_it() {
+        let m = slab();
+        let diag = diagonal(&m);
+        let (lo, hi) = bounding_box(&m.vertices).unwrap();
+        let planes = make_planes(&m, 16, 5, SliceMode::Tilt);
+        assert_eq!(planes.len(), 16);
+        let line = meeting_line(&planes[0], &planes[15]);
+        assert_all_contain(&planes, line, diag);
+        // Along y (second-longest), beyond the +z face (shortest axis): it misses the box.
+        assert!(line.1[1].abs() > 1.0 - 1e-12, "{:?}", line.1);
+        assert!(
+            line.0[2] > hi[2],
+            "line at z = {} inside the box",
+            line.0[2]
+        );
+        let corners: Vec<[f64; 3]> = (0..8)
+            .map(|c| std::array::from_fn(|k| if c >> k & 1 == 1 { hi[k] } else { lo[k] }))
+            .collect();
+        for (i, p) in planes.iter().enumerate() {
+            let d: Vec<f64> = corners.iter().map(|&c| p.signed_distance(c)).collect();
+            assert!(
+                d.iter().any(|&x| x > 0.0) && d.iter().any(|&x| x < 0.0),
+                "plane {i} misses the box"
+            );
+        }
+    }
+
     #[test]
     fn generated_planes_keep_clear_of_vertices() {
-        // The cube's vertex layer at ½ is hit by parallel planes 1/2 and axis planes 1/2: moved off it.
-        let m = cube();
-        for mode in [SliceMode::Random, SliceMode::Parallel, SliceMode::Axes] {
-            for p in make_planes(&m, 3, 5, mode) {
-                let near = m
-                    .vertices
-                    .iter()
-                    .map(|&v| p.signed_distance(v).abs())
-                    .fold(f64::INFINITY, f64::min);
-                assert!(near > PLANE_CLEARANCE * 3f64.sqrt(), "{mode:?}: {near}");
-                assert!(near < 0.5);
+        // The cube's vertex layer at ½ is hit by parallel planes 1/2 and axis planes 1/2: moved off it;
+        // its face-centre vertices lie on the fan's line and on the tilt line's middle plane.
+        // Every plane still passes near the surface: within `far` (over half a grid cell's diagonal).
+        for (m, far) in [(cube(), 0.5), (slab(), 1.0)] {
+            let eps = PLANE_CLEARANCE * diagonal(&m);
+            for mode in ALL_MODES {
+                for n in [3, 4, 16] {
+                    for p in make_planes(&m, n, 5, mode) {
+                        let near = m
+                            .vertices
+                            .iter()
+                            .map(|&v| p.signed_distance(v).abs())
+                            .fold(f64::INFINITY, f64::min);
+                        assert!(near > eps, "{mode:?} {n}: {near}");
+                        assert!(near < far, "{mode:?} {n}: {near}");
+                    }
+                }
             }
         }
     }
 
     #[test]
     fn planes_are_deterministic_and_inside() {
-        let m = cube();
-        for mode in [SliceMode::Random, SliceMode::Parallel, SliceMode::Axes] {
-            let a = make_planes(&m, 7, 42, mode);
-            assert_eq!(a, make_planes(&m, 7, 42, mode));
-            assert_eq!(a.len(), 7);
-            for p in &a {
-                // Every plane separates some vertices of the box.
-                let d: Vec<f64> = m.vertices.iter().map(|&v| p.signed_distance(v)).collect();
-                assert!(d.iter().any(|&x| x > 0.0) && d.iter().any(|&x| x < 0.0));
+        for m in [cube(), slab()] {
+            for mode in ALL_MODES {
+                let a = make_planes(&m, 7, 42, mode);
+                assert_eq!(a, make_planes(&m, 7, 42, mode));
+                assert_eq!(a.len(), 7);
+                for p in &a {
+                    // Every plane separates some vertices of the box.
+                    let d: Vec<f64> = m.vertices.iter().map(|&v| p.signed_distance(v)).collect();
+                    assert!(
+                        d.iter().any(|&x| x > 0.0) && d.iter().any(|&x| x < 0.0),
+                        "{mode:?}"
+                    );
+                }
             }
         }
-        assert_ne!(
-            make_planes(&m, 3, 1, SliceMode::Random),
-            make_planes(&m, 3, 2, SliceMode::Random)
-        );
+        for mode in [SliceMode::Random, SliceMode::Fan, SliceMode::Sweep] {
+            assert_ne!(
+                make_planes(&cube(), 3, 1, mode),
+                make_planes(&cube(), 3, 2, mode),
+                "{mode:?} ignores the seed"
+            );
+        }
     }
 }
