@@ -24,11 +24,24 @@ pub enum Method {
     Implicit,
 }
 
+/// Plane placements of `slice` (see `slice2solid::slice::SliceMode` for the exact rules)
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum SliceMode {
+    /// Random orientations through the central 80% of the bounding box
     Random,
+    /// Perpendicular to the longest bounding-box axis, evenly spaced
     Parallel,
+    /// Cycling over x, y, z, evenly spaced on each
     Axes,
+    /// Through one line (the longest axis through the box centre), evenly turned over a half-turn
+    /// from a seeded start (rotational probe, radial MRI)
+    Fan,
+    /// Evenly spaced along the longest axis, each tilted by up to 15° in a seeded random direction
+    /// (freehand ultrasound sweep)
+    Sweep,
+    /// Through one line outside the box (along the second-longest axis, beyond the shortest one's
+    /// + face), spread across the box (probe rocked on the skin)
+    Tilt,
 }
 
 #[derive(Subcommand)]

@@ -194,6 +194,9 @@ fn section_areas_match_the_independent_computation() {
             (SliceMode::Random, 7),
             (SliceMode::Parallel, 0),
             (SliceMode::Axes, 0),
+            (SliceMode::Fan, 5),
+            (SliceMode::Sweep, 5),
+            (SliceMode::Tilt, 0),
         ] {
             let planes = make_planes(&mesh, 9, seed, mode);
             let s = slice_mesh(&mesh, &planes).unwrap();

@@ -1,5 +1,6 @@
-//! `slice MESH -o OUT.csl --planes N [--seed S] [--mode random|parallel|axes]`: cut a closed triangle
-//! mesh with planes and write the cross-sections (CSL or JSON by the output's extension).
+//! `slice MESH -o OUT.csl --planes N [--seed S] [--mode random|parallel|axes|fan|sweep|tilt]`: cut
+//! a closed triangle mesh with planes and write the cross-sections (CSL or JSON by the output's
+//! extension). The modes are described at `slice2solid::slice::SliceMode`.
 use crate::{SliceArgs, SliceMode as CliMode};
 use slice2solid::io::mesh::read_trimesh;
 use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
@@ -12,6 +13,9 @@ pub fn run(args: SliceArgs) -> Result<ExitCode> {
         CliMode::Random => SliceMode::Random,
         CliMode::Parallel => SliceMode::Parallel,
         CliMode::Axes => SliceMode::Axes,
+        CliMode::Fan => SliceMode::Fan,
+        CliMode::Sweep => SliceMode::Sweep,
+        CliMode::Tilt => SliceMode::Tilt,
     };
     let planes = make_planes(&mesh, args.planes, args.seed, mode);
     let sections =
