@@ -99,6 +99,10 @@ pub struct ReconstructArgs {
     /// Delaunay method: leave flat zones out of the solid instead of thickening them (warned)
     #[arg(long)]
     pub no_thicken: bool,
+    /// Delaunay method (experimental): both cells of a face insert the diagram samples of both
+    /// sides, so that they triangulate the face alike
+    #[arg(long)]
+    pub shared_samples: bool,
 }
 
 #[derive(clap::Args)]

@@ -39,6 +39,11 @@ pub struct DelaunayOptions {
     /// Thicken flat zones (section regions neither neighbouring cell attaches to) into thin slabs;
     /// off, they are left out of the solid and warned.
     pub thicken_flat_zones: bool,
+    /// Both cells of a face insert the diagram samples of both sides (`bm::shared_samples`), so
+    /// that they triangulate the face alike (the first step towards one conforming complex). Off by
+    /// default until the rest of that design lands: where the two sides' diagrams cross, some
+    /// consecutive samples stop being Delaunay edges, and the cells run two more times.
+    pub shared_samples: bool,
 }
 
 impl Default for DelaunayOptions {
@@ -47,6 +52,7 @@ impl Default for DelaunayOptions {
             branching: true,
             cutting: true,
             thicken_flat_zones: true,
+            shared_samples: false,
         }
     }
 }

@@ -30,6 +30,7 @@ impl Default for Sampling {
 use super::chains::{conform_pairs, DiagramSample, Kind, SamplePair};
 use super::complex::{outward_face, Complex, NONE};
 use super::prune::{prune, PruneCounts};
+use super::shared_samples::SharedSamples;
 use crate::error::Result;
 
 /// The section triangles of one face as this cell's triangulation has them.
@@ -59,6 +60,8 @@ pub struct CellResult {
     pub sample_pairs: u64,
     /// Steiner points on the diagrams that split pairs which were not Delaunay edges.
     pub sample_steiner_points: u64,
+    /// Samples of the other cells of its faces that this cell inserted (`shared_samples`).
+    pub foreign_samples: u64,
     /// Per face, pairs (after splitting) still not edges of the face's section triangles.
     pub sample_pairs_not_edges: Vec<(u32, u64)>,
     /// The consecutive pairs after splitting: (slot, local id, local id).
@@ -161,20 +164,78 @@ pub fn finite_tets(dt: &crate::delaunay::Delaunay) -> Vec<[u32; 4]> {
     tets
 }
 
+/// Add to `input` (and `batch`) the shared samples on its faces that it did not sample itself
+/// (those already there by global id). Returns how many.
+fn add_foreign_samples(
+    input: &mut CellInput,
+    shared: Option<&SharedSamples>,
+    batch: &mut Vec<[f64; 3]>,
+) -> u64 {
+    let Some(shared) = shared else { return 0 };
+    let present: IdSet<u32> = input
+        .global
+        .iter()
+        .copied()
+        .filter(|&g| g != u32::MAX)
+        .collect();
+    let mut n = 0;
+    for s in 0..input.slots.len() {
+        for x in shared.on_face(input.slots[s].face) {
+            if !present.contains(&x.gid) {
+                input.add_vertex(s, x.uv, x.p3, x.gid);
+                batch.push(x.p3);
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
 /// Per slot: sorted vertex triple → (the triangle oriented outward from its tet, the tet).
 type SectionTriangles = IdMap<[u32; 3], ([u32; 3], u32)>;
 
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
 pub fn run_cell(input: CellInput, sampling: Sampling, check_only: bool) -> Result<CellResult> {
-    run_cell_with(input, sampling, check_only, SAMPLE_PAIR_ROUNDS)
+    run_cell_with(input, sampling, check_only, SAMPLE_PAIR_ROUNDS, None)
 }
 
-/// [`run_cell`] with at most `pair_rounds` rounds of Steiner splits on the diagram pairs.
+/// [`run_cell`] inserting, besides its own diagram samples, every sample of `shared` on its faces
+/// (its own get their global ids from there too; see `shared_samples`); without `split_pairs`, its
+/// consecutive samples that are not edges stay so (counted), and it adds no point of its own.
+pub fn run_cell_sharing(
+    input: CellInput,
+    sampling: Sampling,
+    shared: &SharedSamples,
+    split_pairs: bool,
+) -> Result<CellResult> {
+    let rounds = if split_pairs { SAMPLE_PAIR_ROUNDS } else { 0 };
+    run_cell_with(input, sampling, false, rounds, Some(shared))
+}
+
+/// Per slot of `input`: the position key → global id of the shared samples on its face.
+fn shared_lookup(input: &CellInput, shared: Option<&SharedSamples>) -> Vec<IdMap<[u64; 3], u32>> {
+    input
+        .slots
+        .iter()
+        .map(|slot| {
+            shared.map_or_else(IdMap::default, |sh| {
+                sh.on_face(slot.face)
+                    .iter()
+                    .map(|x| (super::shared_samples::key(x.p3), x.gid))
+                    .collect()
+            })
+        })
+        .collect()
+}
+
+/// [`run_cell`] with at most `pair_rounds` rounds of Steiner splits on the diagram pairs, and the
+/// samples of `shared` (if any) on the cell's faces.
 fn run_cell_with(
     mut input: CellInput,
     sampling: Sampling,
     check_only: bool,
     pair_rounds: usize,
+    shared: Option<&SharedSamples>,
 ) -> Result<CellResult> {
     let all = input.mask.iter().fold(!0u128, |a, &m| a & m);
     if all != 0 || input.points.len() < 4 {
@@ -199,8 +260,10 @@ fn run_cell_with(
     let mut n_pair_steiner = 0;
     let mut pairs_not_edges: std::collections::BTreeMap<u32, u64> = Default::default();
     let mut pair_list: Vec<(usize, u32, u32)> = Vec::new();
+    let lookup = shared_lookup(&input, shared);
+    let mut n_foreign = 0u64;
     if sampling.branching || sampling.cutting {
-        for _round in 0..BRANCHING_ROUNDS {
+        for round in 0..BRANCHING_ROUNDS {
             let ty: Vec<TetType> = cx
                 .tets
                 .iter()
@@ -239,7 +302,8 @@ fn run_cell_with(
             drop(cl);
             let (n_branch_round, n_cut_round) =
                 (branch_chains.samples.len(), cut_chains.samples.len());
-            if n_branch_round + n_cut_round == 0 {
+            let has_shared = round == 0 && lookup.iter().any(|m| !m.is_empty());
+            if n_branch_round + n_cut_round == 0 && !has_shared {
                 break;
             }
             n_branch += n_branch_round as u64;
@@ -272,11 +336,18 @@ fn run_cell_with(
                         "non-finite coordinate",
                     ));
                 }
-                let l = input.add_local_vertex(s, q, p3);
+                let gid = lookup[s]
+                    .get(&super::shared_samples::key(p3))
+                    .copied()
+                    .unwrap_or(u32::MAX);
+                let l = input.add_vertex(s, q, p3, gid);
                 batch.push(p3);
                 if l as usize >= first_cut {
                     cut_ids.push(l);
                 }
+            }
+            if has_shared {
+                n_foreign += add_foreign_samples(&mut input, shared, &mut batch);
             }
             let ids = dt.insert_batch(&batch);
             // ids in local order (a duplicate gets the earlier vertex's id)
@@ -467,6 +538,7 @@ fn run_cell_with(
         cutting_samples: n_cut,
         sample_pairs: n_pairs,
         sample_steiner_points: n_pair_steiner,
+        foreign_samples: n_foreign,
         sample_pairs_not_edges: pairs_not_edges.into_iter().collect(),
         sample_pair_list: pair_list,
         cutting_on_flat_border,
@@ -611,7 +683,7 @@ mod tests {
     /// itself is tested in `chains`).
     #[test]
     fn straight_branches_need_no_splitting() {
-        let r = run_cell_with(one_facing_four(), Sampling::default(), false, 0).unwrap();
+        let r = run_cell_with(one_facing_four(), Sampling::default(), false, 0, None).unwrap();
         assert!(r.sample_pairs > 0);
         assert!(pairs_off_triangles(&r).is_empty());
         assert!(r.sample_pairs_not_edges.is_empty());

@@ -254,9 +254,14 @@ impl CellInput {
 
     /// Add a cell-local vertex (a branching sample) on slot `s` at (u,v) `q`.
     pub fn add_local_vertex(&mut self, s: usize, q: [f64; 2], p3: [f64; 3]) -> u32 {
+        self.add_vertex(s, q, p3, u32::MAX)
+    }
+
+    /// Add a vertex on slot `s` at (u,v) `q` with global id `gid` (`u32::MAX`: cell-local).
+    pub fn add_vertex(&mut self, s: usize, q: [f64; 2], p3: [f64; 3], gid: u32) -> u32 {
         let l = self.points.len() as u32;
         self.points.push(p3);
-        self.global.push(u32::MAX);
+        self.global.push(gid);
         self.mask.push(1 << s);
         for (k, slot) in self.slots.iter_mut().enumerate() {
             slot.uv.push(if k == s { q } else { [f64::NAN; 2] });

@@ -38,6 +38,7 @@ pub mod cutting;
 pub mod face_overlay;
 pub mod glue;
 pub mod prune;
+pub mod shared_samples;
 pub mod thicken;
 pub mod untangle;
 
@@ -105,6 +106,7 @@ pub struct CellRuns {
     pub cell_runs: u64,
     pub timing: CellTiming,
     pub seconds: f64,
+    pub shared: SharingCounts,
 }
 
 /// Run every cell (in parallel), splitting contour edges globally until every cell's section
@@ -218,6 +220,17 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
             results[c] = r;
         }
     }
+    let shared = if options.delaunay.shared_samples && (sampling.branching || sampling.cutting) {
+        share_samples(
+            arr,
+            &mut pool,
+            &loops_now(arr, &splits),
+            sampling,
+            &mut results,
+        )?
+    } else {
+        SharingCounts::default()
+    };
     if let Some(pb) = &progress {
         pb.finish_and_clear();
     }
@@ -230,7 +243,90 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
         cell_runs,
         timing,
         seconds: t0.elapsed().as_secs_f64(),
+        shared,
     })
+}
+
+fn loops_now(arr: &Arrangement, splits: &conform::Splits) -> Vec<Vec<Vec<u32>>> {
+    conform::face_loops(arr, splits)
+}
+
+/// What sharing the diagram samples did.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SharingCounts {
+    /// Samples and diagram Steiner points made pool vertices (one per position and face).
+    pub samples: u64,
+    /// Rounds of re-running cells with the points of both sides of their faces.
+    pub rounds: u64,
+    /// Cell runs with shared points.
+    pub cells_rerun: u64,
+    /// Cells whose run with shared points lost a contour edge to the other side's samples: they
+    /// keep their run without them (their faces then differ from the other side's).
+    pub cells_kept_unshared: u64,
+    /// Points only one cell of their face inserted when the rounds ended.
+    pub one_sided: u64,
+}
+
+/// Most rounds of sharing: each round's cells may split diagram pairs that the other side's
+/// samples took away (new Steiner points, shared in the next round).
+const MAX_SHARING_ROUNDS: usize = 6;
+
+/// Make every cell's diagram samples (and their Steiner points) pool vertices and run again every
+/// cell with such points on a face, inserting those of both sides (`shared_samples`), until no
+/// cell adds a point of its own.
+fn share_samples(
+    arr: &Arrangement,
+    pool: &mut crate::arrangement::VertexPool,
+    loops: &[Vec<Vec<u32>>],
+    sampling: Sampling,
+    results: &mut [Option<CellResult>],
+) -> Result<SharingCounts> {
+    let mut shared = shared_samples::SharedSamples::default();
+    let mut counts = SharingCounts::default();
+    let mut dirty_faces = shared.extend(arr, pool, results);
+    while !dirty_faces.is_empty() && (counts.rounds as usize) < MAX_SHARING_ROUNDS {
+        counts.rounds += 1;
+        // splitting pairs only in the first round: the two sides' diagrams can cross (paper
+        // Fig. 12a), and then each side's splits take the other's pair edges away forever
+        let split = counts.rounds == 1;
+        let dirty: std::collections::HashSet<u32> = dirty_faces.iter().copied().collect();
+        let todo = biggest_first(
+            arr,
+            loops,
+            (0..results.len()).filter(|&c| {
+                results[c].is_some() && arr.cells[c].faces.iter().any(|cf| dirty.contains(&cf.face))
+            }),
+        );
+        let pool_now = &*pool;
+        let mut out: Vec<(usize, Result<Option<CellResult>>)> = todo
+            .iter()
+            .par_bridge()
+            .map(|&c| {
+                let r = CellInput::build(arr, pool_now, loops, c as u32)
+                    .map(|input| cell::run_cell_sharing(input, sampling, &shared, split))
+                    .transpose();
+                (c, r)
+            })
+            .collect();
+        out.sort_unstable_by_key(|o| o.0);
+        for (c, r) in out {
+            let Some(mut r) = r? else { continue };
+            counts.cells_rerun += 1;
+            if !r.missing.is_empty() {
+                counts.cells_kept_unshared += 1;
+                continue;
+            }
+            shared.adopt_ids(&mut r);
+            results[c] = Some(r);
+        }
+        dirty_faces = shared.extend(arr, pool, results);
+    }
+    for r in results.iter_mut().flatten() {
+        shared.adopt_ids(r);
+    }
+    counts.samples = shared.len() as u64;
+    counts.one_sided = shared.one_sided(results);
+    Ok(counts)
 }
 
 /// Reconstruct with the Delaunay pruning method. Fills `report` (phases, counts, warnings).
@@ -250,7 +346,19 @@ pub fn reconstruct(
         cell_runs,
         timing,
         seconds,
+        shared,
     } = run_cells(arr, options)?;
+    report.count("shared_samples", shared.samples);
+    report.count("cells_rerun_sharing_samples", shared.cells_rerun);
+    report.count("sharing_rounds", shared.rounds);
+    report.count("cells_kept_unshared", shared.cells_kept_unshared);
+    report.count("one_sided_points", shared.one_sided);
+    if shared.cells_kept_unshared > 0 {
+        report.warnings.push(format!(
+            "{} cells lost a contour edge to the other side's diagram samples and keep their own samples only",
+            shared.cells_kept_unshared
+        ));
+    }
     if !conforming {
         report.warnings.push(format!(
             "conformity splitting stopped after {MAX_ROUNDS} rounds: some contour edges are not Delaunay edges"

@@ -18,6 +18,7 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
             branching: !args.no_branching,
             cutting: !args.no_cutting,
             thicken_flat_zones: !args.no_thicken,
+            shared_samples: args.shared_samples,
         },
         ..Default::default()
     };

@@ -1,0 +1,155 @@
+//! Diagram samples shared by both cells of a face.
+//!
+//! Each cell samples the branching and cutting diagrams of its faces from its own Delaunay
+//! triangulation (the Moebius diagram seen from its side). Inserted into that cell only, they made
+//! the two cells of a face triangulate it differently on 544 of Elephant's 1129 shared faces (all
+//! but one measured difference; `docs/design/conforming-complex.md`), which `glue` then had to
+//! overlay. Here every cell's samples on a face become one global pool vertex each (tagged with the
+//! face's plane), and both cells of the face insert all of them: with the same points on a face,
+//! both restrictions of the cells' triangulations to the face are the same 2D Delaunay triangulation
+//! (exactly so on axis-aligned planes; on oblique ones up to ties that rounding decides).
+//!
+//! Termination: the samples come from each cell's first run, whose triangulation holds only its
+//! own samples; the second run recomputes them identically (same input, deterministic) and adds
+//! the other side's, which are never sampled from again.
+use super::cell::CellResult;
+use crate::arrangement::{Arrangement, FaceId, VertexPool};
+use smallvec::smallvec;
+use std::collections::HashMap;
+
+/// One sample on a face, as a global pool vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SharedSample {
+    pub gid: u32,
+    pub uv: [f64; 2],
+    pub p3: [f64; 3],
+}
+
+/// Per face id, the samples both of its cells insert (in the order their ids were assigned).
+#[derive(Clone, Debug, Default)]
+pub struct SharedSamples {
+    pub by_face: Vec<Vec<SharedSample>>,
+}
+
+/// The exact position of a sample, as a lookup key.
+pub fn key(p3: [f64; 3]) -> [u64; 3] {
+    p3.map(f64::to_bits)
+}
+
+impl SharedSamples {
+    /// Make pool vertices of the cell-local vertices of `results` (diagram samples and their
+    /// Steiner points) that are not shared yet, face by face in increasing face id, the negative
+    /// cell's before the positive cell's, each in local id order: deterministic whatever the
+    /// threads did. A position already shared on the face, or sampled by both cells, is one vertex.
+    /// Returns the faces that got new samples.
+    pub fn extend(
+        &mut self,
+        arr: &Arrangement,
+        pool: &mut VertexPool,
+        results: &[Option<CellResult>],
+    ) -> Vec<FaceId> {
+        self.by_face.resize(arr.faces.len(), Vec::new());
+        let mut changed = Vec::new();
+        for (f, face) in arr.faces.iter().enumerate() {
+            let mut seen: HashMap<[u64; 3], u32> =
+                self.by_face[f].iter().map(|x| (key(x.p3), x.gid)).collect();
+            let before = self.by_face[f].len();
+            for (input, s) in face_sides(f, face, results) {
+                for l in 0..input.points.len() {
+                    if input.global[l] != u32::MAX || input.mask[l] >> s & 1 == 0 {
+                        continue;
+                    }
+                    let (p3, uv) = (input.points[l], input.slots[s].uv[l]);
+                    seen.entry(key(p3)).or_insert_with(|| {
+                        pool.positions.push(p3);
+                        pool.tags.push(smallvec![face.plane]);
+                        pool.uv.push(smallvec![uv]);
+                        let gid = (pool.positions.len() - 1) as u32;
+                        self.by_face[f].push(SharedSample { gid, uv, p3 });
+                        gid
+                    });
+                }
+            }
+            if self.by_face[f].len() > before {
+                changed.push(f as FaceId);
+            }
+        }
+        changed
+    }
+
+    /// Give every cell-local vertex of `result` at the position of a shared sample of its face
+    /// that sample's global id (a cell that kept a run without the other side's samples, or a
+    /// Steiner point that landed on a shared one): one position, one vertex.
+    pub fn adopt_ids(&self, result: &mut CellResult) {
+        let Some(input) = result.input.as_mut() else {
+            return;
+        };
+        let lookup: Vec<HashMap<[u64; 3], u32>> = input
+            .slots
+            .iter()
+            .map(|sl| {
+                self.on_face(sl.face)
+                    .iter()
+                    .map(|x| (key(x.p3), x.gid))
+                    .collect()
+            })
+            .collect();
+        for l in 0..input.points.len() {
+            if input.global[l] != u32::MAX {
+                continue;
+            }
+            let m = input.mask[l];
+            if let Some(&g) = (0..input.slots.len())
+                .filter(|&s| m >> s & 1 == 1)
+                .find_map(|s| lookup[s].get(&key(input.points[l])))
+            {
+                input.global[l] = g;
+            }
+        }
+    }
+
+    /// Cell-local vertices of `results` that no shared sample stands for (points only one cell of
+    /// a face inserted).
+    pub fn one_sided(&self, results: &[Option<CellResult>]) -> u64 {
+        results
+            .iter()
+            .flatten()
+            .filter_map(|r| r.input.as_ref())
+            .map(|i| i.global.iter().filter(|&&g| g == u32::MAX).count() as u64)
+            .sum()
+    }
+
+    /// The samples of face `f` (none for a face without).
+    pub fn on_face(&self, f: FaceId) -> &[SharedSample] {
+        self.by_face.get(f as usize).map_or(&[], Vec::as_slice)
+    }
+
+    pub fn len(&self) -> usize {
+        self.by_face.iter().map(Vec::len).sum()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Whether one of `faces` has shared samples.
+    pub fn touches(&self, faces: impl IntoIterator<Item = FaceId>) -> bool {
+        faces.into_iter().any(|f| !self.on_face(f).is_empty())
+    }
+}
+
+/// The cells of face `f` that ran, with the slot of the face in each.
+fn face_sides<'a>(
+    f: usize,
+    face: &crate::arrangement::Face,
+    results: &'a [Option<CellResult>],
+) -> impl Iterator<Item = (&'a super::cell_input::CellInput, usize)> + 'a {
+    [face.negative_cell, face.positive_cell]
+        .into_iter()
+        .flatten()
+        .filter_map(move |c| {
+            let input = results[c as usize].as_ref()?.input.as_ref()?;
+            let s = input.slots.iter().position(|sl| sl.face as usize == f)?;
+            Some((input, s))
+        })
+}
