@@ -41,8 +41,9 @@ pub struct DelaunayOptions {
     pub thicken_flat_zones: bool,
     /// Both cells of a face insert the diagram samples of both sides (`bm::shared_samples`), so
     /// that they triangulate the face alike (the first step towards one conforming complex). Off by
-    /// default until the rest of that design lands: where the two sides' diagrams cross, some
-    /// consecutive samples stop being Delaunay edges, and the cells run two more times.
+    /// default until the rest of that design lands: `glue` lifts only cell-local samples off their
+    /// plane to keep the two cells' diagrams from crossing, and with random planes shared samples
+    /// leave more crossing pairs (`tests/bm_shared_samples.rs`).
     pub shared_samples: bool,
 }
 

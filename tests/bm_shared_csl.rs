@@ -172,9 +172,9 @@ fn consecutive_diagram_samples_are_delaunay_edges() {
             let Some(r) = r else { continue };
             samples += r.branching_samples + r.cutting_samples;
             pairs += r.sample_pair_list.len() as u64;
-            assert_eq!(
-                r.sample_pair_list.len() as u64,
-                r.sample_pairs + r.sample_steiner_points,
+            // pairs split by Steiner points, or joined through the other side's diagram points
+            assert!(
+                r.sample_pair_list.len() as u64 >= r.sample_pairs,
                 "{name} cell {c}: pair list against counters"
             );
             for &(slot, u, v) in &r.sample_pair_list {

@@ -2,9 +2,11 @@
 //! (`bm::shared_samples`), the first step of one conforming complex
 //! (`docs/design/conforming-complex.md`). Per shared file, pinned: the faces whose two cells still
 //! triangulate them differently (without sharing: Elephant 544, Horsers 293, eight_20 96,
-//! Armadillo 57, hand 17, …), the consecutive sample pairs that stop being Delaunay edges where the
-//! two sides' diagrams cross (paper Fig. 12a; the next step inserts the crossings), and that the
-//! surface stays a clean closed manifold with its sections.
+//! Armadillo 57, hand 17, …), the consecutive sample pairs that are not joined by Delaunay edges
+//! (where the two sides' diagrams cross, paper Fig. 12a, through the other side's points:
+//! `chains::route_pairs`), and that the surface stays a clean closed manifold with its sections.
+//! Why it is not the default yet: with random planes it leaves more crossing pairs than `glue`'s
+//! lifting of cell-local samples does (`random_planes_with_shared_samples`).
 mod common;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::{DelaunayOptions, Options};
@@ -12,18 +14,18 @@ use slice2solid::{DelaunayOptions, Options};
 /// (file, faces triangulated differently: with sharing / without, sample pairs not edges with
 /// sharing, components, genus)
 const PINS: [(&str, u64, u64, u64, usize, i64); 12] = [
-    ("Armadillo-23-better", 0, 57, 102, 3, 2),
-    ("Elephant", 1, 544, 328, 10, 29),
+    ("Armadillo-23-better", 0, 57, 0, 3, 2),
+    ("Elephant", 1, 544, 0, 10, 29),
     ("Heart-simplified", 0, 0, 0, 1, 0),
-    ("Horsers", 3, 293, 64, 13, 5),
+    ("Horsers", 3, 293, 0, 13, 5),
     ("ParallelEight", 0, 4, 0, 1, 2),
     ("ParallelEightMore", 0, 4, 0, 1, 2),
     ("SideBishop", 0, 8, 0, 1, 0),
-    ("balloondog", 0, 12, 9, 1, 0),
-    ("balloondog_box", 0, 13, 18, 2, 0),
-    ("eight_15", 0, 8, 2, 1, 2),
-    ("eight_20", 0, 96, 323, 3, 3),
-    ("hand", 0, 17, 37, 1, 16),
+    ("balloondog", 0, 12, 0, 1, 0),
+    ("balloondog_box", 0, 13, 0, 2, 0),
+    ("eight_15", 0, 8, 0, 1, 2),
+    ("eight_20", 0, 96, 0, 3, 3),
+    ("hand", 0, 17, 0, 1, 15),
 ];
 
 fn options(shared_samples: bool) -> Options {
@@ -78,4 +80,58 @@ fn both_cells_of_a_face_triangulate_it_alike() {
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// The random-plane cases of `bm_random_planes::many_random_planes` (20 and 30 planes, seeds 4 and 5,
+/// five reference meshes; sliced directly, not through a CSL file) with shared samples: today 12 of
+/// 20 keep crossing pairs (8 without sharing), one is not closed. A listed expectation, so a fix
+/// shows.
+#[test]
+fn random_planes_with_shared_samples() {
+    use slice2solid::io::mesh::read_trimesh;
+    use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
+    let mut bad = Vec::new();
+    for mesh in [
+        "hand",
+        "eight_15",
+        "balloondog",
+        "balloondog_box",
+        "Elephant",
+    ] {
+        let m = read_trimesh(&common::shared_reference(mesh)).unwrap();
+        for n in [20, 30] {
+            for seed in [4, 5] {
+                let sections =
+                    slice_mesh(&m, &make_planes(&m, n, seed, SliceMode::Random)).unwrap();
+                let solid = slice2solid::reconstruct(&sections, &options(true)).unwrap();
+                let c = check_mesh(&solid.surface, Some(&sections));
+                let worst = c.worst_section.as_ref().map_or(0.0, |w| w.relative);
+                if !(c.closed
+                    && c.manifold
+                    && c.oriented
+                    && c.self_intersection_free
+                    && worst < 0.02)
+                {
+                    bad.push(format!("{mesh}: {n} planes, seed {seed}"));
+                }
+            }
+        }
+    }
+    assert_eq!(
+        bad,
+        [
+            "hand: 20 planes, seed 4",
+            "hand: 30 planes, seed 4",
+            "eight_15: 20 planes, seed 4",
+            "eight_15: 20 planes, seed 5",
+            "eight_15: 30 planes, seed 4",
+            "eight_15: 30 planes, seed 5",
+            "balloondog: 20 planes, seed 4",
+            "balloondog: 30 planes, seed 4",
+            "balloondog_box: 20 planes, seed 4",
+            "balloondog_box: 30 planes, seed 4",
+            "Elephant: 30 planes, seed 4",
+            "Elephant: 30 planes, seed 5",
+        ]
+    );
 }

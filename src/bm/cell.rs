@@ -62,6 +62,8 @@ pub struct CellResult {
     pub sample_steiner_points: u64,
     /// Samples of the other cells of its faces that this cell inserted (`shared_samples`).
     pub foreign_samples: u64,
+    /// The run went through classification and pruning (else it stopped at conformity).
+    pub pruned: bool,
     /// Per face, pairs (after splitting) still not edges of the face's section triangles.
     pub sample_pairs_not_edges: Vec<(u32, u64)>,
     /// The consecutive pairs after splitting: (slot, local id, local id).
@@ -194,9 +196,37 @@ fn add_foreign_samples(
 /// Per slot: sorted vertex triple → (the triangle oriented outward from its tet, the tet).
 type SectionTriangles = IdMap<[u32; 3], ([u32; 3], u32)>;
 
+/// Where a cell run stops.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Stop {
+    /// After the contour conformity check, whatever it found (the samples are all the caller wants).
+    AtConformity,
+    /// After the conformity check when contour edges are missing, else after pruning.
+    AtMissingEdges,
+    /// After pruning.
+    Never,
+}
+
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
 pub fn run_cell(input: CellInput, sampling: Sampling, check_only: bool) -> Result<CellResult> {
-    run_cell_with(input, sampling, check_only, SAMPLE_PAIR_ROUNDS, None)
+    let stop = if check_only {
+        Stop::AtMissingEdges
+    } else {
+        Stop::Never
+    };
+    run_cell_with(input, sampling, stop, SAMPLE_PAIR_ROUNDS, None)
+}
+
+/// Run the cell up to its conformity check: its diagram samples (in `input`, cell-local) and the
+/// contour edges missing, no classification or pruning (the cell is run again with shared samples).
+pub fn run_cell_samples(input: CellInput, sampling: Sampling) -> Result<CellResult> {
+    run_cell_with(
+        input,
+        sampling,
+        Stop::AtConformity,
+        SAMPLE_PAIR_ROUNDS,
+        None,
+    )
 }
 
 /// [`run_cell`] inserting, besides its own diagram samples, every sample of `shared` on its faces
@@ -209,7 +239,7 @@ pub fn run_cell_sharing(
     split_pairs: bool,
 ) -> Result<CellResult> {
     let rounds = if split_pairs { SAMPLE_PAIR_ROUNDS } else { 0 };
-    run_cell_with(input, sampling, false, rounds, Some(shared))
+    run_cell_with(input, sampling, Stop::Never, rounds, Some(shared))
 }
 
 /// Per slot of `input`: the position key → global id of the shared samples on its face.
@@ -233,7 +263,7 @@ fn shared_lookup(input: &CellInput, shared: Option<&SharedSamples>) -> Vec<IdMap
 fn run_cell_with(
     mut input: CellInput,
     sampling: Sampling,
-    check_only: bool,
+    stop: Stop,
     pair_rounds: usize,
     shared: Option<&SharedSamples>,
 ) -> Result<CellResult> {
@@ -373,7 +403,17 @@ fn run_cell_with(
                 .collect();
             n_pairs += pairs.len() as u64;
             if !pairs.is_empty() {
-                let pc = conform_pairs(&mut input, &mut dt, pairs, pair_rounds)?;
+                let mut pc = conform_pairs(&mut input, &mut dt, pairs, pair_rounds)?;
+                if shared.is_some() {
+                    let not_edges = std::mem::take(&mut pc.not_edges);
+                    pc.not_edges = super::chains::route_pairs(
+                        &input,
+                        &dt,
+                        &mut pc.pairs,
+                        not_edges,
+                        first_sample,
+                    );
+                }
                 for &(l, kind) in &pc.steiner {
                     if kind == Kind::Cutting {
                         cut_ids.push(l);
@@ -438,7 +478,7 @@ fn run_cell_with(
     missing.sort_unstable();
     missing.dedup();
     timing.conformity += lap(&mut clock);
-    if check_only && !missing.is_empty() {
+    if stop == Stop::AtConformity || (stop == Stop::AtMissingEdges && !missing.is_empty()) {
         return Ok(CellResult {
             input: Some(input),
             missing,
@@ -539,6 +579,7 @@ fn run_cell_with(
         sample_pairs: n_pairs,
         sample_steiner_points: n_pair_steiner,
         foreign_samples: n_foreign,
+        pruned: true,
         sample_pairs_not_edges: pairs_not_edges.into_iter().collect(),
         sample_pair_list: pair_list,
         cutting_on_flat_border,
@@ -683,7 +724,8 @@ mod tests {
     /// itself is tested in `chains`).
     #[test]
     fn straight_branches_need_no_splitting() {
-        let r = run_cell_with(one_facing_four(), Sampling::default(), false, 0, None).unwrap();
+        let r =
+            run_cell_with(one_facing_four(), Sampling::default(), Stop::Never, 0, None).unwrap();
         assert!(r.sample_pairs > 0);
         assert!(pairs_off_triangles(&r).is_empty());
         assert!(r.sample_pairs_not_edges.is_empty());

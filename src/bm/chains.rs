@@ -384,6 +384,137 @@ pub fn conform_pairs(
     Ok(out)
 }
 
+/// Longest detour [`route_pairs`] takes through other diagram points.
+const ROUTE_MAX_EDGES: usize = 4;
+
+/// Per slot, the grounded edges of `dt` between vertices `>= min_id` (diagram points: own
+/// samples, Steiner points, the other side's samples), as adjacency lists.
+fn diagram_edges(dt: &Delaunay, mask: &[Mask], min_id: u32) -> IdMap<(usize, u32), Vec<u32>> {
+    let mut adj: IdMap<(usize, u32), Vec<u32>> = IdMap::default();
+    for t in dt.tets() {
+        let tv = dt.tet_vertices(t);
+        if tv.iter().filter(|&&v| v >= min_id).count() < 2
+            || tv.iter().fold(!0 as Mask, |m, &w| m & mask[w as usize]) != 0
+        {
+            continue;
+        }
+        for (a, b) in super::complex::TET_EDGES {
+            let (u, v) = (tv[a], tv[b]);
+            if u < min_id || v < min_id {
+                continue;
+            }
+            let on = mask[u as usize] & mask[v as usize];
+            for s in (0..Mask::BITS as usize).filter(|&s| on >> s & 1 == 1) {
+                let bit: Mask = 1 << s;
+                if tv
+                    .iter()
+                    .any(|&w| w != u && w != v && mask[w as usize] & bit != 0)
+                {
+                    adj.entry((s, u)).or_default().push(v);
+                    adj.entry((s, v)).or_default().push(u);
+                }
+            }
+        }
+    }
+    for l in adj.values_mut() {
+        l.sort_unstable();
+        l.dedup();
+    }
+    adj
+}
+
+/// A path of grounded edges from `u` to `v` on slot `s` through at most `ROUTE_MAX_EDGES - 1`
+/// other diagram points, each strictly closer to `v` than the one before and within half the
+/// pair's length of the segment uv (so the path follows the diagram between the two samples).
+fn route(
+    adj: &IdMap<(usize, u32), Vec<u32>>,
+    uv: &[[f64; 2]],
+    s: usize,
+    u: u32,
+    v: u32,
+) -> Option<Vec<u32>> {
+    let (a, b) = (uv[u as usize], uv[v as usize]);
+    let d2 = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+    let len2 = d2(a, b);
+    let near_segment = |p: [f64; 2]| {
+        let t = (((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1])) / len2)
+            .clamp(0.0, 1.0);
+        d2(p, [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]) <= 0.25 * len2
+    };
+    let mut path = vec![u];
+    fn go(
+        adj: &IdMap<(usize, u32), Vec<u32>>,
+        uv: &[[f64; 2]],
+        s: usize,
+        v: u32,
+        path: &mut Vec<u32>,
+        ok: &dyn Fn([f64; 2]) -> bool,
+    ) -> bool {
+        let cur = *path.last().unwrap();
+        let Some(next) = adj.get(&(s, cur)) else {
+            return false;
+        };
+        if next.contains(&v) {
+            path.push(v);
+            return true;
+        }
+        if path.len() >= ROUTE_MAX_EDGES {
+            return false;
+        }
+        let dist = |w: u32| {
+            let (p, q) = (uv[w as usize], uv[v as usize]);
+            (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2)
+        };
+        for &w in next {
+            if dist(w) < dist(cur) && !path.contains(&w) && ok(uv[w as usize]) {
+                path.push(w);
+                if go(adj, uv, s, v, path, ok) {
+                    return true;
+                }
+                path.pop();
+            }
+        }
+        false
+    }
+    go(adj, uv, s, v, &mut path, &near_segment).then_some(path)
+}
+
+/// Where the other side's diagram points stand between two consecutive samples (the two cells'
+/// diagrams cross there, paper Fig. 12a), the pair is an edge path through them: each pair of
+/// `not_edges` that such a path joins is replaced in `pairs` by the path's edges. Returns the
+/// pairs still not joined.
+pub fn route_pairs(
+    input: &CellInput,
+    dt: &Delaunay,
+    pairs: &mut Vec<SamplePair>,
+    not_edges: Vec<SamplePair>,
+    min_id: u32,
+) -> Vec<SamplePair> {
+    if not_edges.is_empty() {
+        return not_edges;
+    }
+    let adj = diagram_edges(dt, &input.mask, min_id);
+    let mut left = Vec::new();
+    for p in not_edges {
+        let uv = &input.slots[p.slot].uv;
+        let Some(path) = route(&adj, uv, p.slot, p.ends.0, p.ends.1) else {
+            left.push(p);
+            continue;
+        };
+        if let Some(i) = pairs
+            .iter()
+            .position(|q| q.slot == p.slot && q.ends == p.ends)
+        {
+            pairs.swap_remove(i);
+        }
+        pairs.extend(path.windows(2).map(|w| SamplePair {
+            ends: (w[0], w[1]),
+            ..p
+        }));
+    }
+    left
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

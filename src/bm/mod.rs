@@ -82,13 +82,18 @@ fn run_timed(
     c: u32,
     sampling: Sampling,
     check_only: bool,
+    samples_only: bool,
 ) -> Result<Option<CellResult>> {
     let t = std::time::Instant::now();
     let Some(input) = CellInput::build(arr, pool, loops, c) else {
         return Ok(None);
     };
     let build = t.elapsed().as_secs_f64();
-    let mut r = run_cell(input, sampling, check_only)?;
+    let mut r = if samples_only {
+        cell::run_cell_samples(input, sampling)?
+    } else {
+        run_cell(input, sampling, check_only)?
+    };
     r.timing.input += build;
     Ok(Some(r))
 }
@@ -123,6 +128,9 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
         branching: options.delaunay.branching,
         cutting: options.delaunay.cutting,
     };
+    // with shared samples the cells run again with both sides' samples: the first runs need only
+    // their samples and contour conformity, not classification and pruning
+    let sharing = options.delaunay.shared_samples && (sampling.branching || sampling.cutting);
     let progress = if options.progress {
         let pb = indicatif::ProgressBar::new(n_cells as u64);
         pb.set_style(
@@ -165,7 +173,7 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
             .iter()
             .par_bridge()
             .map(|&c| {
-                let r = run_timed(arr, &pool, &loops, c as u32, sampling, true);
+                let r = run_timed(arr, &pool, &loops, c as u32, sampling, true, sharing);
                 if let Some(pb) = &progress {
                     pb.inc(1);
                 }
@@ -206,7 +214,7 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
             .iter()
             .par_bridge()
             .map(|&c| {
-                let r = run_timed(arr, &pool, &loops, c as u32, sampling, false);
+                let r = run_timed(arr, &pool, &loops, c as u32, sampling, false, sharing);
                 (c, r)
             })
             .collect();
@@ -265,6 +273,8 @@ pub struct SharingCounts {
     pub cells_kept_unshared: u64,
     /// Points only one cell of their face inserted when the rounds ended.
     pub one_sided: u64,
+    /// Cells whose only finished run misses contour edges the other side's samples took away.
+    pub cells_missing_contour_edges: u64,
 }
 
 /// Most rounds of sharing: each round's cells may split diagram pairs that the other side's
@@ -284,17 +294,24 @@ fn share_samples(
     let mut shared = shared_samples::SharedSamples::default();
     let mut counts = SharingCounts::default();
     let mut dirty_faces = shared.extend(arr, pool, results);
-    while !dirty_faces.is_empty() && (counts.rounds as usize) < MAX_SHARING_ROUNDS {
+    // at least one round: the cells stopped at conformity
+    while (counts.rounds == 0 || !dirty_faces.is_empty())
+        && (counts.rounds as usize) < MAX_SHARING_ROUNDS
+    {
         counts.rounds += 1;
-        // splitting pairs only in the first round: the two sides' diagrams can cross (paper
-        // Fig. 12a), and then each side's splits take the other's pair edges away forever
-        let split = counts.rounds == 1;
+        // no more splitting of pairs: where the two sides' diagrams cross (paper Fig. 12a) each
+        // side's splits would take the other's pair edges away forever; a pair the other side's
+        // points took away is joined through them instead (`chains::route_pairs`)
+        let split = false;
         let dirty: std::collections::HashSet<u32> = dirty_faces.iter().copied().collect();
+        // the first round runs every cell to the end (the earlier runs stopped at conformity)
+        let first = counts.rounds == 1;
         let todo = biggest_first(
             arr,
             loops,
             (0..results.len()).filter(|&c| {
-                results[c].is_some() && arr.cells[c].faces.iter().any(|cf| dirty.contains(&cf.face))
+                results[c].is_some()
+                    && (first || arr.cells[c].faces.iter().any(|cf| dirty.contains(&cf.face)))
             }),
         );
         let pool_now = &*pool;
@@ -313,8 +330,13 @@ fn share_samples(
             let Some(mut r) = r? else { continue };
             counts.cells_rerun += 1;
             if !r.missing.is_empty() {
-                counts.cells_kept_unshared += 1;
-                continue;
+                // the other side's samples took a contour edge away: keep a finished run without
+                // them if there is one, else this one (its section then misses that edge)
+                if results[c].as_ref().is_some_and(|p| p.pruned) {
+                    counts.cells_kept_unshared += 1;
+                    continue;
+                }
+                counts.cells_missing_contour_edges += 1;
             }
             shared.adopt_ids(&mut r);
             results[c] = Some(r);
@@ -353,6 +375,16 @@ pub fn reconstruct(
     report.count("sharing_rounds", shared.rounds);
     report.count("cells_kept_unshared", shared.cells_kept_unshared);
     report.count("one_sided_points", shared.one_sided);
+    report.count(
+        "cells_missing_contour_edges",
+        shared.cells_missing_contour_edges,
+    );
+    if shared.cells_missing_contour_edges > 0 {
+        report.warnings.push(format!(
+            "{} cells miss contour edges that the other side's diagram samples took away",
+            shared.cells_missing_contour_edges
+        ));
+    }
     if shared.cells_kept_unshared > 0 {
         report.warnings.push(format!(
             "{} cells lost a contour edge to the other side's diagram samples and keep their own samples only",
