@@ -21,6 +21,11 @@
 //! edges of the cell by Steiner points on the diagram (counts `sample_pairs`, `sample_steiner_points`,
 //! `sample_pairs_not_edges`, the last warned per cell and face).
 //!
+//! With `DelaunayOptions::shared_samples` (off by default), the cells first run only to their
+//! samples, which become pool vertices (`shared_samples`); then every cell runs once more with the
+//! samples of both sides of its faces, so that both triangulate each face alike, and a pair the
+//! other side's points took away is joined through them (`chains::route_pairs`).
+//!
 //! Known limits: on a face attached from both sides the
 //! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
 //! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
