@@ -430,3 +430,16 @@ fn bad_tags_are_errors() {
     let rep = PointTags::new(0, &[(1, [0.0; 2]), (1, [0.5; 2])]);
     assert!(Delaunay::try_new_tagged(&pts, &[rep, PointTags::none()]).is_err());
 }
+
+#[test]
+fn generated_tetrahedron_cell_is_valid() {
+    // the bench's point set, smaller (the reference 2D check is brute force)
+    let (pts, tags) = slice2solid::delaunay::gen::tagged_tetrahedron(120, 300, 4);
+    assert!(pts.len() > 600);
+    let dt = Delaunay::try_new_tagged(&pts, &tags).unwrap();
+    check_tagged(&pts, &tags, &dt);
+    for pl in 0..4 {
+        assert!(dt.plane_hull_triangles(pl).len() > 100, "plane {pl}");
+    }
+    assert!(flat_tets(&Delaunay::new(&pts), &tags) > 0);
+}
