@@ -26,6 +26,17 @@
 //! The choice of rule is unique: a tetrahedron cannot have co-tagged facets on two different planes
 //! with `q` unless their common edge lies on the planes' line with `q`, where the line rule takes
 //! precedence (and two co-tagged facets on one plane would be a flat tetrahedron, never created).
+//!
+//! Requirements and limits. The uv frame of a plane must be a similarity of the plane (orthonormal
+//! axes): the plane rule reads circles in uv as the plane's circles. The rules are exact for the
+//! ideal points; every other decision is the float 3D predicate, equal to the ideal one except
+//! near an ideal degeneracy. Where ideal points are exactly cospherical across *different* planes
+//! (mirror-image grids on two planes through one line; grid rays from a common origin on two
+//! planes; the corners of a lattice cell on orthogonal faces), a mixed 5-tuple is decided by
+//! rounding noise while a co-tagged one is decided by the gid perturbation, and the two can
+//! disagree: the conflict region is then not star-shaped (debug builds assert that every new
+//! tetrahedron is positive). Removing this needs the mixed predicates on the ideal points too
+//! (exact plane-frame coordinates), or a cavity repair; open.
 use super::pred;
 use smallvec::SmallVec;
 
