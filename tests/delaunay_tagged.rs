@@ -443,3 +443,45 @@ fn generated_tetrahedron_cell_is_valid() {
     }
     assert!(flat_tets(&Delaunay::new(&pts), &tags) > 0);
 }
+
+/// The known limit of the tag rules (exact cosphericity across planes, e.g. lattice cells on
+/// orthogonal faces of a box) never gives a silently wrong triangulation: the build is either valid
+/// (tagged `is_valid`) or an error from `try_new_tagged`. Faces x = 0, y = 0, z = 0 of the unit cube,
+/// each a 5 × 5 grid in its axis plane's own coordinates, and the far corner.
+#[test]
+fn exact_cosphericity_across_planes_is_valid_or_an_error() {
+    let mut pts = Vec::new();
+    let mut tags = Vec::new();
+    let mut gid = 0u64;
+    for axis in 0..3u32 {
+        for i in 0..5 {
+            for j in 0..5 {
+                let (s, t) = (i as f64 / 4.0, j as f64 / 4.0);
+                let mut p = [0.0; 3];
+                let (a, b) = ((axis as usize + 1) % 3, (axis as usize + 2) % 3);
+                p[a] = s;
+                p[b] = t;
+                if pts.contains(&p) {
+                    continue;
+                }
+                // every axis plane the point lies on, with that plane's (u, v) = the next two axes
+                let planes: Vec<(u32, [f64; 2])> = (0..3u32)
+                    .filter(|&k| p[k as usize] == 0.0)
+                    .map(|k| {
+                        let (u, v) = (((k + 1) % 3) as usize, ((k + 2) % 3) as usize);
+                        (k, [p[u], p[v]])
+                    })
+                    .collect();
+                pts.push(p);
+                tags.push(PointTags::new(gid, &planes));
+                gid += 1;
+            }
+        }
+    }
+    pts.push([1.0, 1.0, 1.0]);
+    tags.push(PointTags::new(gid, &[]));
+    match Delaunay::try_new_tagged(&pts, &tags) {
+        Ok(dt) => dt.is_valid().expect("an Ok tagged build is valid"),
+        Err(e) => eprintln!("refused, as it may be: {e}"),
+    }
+}

@@ -265,10 +265,10 @@ impl Delaunay {
         unreachable!("no tetrahedron conflicts with a new point")
     }
 
-    /// Debug builds, tagged: every new finite tetrahedron is positive (else the conflict rules
-    /// were inconsistent across a cavity facet: panics with both sides' rules).
-    #[cfg(debug_assertions)]
-    fn debug_check_cavity(&self, boundary: &[BoundaryFacet], qv: u32, q: P) {
+    /// Tagged: every new finite tetrahedron is positive, else the conflict rules were inconsistent
+    /// across a cavity facet. Release builds record it (`Delaunay::consistent` then fails); debug
+    /// builds panic with both sides' rules.
+    fn check_cavity(&mut self, boundary: &[BoundaryFacet], qv: u32, q: P) {
         for b in boundary {
             if b.v.contains(&INFINITE) {
                 continue;
@@ -276,6 +276,10 @@ impl Delaunay {
             let p = b.v.map(|w| self.pts[w as usize]);
             let o = pred::orient(p[0], p[1], p[2], p[3]);
             if o <= 0.0 {
+                self.inconsistent = true;
+                if !cfg!(debug_assertions) {
+                    return;
+                }
                 let nb = &self.tds.tets[b.nb as usize];
                 let side = |v: [u32; 4]| {
                     let rule = tags::conflict(self.tags_of(v), &self.tags[qv as usize]);
@@ -434,9 +438,8 @@ impl Delaunay {
                 });
             }
         }
-        #[cfg(debug_assertions)]
         if TAGGED {
-            self.debug_check_cavity(&boundary, v, q);
+            self.check_cavity(&boundary, v, q);
         }
         // Pass 1: one new tetrahedron per boundary facet (in the cavity's own slots first, they are
         // in cache), glued to the outside.

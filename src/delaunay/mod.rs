@@ -144,6 +144,9 @@ pub struct Delaunay {
     tagged: bool,
     /// Plane tags by internal id (empty when not `tagged`).
     tags: Vec<PointTags>,
+    /// A tagged insertion met a cavity that is not star-shaped (an exact cosphericity across
+    /// planes the tag rules cannot decide, see `tags`): the triangulation is not to be trusted.
+    inconsistent: bool,
     /// Visit stamps of the tagged locate's fallback search (by tetrahedron slot).
     stamp: Vec<u32>,
     stamp_gen: u32,
@@ -188,7 +191,22 @@ impl Delaunay {
                     .map_err(|e| crate::Error::input(format!("tags of point {i}"), e))
             })
             .collect::<crate::Result<Vec<_>>>()?;
-        Ok(Self::build(points, Some(&tags)))
+        let dt = Self::build(points, Some(&tags));
+        dt.consistent()?;
+        Ok(dt)
+    }
+
+    /// `Err` when a tagged insertion met a cavity that is not star-shaped: rather than hand out a
+    /// triangulation with inverted tetrahedra, the caller learns that this input needs the exact
+    /// (ideal-point) predicates the tag rules do not have.
+    pub fn consistent(&self) -> crate::Result<()> {
+        if self.inconsistent {
+            return Err(crate::Error::input(
+                "tagged points",
+                "an exact cosphericity across planes that the plane rules cannot decide (a cavity was not star-shaped)",
+            ));
+        }
+        Ok(())
     }
 
     /// The bulk build of [`Delaunay::try_new`] / [`Delaunay::try_new_tagged`] on checked input.
@@ -329,6 +347,7 @@ impl Delaunay {
             edge_table: Vec::new(),
             tagged: false,
             tags: Vec::new(),
+            inconsistent: false,
             stamp: Vec::new(),
             stamp_gen: 0,
             lo: [f64::INFINITY; 3],
@@ -427,6 +446,7 @@ impl Delaunay {
 
     /// Inserts a point lying on the planes of `tags` (as [`Delaunay::insert`]; on a triangulation
     /// built by [`Delaunay::new`] the tags are ignored). Panics on non-finite coordinates or bad tags.
+    /// After it, [`Delaunay::consistent`] says whether the triangulation can be trusted.
     pub fn insert_tagged(&mut self, p: [f64; 3], tags: &PointTags) -> VertexId {
         assert!(
             p.iter().all(|c| c.is_finite()),
