@@ -1,5 +1,6 @@
 //! Kernel throughput: uniform points and points on 40 random planes, 10^4 and 10^5 points
-//! (10^6 with `S2S_BENCH_1M=1`).
+//! (10^6 with `S2S_BENCH_1M=1`); and the tagged kernel against the untagged one on a cell with four
+//! oblique faces (`gen::tagged_tetrahedron`: 4 × ~2500 face points + 10^4 interior points).
 //!
 //! Also writes point files for comparisons with other tools:
 //! `S2S_WRITE_XYZ=out.xyz S2S_KIND=planes S2S_N=1000000 cargo bench --bench delaunay` writes the points
@@ -33,6 +34,21 @@ fn bench(c: &mut Criterion) {
             });
         }
     }
+    // tagged vs untagged on one cell with four oblique faces (dyadic uv grids, ~1 ulp off-plane)
+    let (pts, tags) = gen::tagged_tetrahedron(2500, 10_000, 1);
+    let n = pts.len();
+    g.bench_with_input(
+        BenchmarkId::new("tetra_cell_untagged", n),
+        &pts,
+        |b, pts| b.iter(|| Delaunay::new(pts).num_finite_tets()),
+    );
+    g.bench_with_input(BenchmarkId::new("tetra_cell_tagged", n), &pts, |b, pts| {
+        b.iter(|| {
+            Delaunay::try_new_tagged(pts, &tags)
+                .unwrap()
+                .num_finite_tets()
+        })
+    });
     g.finish();
 }
 

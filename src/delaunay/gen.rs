@@ -147,3 +147,85 @@ pub fn polytope_faces(n: usize, m: usize, seed: u64) -> Vec<P> {
     }
     pts
 }
+
+/// A tetrahedral cell with four oblique faces for the tagged kernel: on each face (plane id 0..4,
+/// an orthonormal frame turned and offset per plane) a dyadic square grid in uv of about
+/// `per_face` points strictly inside the face (every grid square exactly cocircular in uv; in 3D
+/// `origin + s·u + t·v` in floats, ~1 ulp off the plane), tagged with its plane, uv and a gid; then
+/// `interior` untagged random points inside. Returns the points and their tags.
+pub fn tagged_tetrahedron(
+    per_face: usize,
+    interior: usize,
+    seed: u64,
+) -> (Vec<P>, Vec<super::PointTags>) {
+    let v: [P; 4] = [
+        [0.113, 0.071, 0.029],
+        [1.237, 0.193, 0.311],
+        [0.389, 1.163, 0.147],
+        [0.571, 0.487, 1.219],
+    ];
+    let sub = |a: P, b: P| -> P { [a[0] - b[0], a[1] - b[1], a[2] - b[2]] };
+    let dot = |a: P, b: P| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let cross = |a: P, b: P| -> P {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let unit = |a: P| -> P { a.map(|c| c / dot(a, a).sqrt()) };
+    let mut pts = Vec::new();
+    let mut tags = Vec::new();
+    for f in 0..4usize {
+        let [p0, p1, p2] = [(f + 1) % 4, (f + 2) % 4, (f + 3) % 4].map(|i| v[i]);
+        let angle = 0.31 + 0.47 * f as f64;
+        let (u0, n) = (unit(sub(p1, p0)), unit(cross(sub(p1, p0), sub(p2, p0))));
+        let v0 = cross(n, u0);
+        let (c, s) = (angle.cos(), angle.sin());
+        let u: P = std::array::from_fn(|k| c * u0[k] + s * v0[k]);
+        let w: P = std::array::from_fn(|k| c * v0[k] - s * u0[k]);
+        let o: P = std::array::from_fn(|k| p0[k] + 0.0371 * angle * u[k] + 0.0213 / angle * w[k]);
+        let uv = |p: P| [dot(sub(p, o), u), dot(sub(p, o), w)];
+        let tri = [uv(p0), uv(p1), uv(p2)];
+        let area = ((tri[1][0] - tri[0][0]) * (tri[2][1] - tri[0][1])
+            - (tri[2][0] - tri[0][0]) * (tri[1][1] - tri[0][1]))
+            .abs()
+            / 2.0;
+        // dyadic step with about per_face grid points in the triangle
+        let h = 2f64.powi((0.5 * (area / per_face.max(1) as f64).log2()).round() as i32);
+        let edge = |a: [f64; 2], b: [f64; 2], q: [f64; 2]| {
+            let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
+            (ex * (q[1] - a[1]) - ey * (q[0] - a[0])) / (ex * ex + ey * ey).sqrt()
+        };
+        let sign = edge(tri[0], tri[1], tri[2]).signum();
+        let (lo, hi) = tri
+            .iter()
+            .fold(([f64::MAX; 2], [f64::MIN; 2]), |(l, h), p| {
+                (
+                    [l[0].min(p[0]), l[1].min(p[1])],
+                    [h[0].max(p[0]), h[1].max(p[1])],
+                )
+            });
+        for i in (lo[0] / h).floor() as i64..=(hi[0] / h).ceil() as i64 {
+            for j in (lo[1] / h).floor() as i64..=(hi[1] / h).ceil() as i64 {
+                let q = [i as f64 * h, j as f64 * h];
+                if (0..3).all(|e| sign * edge(tri[e], tri[(e + 1) % 3], q) > h / 4.0) {
+                    pts.push(std::array::from_fn(|k| o[k] + q[0] * u[k] + q[1] * w[k]));
+                    let gid =
+                        (f as u64) << 40 | ((i + (1 << 19)) as u64) << 20 | (j + (1 << 19)) as u64;
+                    tags.push(super::PointTags::new(gid, &[(f as u32, q)]));
+                }
+            }
+        }
+    }
+    let mut r = ChaCha8Rng::seed_from_u64(seed);
+    for _ in 0..interior {
+        let w: [f64; 4] = std::array::from_fn(|_| 0.05 + r.gen::<f64>());
+        let s: f64 = w.iter().sum();
+        pts.push(std::array::from_fn(|k| {
+            (0..4).map(|i| v[i][k] * w[i]).sum::<f64>() / s
+        }));
+        tags.push(super::PointTags::none());
+    }
+    (pts, tags)
+}

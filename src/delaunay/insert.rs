@@ -2,6 +2,7 @@
 //! Bowyer–Watson insertion (conflict region grown from the located tetrahedron, then starred from
 //! the new vertex). All ids here are internal vertex ids (insertion order).
 use super::pred::{self, P};
+use super::tags::{self, PointTags};
 use super::tds::{facet_key, other_two, Tet, ID_MASK, INFINITE, IN_CAVITY, NONE, OUTSIDE};
 use super::Delaunay;
 
@@ -94,6 +95,21 @@ pub(super) fn walk(
     rng: &mut u32,
     sb: &pred::Bounds,
 ) -> u32 {
+    walk_with(tets, pts, q, start, rng, sb, |_, _| false)
+}
+
+/// [`walk`], never crossing the facet opposite `i` of a tetrahedron `v` when `degenerate(v, i)`
+/// (the tagged walk: that facet and `q` are coplanar or collinear for the ideal points).
+#[inline(always)]
+fn walk_with(
+    tets: &[Tet],
+    pts: &[P],
+    q: P,
+    start: u32,
+    rng: &mut u32,
+    sb: &pred::Bounds,
+    degenerate: impl Fn(&[u32; 4], usize) -> bool,
+) -> u32 {
     let mut t = start;
     {
         let tt = &tets[t as usize];
@@ -120,7 +136,8 @@ pub(super) fn walk(
             }
             let mut s = p;
             s[i] = q;
-            if pred::orient_within(s[0], s[1], s[2], s[3], sb.orient) < 0.0 {
+            if pred::orient_within(s[0], s[1], s[2], s[3], sb.orient) < 0.0 && !degenerate(&tt.v, i)
+            {
                 prev = t;
                 t = n;
                 if tet(tets, n).is_infinite() {
@@ -186,6 +203,115 @@ impl Delaunay {
         self.conflict_infinite(t, q)
     }
 
+    /// The tags of the vertices of `v` (`None` for the infinite vertex); tagged triangulations only.
+    #[inline(always)]
+    fn tags_of(&self, v: [u32; 4]) -> [Option<&PointTags>; 4] {
+        v.map(|w| (w != INFINITE).then(|| &self.tags[w as usize]))
+    }
+
+    /// Conflict of `t` with internal vertex `qv` at `q` in a tagged triangulation: the line and
+    /// plane rules of [`tags`] where they apply (for infinite tetrahedra too: a query on a hull
+    /// facet's plane is decided by the facet's circumcircle, never by the float side of the facet),
+    /// else [`Delaunay::conflict`].
+    #[inline]
+    pub(super) fn conflict_tagged(&self, t: u32, qv: u32, q: P) -> bool {
+        let v = tet(&self.tds.tets, t).v;
+        tags::conflict(self.tags_of(v), &self.tags[qv as usize])
+            .unwrap_or_else(|| self.conflict(t, q))
+    }
+
+    /// A tetrahedron in conflict with internal vertex `qv` at `q` (tagged), or `Err(w)` when vertex
+    /// `w` is at the same position. The walk does not cross tag-degenerate facets; when it ends
+    /// in a tetrahedron that does not conflict (the float side of a facet disagrees with the tags,
+    /// at ulp distances from a face plane), a breadth-first search from there finds one: the
+    /// conflict region is non-empty (the tets on the plane's triangle or line segment containing
+    /// `q`, or the float location, conflict) and is usually a few steps away.
+    fn locate_tagged(&mut self, qv: u32, q: P) -> Result<u32, u32> {
+        let mut rng = self.rng;
+        let (tets, pts, tags) = (&self.tds.tets, &self.pts, &self.tags);
+        let qt = &tags[qv as usize];
+        let t0 = walk_with(tets, pts, q, self.hint, &mut rng, &self.bounds, |v, i| {
+            tags::walk_degenerate(v.map(|w| (w != INFINITE).then(|| &tags[w as usize])), i, qt)
+        });
+        self.rng = rng;
+        self.same_position(t0, q)?;
+        if self.conflict_tagged(t0, qv, q) {
+            return Ok(t0);
+        }
+        self.stamp.resize(self.tds.tets.len(), 0);
+        self.stamp_gen = self.stamp_gen.wrapping_add(1);
+        if self.stamp_gen == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.stamp_gen = 1;
+        }
+        let mut queue = vec![t0];
+        self.stamp[t0 as usize] = self.stamp_gen;
+        let mut head = 0;
+        while head < queue.len() {
+            let c = queue[head];
+            head += 1;
+            for n in self.tds.tets[c as usize].n {
+                if self.stamp[n as usize] == self.stamp_gen {
+                    continue;
+                }
+                self.stamp[n as usize] = self.stamp_gen;
+                self.same_position(n, q)?;
+                if self.conflict_tagged(n, qv, q) {
+                    return Ok(n);
+                }
+                queue.push(n);
+            }
+        }
+        unreachable!("no tetrahedron conflicts with a new point")
+    }
+
+    /// Tagged: every new finite tetrahedron is positive, else the conflict rules were inconsistent
+    /// across a cavity facet. Release builds record it (`Delaunay::consistent` then fails); debug
+    /// builds panic with both sides' rules.
+    fn check_cavity(&mut self, boundary: &[BoundaryFacet], qv: u32, q: P) {
+        for b in boundary {
+            if b.v.contains(&INFINITE) {
+                continue;
+            }
+            let p = b.v.map(|w| self.pts[w as usize]);
+            let o = pred::orient(p[0], p[1], p[2], p[3]);
+            if o <= 0.0 {
+                self.inconsistent = true;
+                if !cfg!(debug_assertions) {
+                    return;
+                }
+                let nb = &self.tds.tets[b.nb as usize];
+                let side = |v: [u32; 4]| {
+                    let rule = tags::conflict(self.tags_of(v), &self.tags[qv as usize]);
+                    (
+                        v.map(|w| (w != INFINITE).then(|| self.tags[w as usize].clone())),
+                        rule,
+                    )
+                };
+                panic!(
+                    "non-positive new tet ({o}) for q {:?}:\n outside neighbour {:?}\n new {:?}",
+                    self.tags[qv as usize],
+                    side(nb.v),
+                    side(b.v),
+                );
+            }
+        }
+        let _ = q;
+    }
+
+    /// `Err(w)` when finite vertex `w` of `t` is at position `q`.
+    #[inline]
+    fn same_position(&self, t: u32, q: P) -> Result<(), u32> {
+        match tet(&self.tds.tets, t)
+            .v
+            .into_iter()
+            .find(|&w| w != INFINITE && self.pts[w as usize] == q)
+        {
+            Some(w) => Err(w),
+            None => Ok(()),
+        }
+    }
+
     #[inline(never)]
     fn conflict_infinite(&self, t: u32, q: P) -> bool {
         let tt = &self.tds.tets[t as usize];
@@ -221,16 +347,31 @@ impl Delaunay {
     /// Inserts internal vertex `v` (already in `pts`) into the 3D triangulation. Returns `v`, or the
     /// internal id of the vertex already at that position (then nothing changed).
     pub(super) fn insert_vertex(&mut self, v: u32) -> u32 {
-        let q = self.pts[v as usize];
-        let t0 = self.walk_from_hint(q);
-        let tt = self.tds.tets[t0 as usize];
-        if !tt.is_infinite() {
-            for w in tt.v {
-                if self.pts[w as usize] == q {
-                    return w;
-                }
-            }
+        if self.tagged {
+            self.insert_vertex_with::<true>(v)
+        } else {
+            self.insert_vertex_with::<false>(v)
         }
+    }
+
+    /// [`Delaunay::insert_vertex`], with the tag rules when `TAGGED` (a separate instance, so that
+    /// the untagged hot loop is today's code).
+    #[inline(always)]
+    fn insert_vertex_with<const TAGGED: bool>(&mut self, v: u32) -> u32 {
+        let q = self.pts[v as usize];
+        let t0 = if TAGGED {
+            match self.locate_tagged(v, q) {
+                Ok(t) => t,
+                Err(w) => return w,
+            }
+        } else {
+            let t0 = self.walk_from_hint(q);
+            if let Err(w) = self.same_position(t0, q) {
+                return w;
+            }
+            t0
+        };
+        let tt = self.tds.tets[t0 as usize];
         // Grow the conflict region (a ball, star-shaped from q under the perturbation). Marks live in
         // the records (IN_CAVITY on n[0], OUTSIDE on n[1]); every boundary facet is recorded with
         // everything pass 1 needs, so that the cavity slots can be overwritten by new tetrahedra.
@@ -266,7 +407,12 @@ impl Delaunay {
                     continue;
                 }
                 if nt.n[1] & OUTSIDE == 0 {
-                    if self.conflict(n, q) {
+                    let inside = if TAGGED {
+                        self.conflict_tagged(n, v, q)
+                    } else {
+                        self.conflict(n, q)
+                    };
+                    if inside {
                         let nt = tet_mut(&mut self.tds.tets, n);
                         cavity_finite += !nt.is_infinite() as usize;
                         nt.n[0] |= IN_CAVITY;
@@ -291,6 +437,9 @@ impl Delaunay {
                     j: index_of_neighbor(nt, c) as u8,
                 });
             }
+        }
+        if TAGGED {
+            self.check_cavity(&boundary, v, q);
         }
         // Pass 1: one new tetrahedron per boundary facet (in the cavity's own slots first, they are
         // in cache), glued to the outside.

@@ -43,9 +43,19 @@
 //! (dropped, kept) pairs and [`Delaunay::canonical`] maps an id to the vertex that represents it.
 //! Ids: tetrahedron ids are slots that are reused after insertions; hold them only between insertions.
 //!
+//! **Tagged construction** ([`Delaunay::try_new_tagged`], [`Delaunay::insert_tagged`]): points carry
+//! the input planes they lie on, with exact uv in each plane's frame, and a global id
+//! ([`PointTags`]). Decisions that are degenerate for the ideal points (exactly on their planes)
+//! follow the line and plane rules of [`tags`]; the hull facets on a face plane are then the 2D
+//! Delaunay triangulation of its points in uv with ties by gid ([`plane2d`] is the reference), the
+//! same in every cell that has those points, and no tetrahedron has four vertices on one plane.
+//! The uv frame of a plane must be a similarity (orthonormal axes, one scale): the plane rule uses
+//! circles in uv as the plane's circles. [`Delaunay::plane_hull_triangles`] gives the restriction.
+//!
 //! Layout: `tds` (flat records and free list), `insert` (walk, conflict region, starring),
 //! `pred` (filtered exact predicates and the perturbation), `sort` (BRIO + Hilbert), `validate`
-//! (`is_valid`), `xyz` (point files), `gen` (test point sets), `tetgen` (oracle, feature `tetgen`).
+//! (`is_valid`), `tags` (plane tags and their rules), `plane2d` (reference 2D Delaunay), `xyz`
+//! (point files), `gen` (test point sets), `tetgen` (oracle, feature `tetgen`).
 //!
 //! Measured (release build, shared 2-core machine under load ~8, 10^6 points on 40 random planes,
 //! 6,600,878 tetrahedra; 6 interleaved pairs): kernel time 0.81× that of CGAL 5.5's
@@ -59,9 +69,11 @@
 //! two SSE2 lanes.
 pub mod gen;
 mod insert;
+pub mod plane2d;
 #[allow(clippy::needless_range_loop)]
 pub mod pred;
 pub mod sort;
+pub mod tags;
 mod tds;
 #[cfg(feature = "tetgen")]
 pub mod tetgen;
@@ -70,6 +82,7 @@ pub mod xyz;
 
 use pred::P;
 use std::collections::HashMap;
+pub use tags::PointTags;
 pub use tds::INFINITE;
 use tds::{Tds, NONE};
 
@@ -127,6 +140,16 @@ pub struct Delaunay {
     bounds: pred::Bounds,
     /// Whether insertions keep `vtet` up to date (off during the bulk build, which rebuilds it once).
     track_vtet: bool,
+    /// Built by [`Delaunay::try_new_tagged`]: the tag rules of [`tags`] apply, `tags` is filled.
+    tagged: bool,
+    /// Plane tags by internal id (empty when not `tagged`).
+    tags: Vec<PointTags>,
+    /// A tagged insertion met a cavity that is not star-shaped (an exact cosphericity across
+    /// planes the tag rules cannot decide, see `tags`): the triangulation is not to be trusted.
+    inconsistent: bool,
+    /// Visit stamps of the tagged locate's fallback search (by tetrahedron slot).
+    stamp: Vec<u32>,
+    stamp_gen: u32,
 }
 
 impl Delaunay {
@@ -140,15 +163,61 @@ impl Delaunay {
 
     /// Like [`Delaunay::new`], but rejects non-finite coordinates with `Error::Input`.
     pub fn try_new(points: &[[f64; 3]]) -> crate::Result<Delaunay> {
-        if let Some(i) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+        check_finite(points)?;
+        Ok(Self::build(points, None))
+    }
+
+    /// Triangulates `points` lying on input planes given by `tags` (one per point, same order;
+    /// [`PointTags::none`] for a point on no plane). Decisions that are degenerate for the ideal
+    /// points (the points exactly on their planes, which floats are not for oblique planes) follow
+    /// the plane and line rules of [`tags`]: the triangles whose vertices share a plane and that
+    /// are hull facets are, by construction, the 2D Delaunay triangulation of that plane's points
+    /// in its uv (ties by gid, the same in every cell that has those points), and no tetrahedron has
+    /// four vertices on one plane or three on one line of two planes. Merged duplicates keep the
+    /// first occurrence's tags. Errors on non-finite input, a length mismatch or bad tags.
+    pub fn try_new_tagged(points: &[[f64; 3]], tags: &[PointTags]) -> crate::Result<Delaunay> {
+        check_finite(points)?;
+        if tags.len() != points.len() {
             return Err(crate::Error::input(
-                format!("point {i}"),
-                "non-finite coordinate",
+                "tags",
+                format!("{} tags for {} points", tags.len(), points.len()),
             ));
         }
+        let tags = tags
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                t.normalized()
+                    .map_err(|e| crate::Error::input(format!("tags of point {i}"), e))
+            })
+            .collect::<crate::Result<Vec<_>>>()?;
+        let dt = Self::build(points, Some(&tags));
+        dt.consistent()?;
+        Ok(dt)
+    }
+
+    /// `Err` when a tagged insertion met a cavity that is not star-shaped: rather than hand out a
+    /// triangulation with inverted tetrahedra, the caller learns that this input needs the exact
+    /// (ideal-point) predicates the tag rules do not have.
+    pub fn consistent(&self) -> crate::Result<()> {
+        if self.inconsistent {
+            return Err(crate::Error::input(
+                "tagged points",
+                "an exact cosphericity across planes that the plane rules cannot decide (a cavity was not star-shaped)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The bulk build of [`Delaunay::try_new`] / [`Delaunay::try_new_tagged`] on checked input.
+    fn build(points: &[[f64; 3]], tags: Option<&[PointTags]>) -> Delaunay {
         let mut dt = Delaunay::empty();
         let order = sort::brio_order(points);
         dt.pts = order.iter().map(|&k| norm(points[k as usize])).collect();
+        if let Some(tags) = tags {
+            dt.tagged = true;
+            dt.tags = order.iter().map(|&k| tags[k as usize].clone()).collect();
+        }
         for p in points {
             dt.lo = std::array::from_fn(|k| dt.lo[k].min(p[k]));
             dt.hi = std::array::from_fn(|k| dt.hi[k].max(p[k]));
@@ -198,7 +267,7 @@ impl Delaunay {
                 }
             }
         }
-        Ok(dt)
+        dt
     }
 
     /// After the bulk build: `dropped` lists (internal id never triangulated, internal id of the
@@ -232,11 +301,17 @@ impl Delaunay {
                 newid[k] = m;
                 self.pts[m as usize] = self.pts[k];
                 self.ext[m as usize] = self.ext[k];
+                if self.tagged {
+                    self.tags.swap(m as usize, k);
+                }
                 m += 1;
             }
         }
         self.pts.truncate(m as usize);
         self.ext.truncate(m as usize);
+        if self.tagged {
+            self.tags.truncate(m as usize);
+        }
         let map = |w: u32| if w == INFINITE { w } else { newid[w as usize] };
         for t in self.tds.tets.iter_mut() {
             if !t.is_dead() {
@@ -270,6 +345,11 @@ impl Delaunay {
             outside: Vec::new(),
             newt: Vec::new(),
             edge_table: Vec::new(),
+            tagged: false,
+            tags: Vec::new(),
+            inconsistent: false,
+            stamp: Vec::new(),
+            stamp_gen: 0,
             lo: [f64::INFINITY; 3],
             hi: [f64::NEG_INFINITY; 3],
             bounds: pred::Bounds::NONE,
@@ -303,7 +383,9 @@ impl Delaunay {
             -1 => 0,
             0 => 1,
             1 => {
-                if pred::collinear(pp(0), pp(1), p) {
+                if pred::collinear(pp(0), pp(1), p)
+                    || self.tag_collinear(self.pending[0], self.pending[1], v)
+                {
                     1
                 } else {
                     // keep the basis points first
@@ -312,7 +394,9 @@ impl Delaunay {
                 }
             }
             2 => {
-                if pred::orient(pp(0), pp(1), pp(2), p) == 0.0 {
+                if pred::orient(pp(0), pp(1), pp(2), p) == 0.0
+                    || self.tag_degenerate([self.pending[0], self.pending[1], self.pending[2], v])
+                {
                     2
                 } else {
                     self.pending.swap(3, n - 1);
@@ -332,6 +416,19 @@ impl Delaunay {
         v
     }
 
+    /// Three internal vertices on one line by their tags (always false when untagged).
+    fn tag_collinear(&self, a: u32, b: u32, c: u32) -> bool {
+        self.tagged && {
+            let t = |w: u32| &self.tags[w as usize];
+            tags::on_one_line(t(a), t(b), t(c))
+        }
+    }
+
+    /// Four internal vertices degenerate by their tags (see [`tags::degenerate`]).
+    fn tag_degenerate(&self, v: [u32; 4]) -> bool {
+        self.tagged && tags::degenerate(v.map(|w| &self.tags[w as usize]))
+    }
+
     /// Pairs (dropped, kept) of vertices merged because they are at exactly the same position.
     pub fn duplicates(&self) -> &[(VertexId, VertexId)] {
         &self.dups
@@ -344,9 +441,27 @@ impl Delaunay {
             p.iter().all(|c| c.is_finite()),
             "Delaunay::insert: non-finite coordinate"
         );
+        self.insert_tagged_unchecked(p, PointTags::none())
+    }
+
+    /// Inserts a point lying on the planes of `tags` (as [`Delaunay::insert`]; on a triangulation
+    /// built by [`Delaunay::new`] the tags are ignored). Panics on non-finite coordinates or bad tags.
+    /// After it, [`Delaunay::consistent`] says whether the triangulation can be trusted.
+    pub fn insert_tagged(&mut self, p: [f64; 3], tags: &PointTags) -> VertexId {
+        assert!(
+            p.iter().all(|c| c.is_finite()),
+            "Delaunay::insert_tagged: non-finite coordinate"
+        );
+        let t = tags
+            .normalized()
+            .expect("Delaunay::insert_tagged: bad tags");
+        self.insert_tagged_unchecked(p, t)
+    }
+
+    fn insert_tagged_unchecked(&mut self, p: [f64; 3], tags: PointTags) -> VertexId {
         let e = self.int.len() as u32;
         self.int.push(NONE);
-        match self.place(e, norm(p)) {
+        match self.place(e, norm(p), tags) {
             Some(kept) => {
                 self.dups.push((e, kept));
                 kept
@@ -357,10 +472,13 @@ impl Delaunay {
 
     /// Inserts the (normalised) point of external id `e`, whose `int` slot exists. Returns the kept
     /// vertex's external id when a vertex is already at that position (nothing is added then).
-    fn place(&mut self, e: u32, p: P) -> Option<VertexId> {
+    fn place(&mut self, e: u32, p: P, tags: PointTags) -> Option<VertexId> {
         let k = self.pts.len() as u32;
         self.cover(p);
         self.pts.push(p);
+        if self.tagged {
+            self.tags.push(tags);
+        }
         self.ext.push(e);
         self.vtet.push(NONE);
         self.int[e as usize] = k;
@@ -375,6 +493,9 @@ impl Delaunay {
         self.pts.pop();
         self.ext.pop();
         self.vtet.pop();
+        if self.tagged {
+            self.tags.pop();
+        }
         self.int[e as usize] = w;
         Some(self.ext[w as usize])
     }
@@ -403,7 +524,7 @@ impl Delaunay {
             }
             let e = e0 + i;
             // a kept vertex is an earlier one (never of this batch: those are at distinct positions)
-            if let Some(kept) = self.place(e, norm(points[i as usize])) {
+            if let Some(kept) = self.place(e, norm(points[i as usize]), PointTags::none()) {
                 new_dups.push((e, kept));
             }
         }
@@ -428,6 +549,35 @@ impl Delaunay {
 
     pub fn point(&self, v: VertexId) -> [f64; 3] {
         self.pts[self.int[v as usize] as usize]
+    }
+
+    /// The tags of vertex `v` (`None` on a triangulation built untagged).
+    pub fn point_tags(&self, v: VertexId) -> Option<&PointTags> {
+        self.tagged
+            .then(|| &self.tags[self.int[v as usize] as usize])
+    }
+
+    /// Whether the triangulation was built by [`Delaunay::try_new_tagged`].
+    pub fn is_tagged(&self) -> bool {
+        self.tagged
+    }
+
+    /// The hull facets whose three vertices lie on `plane` (tagged triangulations; empty otherwise),
+    /// as vertex triples ordered as [`Delaunay::facet_vertices`]: the restriction of the
+    /// triangulation to a face plane of the point set, which the tag rules make the 2D Delaunay
+    /// triangulation of the plane's points.
+    pub fn plane_hull_triangles(&self, plane: u32) -> Vec<[VertexId; 3]> {
+        if !self.tagged {
+            return Vec::new();
+        }
+        self.facets()
+            .filter(|&(t, i)| self.is_infinite(self.tds.tets[t as usize].n[i as usize]))
+            .map(|(t, i)| self.facet_vertices(t, i))
+            .filter(|f| {
+                f.iter()
+                    .all(|&w| self.tags[self.int[w as usize] as usize].on(plane))
+            })
+            .collect()
     }
 
     /// Affine dimension of the points: -1 (none), 0, 1, 2 (no tetrahedra) or 3.
@@ -624,6 +774,17 @@ impl std::hash::Hasher for FastHasher {
     }
 }
 
+/// `Error::Input` naming the first point with a non-finite coordinate.
+fn check_finite(points: &[[f64; 3]]) -> crate::Result<()> {
+    match points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+        Some(i) => Err(crate::Error::input(
+            format!("point {i}"),
+            "non-finite coordinate",
+        )),
+        None => Ok(()),
+    }
+}
+
 /// -0.0 → 0.0 so that equal points have equal bits.
 #[inline]
 fn norm(p: P) -> P {
@@ -785,6 +946,50 @@ mod tests {
         for v in 0..one.num_vertices() as u32 {
             assert_eq!(one.canonical(v), all.canonical(v));
             assert_eq!(one.point(v), all.point(v));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tagged_tests {
+    use super::*;
+
+    /// A square on an oblique plane (exactly cocircular in uv, not exactly coplanar in floats) with
+    /// an apex on either side: both pyramids take the same diagonal (the gid tie-break), no flat tet.
+    #[test]
+    fn square_on_oblique_plane_same_diagonal_both_sides() {
+        let u = [0.6, 0.48, 0.64];
+        let v = [-0.8, 0.36, 0.48];
+        let o = [0.1, 0.2, 0.3];
+        let n = [0.0, -0.8, 0.6];
+        let at = |s: f64, t: f64, h: f64| -> [f64; 3] {
+            std::array::from_fn(|k| o[k] + s * u[k] + t * v[k] + h * n[k])
+        };
+        let sq = [[0.1, 0.3], [0.7, 0.3], [0.7, 0.9], [0.1, 0.9]];
+        for gids in [[4u64, 1, 3, 2], [1, 2, 3, 4], [9, 7, 8, 6]] {
+            let mut diag = Vec::new();
+            for h in [1.0, -1.0] {
+                let mut pts: Vec<[f64; 3]> = sq.iter().map(|q| at(q[0], q[1], 0.0)).collect();
+                pts.push(at(0.4, 0.6, h));
+                let mut tags: Vec<PointTags> = (0..4)
+                    .map(|i| PointTags::new(gids[i], &[(7, sq[i])]))
+                    .collect();
+                tags.push(PointTags::none());
+                let dt = Delaunay::try_new_tagged(&pts, &tags).unwrap();
+                dt.is_valid().unwrap();
+                assert_eq!(dt.num_finite_tets(), 2);
+                let mut f: Vec<[u32; 3]> = dt
+                    .plane_hull_triangles(7)
+                    .into_iter()
+                    .map(|mut t| {
+                        t.sort_unstable();
+                        t
+                    })
+                    .collect();
+                f.sort_unstable();
+                diag.push(f);
+            }
+            assert_eq!(diag[0], diag[1], "gids {gids:?}");
         }
     }
 }

@@ -588,6 +588,65 @@ fn coplanar_conflict(t: [P; 4], k: usize, d: P, q: P) -> bool {
     false
 }
 
+/// A point of a plane for [`plane_incircle`]: its uv in the plane's frame and its global id.
+pub type UvPoint = ([f64; 2], u64);
+
+/// Whether `q` is inside the circumcircle of `a, b, c` in one plane's uv (any orientation of the
+/// three: the exact `incircle` is oriented by the exact `orient2d`). An exact tie is broken by a 2D
+/// symbolic perturbation on the global ids, the planar analogue of [`conflict_finite`]'s 3D one with
+/// gid instead of lexicographic order (so it depends on the points' identities only, never on the
+/// cell or the insertion order): the point of largest gid decides; if it is `q`, `q` is outside;
+/// else the answer is the orientation of the triangle with that point replaced by `q`, and on a
+/// collinear substitution the next point decides. `None` when `a, b, c` are collinear in uv (no
+/// circle: the caller falls back to the 3D predicates).
+pub fn plane_incircle(a: UvPoint, b: UvPoint, c: UvPoint, q: UvPoint) -> Option<bool> {
+    let o = gp::orient2d(a.0, b.0, c.0);
+    if o == 0.0 {
+        return None;
+    }
+    // counter-clockwise order
+    let f = if o > 0.0 { [a, b, c] } else { [a, c, b] };
+    let s = gp::incircle(f[0].0, f[1].0, f[2].0, q.0);
+    if s != 0.0 {
+        return Some(s > 0.0);
+    }
+    Some(perturbed_incircle_tie(f, q))
+}
+
+#[cold]
+fn perturbed_incircle_tie(f: [UvPoint; 3], q: UvPoint) -> bool {
+    let pts = [f[0], f[1], f[2], q];
+    let mut idx = [0usize, 1, 2, 3];
+    idx.sort_by_key(|&i| pts[i].1);
+    for k in (0..4).rev() {
+        let j = idx[k];
+        if j == 3 {
+            return false;
+        }
+        let mut r = f;
+        r[j] = q;
+        let o = gp::orient2d(r[0].0, r[1].0, r[2].0);
+        if o != 0.0 {
+            return o > 0.0;
+        }
+    }
+    debug_assert!(false, "perturbed incircle undecided");
+    false
+}
+
+/// Whether `q` is strictly between `a` and `b`, three points known to lie on one line (they share
+/// two planes): compared on the uv axis along which `a` and `b` differ most, by exact float
+/// comparisons (the axis choice only has to be one along which the line is not constant).
+pub fn line_between(a: [f64; 2], b: [f64; 2], q: [f64; 2]) -> bool {
+    let k = if (b[0] - a[0]).abs() >= (b[1] - a[1]).abs() {
+        0
+    } else {
+        1
+    };
+    let (lo, hi) = (a[k].min(b[k]), a[k].max(b[k]));
+    lo < q[k] && q[k] < hi
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -807,6 +866,37 @@ mod tests {
         assert_eq!(Bounds::for_extent(0.0), Bounds::NONE);
         assert_eq!(Bounds::for_extent(f64::INFINITY), Bounds::NONE);
     }
+    #[test]
+    fn plane_incircle_ties_by_gid() {
+        // the unit square's corners are cocircular: the two diagonals are decided by gid alone
+        let sq = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]];
+        let ids = [[0u64, 1, 2, 3], [3, 2, 1, 0], [5, 9, 2, 7], [1, 3, 0, 2]];
+        for g in ids {
+            let p: Vec<UvPoint> = (0..4).map(|i| (sq[i], g[i])).collect();
+            // exactly one diagonal: triangles (0,1,2)+(0,2,3) or (0,1,3)+(1,2,3), both orientations
+            let d02 = !plane_incircle(p[0], p[1], p[2], p[3]).unwrap()
+                && !plane_incircle(p[0], p[2], p[3], p[1]).unwrap();
+            let d13 = !plane_incircle(p[0], p[1], p[3], p[2]).unwrap()
+                && !plane_incircle(p[1], p[2], p[3], p[0]).unwrap();
+            assert!(d02 != d13, "{g:?}");
+            assert_eq!(
+                plane_incircle(p[0], p[1], p[2], p[3]),
+                plane_incircle(p[2], p[1], p[0], p[3])
+            );
+        }
+        assert_eq!(
+            plane_incircle(
+                ([0.0, 0.0], 0),
+                ([1.0, 0.0], 1),
+                ([2.0, 0.0], 2),
+                ([0.5, 0.5], 3)
+            ),
+            None
+        );
+        assert!(line_between([0.0, 1.0], [0.0, 3.0], [1e-17, 2.0]));
+        assert!(!line_between([0.0, 1.0], [0.0, 3.0], [0.0, 3.0]));
+    }
+
     #[test]
     fn signs() {
         let a = [0.0, 0.0, 0.0];

@@ -2,9 +2,17 @@
 //! matching facets, (2) positive finite tetrahedra, (3) a locally convex hull closed by infinite
 //! tetrahedra and (4) locally Delaunay facets imply a Delaunay triangulation of the vertices
 //! (Delaunay's lemma), and (5) every vertex is used.
+//!
+//! Tagged triangulations: (4) and the convexity in (3) are decided by the tag rules where they
+//! apply (for four points of one plane the float signs are rounding noise), no tetrahedron is
+//! degenerate by its tags (four vertices on one plane, three on one line), and (6) for every plane
+//! with a hull facet, the hull facets on it are exactly the reference 2D Delaunay triangulation of
+//! its points ([`super::plane2d`], brute force: independent of the kernel's incremental state).
 #![allow(clippy::needless_range_loop)]
+use super::tags::{self, PointTags};
 use super::tds::{facet_key, INFINITE, NONE};
-use super::{pred, Delaunay};
+use super::{plane2d, pred, Delaunay};
+use std::collections::{BTreeMap, BTreeSet};
 
 pub(super) fn check(dt: &Delaunay) -> Result<(), String> {
     let tets = &dt.tds.tets;
@@ -53,12 +61,24 @@ pub(super) fn check(dt: &Delaunay) -> Result<(), String> {
                 ));
             }
         }
-        let apex = |m: u32| p(tets[m as usize].v[tets[m as usize].index_of_neighbor(t)]);
+        let apex_id = |m: u32| tets[m as usize].v[tets[m as usize].index_of_neighbor(t)];
+        let apex = |m: u32| p(apex_id(m));
         if ninf == 0 {
             nfinite += 1;
             let [a, b, c, d] = pts_of(t);
             if pred::orient(a, b, c, d) <= 0.0 {
-                return Err(format!("tet {t} is not positively oriented"));
+                return Err(format!(
+                    "tet {t} is not positively oriented ({}){}",
+                    pred::orient(a, b, c, d),
+                    if dt.tagged {
+                        format!(": {:?}", v.map(|w| &dt.tags[w as usize]))
+                    } else {
+                        String::new()
+                    }
+                ));
+            }
+            if dt.tagged && tags::degenerate(v.map(|w| &dt.tags[w as usize])) {
+                return Err(format!("tet {t} is flat by its tags {:?}", ext_of(dt, v)));
             }
             // local Delaunay: no neighbour apex strictly inside, exactly; perturbed, none inside either.
             for i in 0..4 {
@@ -67,6 +87,14 @@ pub(super) fn check(dt: &Delaunay) -> Result<(), String> {
                     continue;
                 }
                 let e = apex(m);
+                if let Some(inside) = tag_rule(dt, v, apex_id(m)) {
+                    if inside {
+                        return Err(format!(
+                            "facet {i} of tet {t} is not locally Delaunay by the tag rules"
+                        ));
+                    }
+                    continue;
+                }
                 if pred::insphere(a, b, c, d, e) > 0.0 {
                     return Err(format!("facet {i} of tet {t} is not locally Delaunay"));
                 }
@@ -94,6 +122,20 @@ pub(super) fn check(dt: &Delaunay) -> Result<(), String> {
                 }
                 let mut s = pts_of(t);
                 s[k] = apex(n[i]);
+                let x = apex_id(n[i]);
+                let mut w = v;
+                w[k] = x;
+                if dt.tagged && tags::degenerate(w.map(|w| &dt.tags[w as usize])) {
+                    // two hull facets on one plane: locally Delaunay in its uv
+                    if tag_rule(dt, v, x) != Some(false) {
+                        return Err(format!(
+                            "hull facets of infinite tet {t} not Delaunay in their plane: {:?} and {:?}",
+                            v.map(|w| (w != INFINITE).then(|| &dt.tags[w as usize])),
+                            dt.tags[x as usize]
+                        ));
+                    }
+                    continue;
+                }
                 if pred::orient(s[0], s[1], s[2], s[3]) > 0.0 {
                     return Err(format!("hull not convex at infinite tet {t}"));
                 }
@@ -121,6 +163,67 @@ pub(super) fn check(dt: &Delaunay) -> Result<(), String> {
     for &(a, b) in &dt.dups {
         if dt.point(a) != dt.point(b) || dt.canonical(b) != b || dt.canonical(a) != b {
             return Err(format!("bad duplicate pair ({a}, {b})"));
+        }
+    }
+    if dt.tagged {
+        check_planes(dt)?;
+    }
+    Ok(())
+}
+
+/// The tag rule's answer for tetrahedron `v` (internal ids) and internal vertex `q`.
+fn tag_rule(dt: &Delaunay, v: [u32; 4], q: u32) -> Option<bool> {
+    if !dt.tagged {
+        return None;
+    }
+    let tv = v.map(|w| (w != INFINITE).then(|| &dt.tags[w as usize]));
+    tags::conflict(tv, &dt.tags[q as usize])
+}
+
+fn ext_of(dt: &Delaunay, v: [u32; 4]) -> [u32; 4] {
+    v.map(|w| dt.external(w))
+}
+
+/// (6): on every plane with a hull facet, the hull facets are the reference 2D Delaunay of its points.
+fn check_planes(dt: &Delaunay) -> Result<(), String> {
+    let tets = &dt.tds.tets;
+    let mut hull: BTreeMap<u32, BTreeSet<[u32; 3]>> = BTreeMap::new();
+    for t in dt.all_tets() {
+        let v = tets[t as usize].v;
+        let Some(k) = v.iter().position(|&w| w == INFINITE) else {
+            continue;
+        };
+        let mut f: Vec<u32> = (0..4).filter(|&i| i != k).map(|i| v[i]).collect();
+        f.sort_unstable();
+        let ts: Vec<&PointTags> = f.iter().map(|&w| &dt.tags[w as usize]).collect();
+        for &(pl, _) in &ts[0].planes {
+            if ts[1].on(pl) && ts[2].on(pl) {
+                hull.entry(pl).or_default().insert([f[0], f[1], f[2]]);
+            }
+        }
+    }
+    for (pl, got) in hull {
+        let ids: Vec<u32> = (0..dt.pts.len() as u32)
+            .filter(|&w| dt.tags[w as usize].on(pl))
+            .collect();
+        let refs: Vec<&PointTags> = ids.iter().map(|&w| &dt.tags[w as usize]).collect();
+        let want: BTreeSet<[u32; 3]> = plane2d::delaunay(pl, &refs)
+            .into_iter()
+            .map(|t| {
+                let mut f = t.map(|i| ids[i]);
+                f.sort_unstable();
+                f
+            })
+            .collect();
+        if got != want {
+            let ext = |s: &BTreeSet<[u32; 3]>| -> Vec<[u32; 3]> {
+                s.iter().map(|f| f.map(|w| dt.external(w))).collect()
+            };
+            return Err(format!(
+                "plane {pl}: hull facets differ from its 2D Delaunay: only in 3D {:?}, only in 2D {:?}",
+                ext(&got.difference(&want).copied().collect()),
+                ext(&want.difference(&got).copied().collect())
+            ));
         }
     }
     Ok(())

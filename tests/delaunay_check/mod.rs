@@ -51,6 +51,23 @@ pub fn check_tets(pts: &[P], tets: &[[u32; 4]], full_dim: bool) -> Summary {
     }
 }
 
+/// The checks of [`check_tets`] that hold for a tagged triangulation too (whose face points are
+/// ~1 ulp off their planes, so its hull is convex and its spheres empty only for the ideal points):
+/// positive orientation, facet pairing, closed boundary, every point used, volume = hull volume.
+/// Returns the volume.
+pub fn check_tets_structure(pts: &[P], tets: &[[u32; 4]]) -> f64 {
+    positive_orientation(pts, tets);
+    let hull = matched_facets(tets);
+    closed_surface(&hull);
+    let used = every_point_used(pts, tets, true);
+    let (volume, hull_volume) = volumes(pts, tets, &hull, used.first().copied());
+    assert!(
+        (volume - hull_volume).abs() <= 1e-12 * volume.abs().max(1e-300),
+        "volume {volume} != hull volume {hull_volume}"
+    );
+    volume
+}
+
 /// Every tetrahedron positively oriented, by the exact orientation predicate.
 fn positive_orientation(pts: &[P], tets: &[[u32; 4]]) {
     let p = |v: u32| pts[v as usize];

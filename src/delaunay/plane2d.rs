@@ -1,0 +1,85 @@
+//! A small reference 2D Delaunay triangulation of the points of one plane, in that plane's uv, with
+//! the tagged kernel's tie-breaking (exact `incircle`, 2D symbolic perturbation on gid, the line rule
+//! for points sharing a second plane). Brute force on purpose: a triangle is kept iff it is not
+//! degenerate and no other point conflicts with it, which is the definition, with no incremental
+//! state that could share a bug with the 3D kernel. O(n⁴): for checks on up to a few hundred points.
+use super::pred;
+use super::tags::{line_plane, on_one_line, PointTags};
+
+/// Whether `q` conflicts with triangle `f` of `plane`: the line rule when two of `f`'s vertices
+/// and `q` lie on one line (share a second plane), else the perturbed in-circle test in uv.
+fn conflicts(plane: u32, f: [&PointTags; 3], q: &PointTags) -> bool {
+    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+        if let Some(pl) = line_plane(f[i], f[j], q) {
+            let uv = |t: &PointTags| t.uv(pl).unwrap();
+            return pred::line_between(uv(f[i]), uv(f[j]), uv(q));
+        }
+    }
+    let uvg = |t: &PointTags| (t.uv(plane).unwrap(), t.gid);
+    pred::plane_incircle(uvg(f[0]), uvg(f[1]), uvg(f[2]), uvg(q)).unwrap_or(false)
+}
+
+/// The Delaunay triangles of `pts` (every one must lie on `plane`), as index triples counter-
+/// clockwise in uv, sorted. Collinear triples (in uv, or by sharing a second plane) are never
+/// triangles.
+pub fn delaunay(plane: u32, pts: &[&PointTags]) -> Vec<[usize; 3]> {
+    assert!(
+        pts.iter().all(|p| p.on(plane)),
+        "a point is not on the plane"
+    );
+    let uv = |i: usize| pts[i].uv(plane).unwrap();
+    let n = pts.len();
+    let mut out = Vec::new();
+    let mut witness = 0;
+    for i in 0..n {
+        for j in i + 1..n {
+            for k in j + 1..n {
+                let o = crate::geom::predicates::orient2d(uv(i), uv(j), uv(k));
+                if o == 0.0 || on_one_line(pts[i], pts[j], pts[k]) {
+                    continue;
+                }
+                let f = [pts[i], pts[j], pts[k]];
+                // the last witness first: a point that spoiled a neighbouring triple usually
+                // spoils this one (the search stays brute force, only faster to refute)
+                let others = |m: &usize| *m != i && *m != j && *m != k;
+                let empty = !(others(&witness) && conflicts(plane, f, pts[witness]))
+                    && match (0..n).filter(others).find(|&m| conflicts(plane, f, pts[m])) {
+                        Some(m) => {
+                            witness = m;
+                            false
+                        }
+                        None => true,
+                    };
+                if empty {
+                    out.push(if o > 0.0 { [i, j, k] } else { [i, k, j] });
+                }
+            }
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_is_triangulated_once() {
+        // a 4×3 grid: massively cocircular; 2·(3·2) triangles covering area 6
+        let pts: Vec<PointTags> = (0..12)
+            .map(|k| PointTags::new(100 - k, &[(4, [(k % 4) as f64, (k / 4) as f64])]))
+            .collect();
+        let refs: Vec<&PointTags> = pts.iter().collect();
+        let tris = delaunay(4, &refs);
+        assert_eq!(tris.len(), 12);
+        let area: f64 = tris
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| pts[i].uv(4).unwrap());
+                crate::geom::predicates::orient2d(a, b, c) / 2.0
+            })
+            .sum();
+        assert_eq!(area, 6.0);
+    }
+}
