@@ -32,6 +32,15 @@ pub const MAX_COORDINATE: f64 = 1e30;
 /// Nonzero magnitudes below this are flushed to zero (they would underflow in the predicates).
 pub const TINY_COORDINATE: f64 = 1e-100;
 
+/// How input is read. By default the readers repair what real segmentations contain (see the
+/// module docs and README, "Input formats") and say so in `Sections::warnings`; with `strict`
+/// every such repair is instead the located `Error::Input` it was before repairs existed.
+/// (Duplicate consecutive vertices and orientation are always repaired.)
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    pub strict: bool,
+}
+
 /// Which contour of a region.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Role {
@@ -116,8 +125,17 @@ impl RepairLog {
     }
 }
 
+/// Validate and repair, naming places with `loc`, with the default (repairing) options.
+pub fn validate_with(sections: Sections, loc: &dyn Locator) -> Result<Sections> {
+    validate_with_options(sections, loc, &ReadOptions::default())
+}
+
 /// Validate and repair, naming places with `loc`. Readers call this after building the sections.
-pub fn validate_with(mut sections: Sections, loc: &dyn Locator) -> Result<Sections> {
+pub fn validate_with_options(
+    mut sections: Sections,
+    loc: &dyn Locator,
+    _options: &ReadOptions,
+) -> Result<Sections> {
     for (s, sec) in sections.sections.iter().enumerate() {
         check_plane(&sec.plane).map_err(|r| Error::input(loc.plane(s), r))?;
     }

@@ -22,16 +22,21 @@
 use crate::error::{Error, Result};
 use crate::sections::{Contour, Plane, Region, Section, Sections};
 use crate::validate::{
-    self, check_coordinate, ContourId, Locator, Role, OFF_PLANE_RELATIVE_TOLERANCE,
+    self, check_coordinate, ContourId, Locator, ReadOptions, Role, OFF_PLANE_RELATIVE_TOLERANCE,
 };
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// Read a CSL file.
+/// Read a CSL file (repairing, see `ReadOptions`).
 pub fn read_csl(path: &Path) -> Result<Sections> {
+    read_csl_with(path, &ReadOptions::default())
+}
+
+/// Read a CSL file with `options`.
+pub fn read_csl_with(path: &Path, options: &ReadOptions) -> Result<Sections> {
     let text = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let text = String::from_utf8_lossy(&text);
-    parse_csl(&text, &path.display().to_string())
+    parse_csl_with(&text, &path.display().to_string(), options)
 }
 
 /// Write a CSL file.
@@ -132,6 +137,11 @@ impl Locator for CslLocator<'_> {
 
 /// Parse CSL text; `file_name` is used in messages. The result is validated (see `validate`).
 pub fn parse_csl(text: &str, file_name: &str) -> Result<Sections> {
+    parse_csl_with(text, file_name, &ReadOptions::default())
+}
+
+/// Parse CSL text with `options` (`strict`: no repairs, see `ReadOptions`).
+pub fn parse_csl_with(text: &str, file_name: &str, options: &ReadOptions) -> Result<Sections> {
     let mut t = Tokens::new(text);
     let err =
         |line, plane, comp, reason: String| Error::input(at(file_name, line, plane, comp), reason);
@@ -429,7 +439,7 @@ pub fn parse_csl(text: &str, file_name: &str) -> Result<Sections> {
         n_labels,
         warnings,
     };
-    validate::validate_with(sections, &loc)
+    validate::validate_with_options(sections, &loc, options)
 }
 
 fn clip(s: &str) -> String {
