@@ -1,0 +1,155 @@
+//! Input repairs (README, "Input formats"): each kind on a small synthetic file, the warning that
+//! names where it happened, the same input refused with `strict` (library and `info --strict`),
+//! and the shared files untouched (no repair, same sections as strict reading).
+mod common;
+use common::bin;
+use slice2solid::io::csl::{parse_csl, parse_csl_with, to_csl_string};
+use slice2solid::io::ReadOptions;
+use slice2solid::Sections;
+
+const STRICT: ReadOptions = ReadOptions { strict: true };
+
+/// Plane 1: a 4x4 square on z = 0 (lines 3-8); plane 2 (line 9) with `plane2` as its equation
+/// `a b c d` and the vertices `v2` (lines 10-13), one component (line 14).
+fn two_planes(plane2: &str, v2: &str) -> String {
+    format!("CSLC\n2 1\n1 4 1 0 0 1 0\n0 0 0\n4 0 0\n4 4 0\n0 4 0\n4 1 0 1 2 3\n2 4 1 {plane2}\n{v2}\n4 1 0 1 2 3\n")
+}
+
+fn repairs(s: &Sections) -> Vec<&String> {
+    s.warnings
+        .iter()
+        .filter(|w| w.contains("repaired"))
+        .collect()
+}
+
+fn strict_error(text: &str) -> String {
+    match parse_csl_with(text, "t.csl", &STRICT) {
+        Ok(_) => panic!("strict accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// `slice2solid info` on `text` written to a file: (success, stdout, stderr).
+fn info(text: &str, strict: bool) -> (bool, String, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("t.csl");
+    std::fs::write(&p, text).unwrap();
+    let mut cmd = bin();
+    cmd.arg("info").arg(&p);
+    if strict {
+        cmd.arg("--strict");
+    }
+    let out = cmd.output().unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn assert_cli_repairs_and_strict_refuses(text: &str, warning: &str, error: &str) {
+    let (ok, out, err) = info(text, false);
+    assert!(ok && out.contains(warning), "{out}{err}");
+    let (ok, out, err) = info(text, true);
+    assert!(!ok && err.contains(error), "{out}{err}");
+}
+
+#[test]
+fn flipped_offset_file_is_read_with_that_convention() {
+    // z = 1 written as 0 0 1 1 (z + 1 = 0): every plane fits z - d = 0 instead.
+    let text = two_planes("0 0 1 1", "0 0 1\n4 0 1\n4 4 1\n0 4 1");
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let r = repairs(&s);
+    assert_eq!(r.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.csl: repaired plane equations")
+            && r[0].contains("1 of 2 plane(s)")
+            && r[0].contains("- d = 0"),
+        "{}",
+        r[0]
+    );
+    assert_eq!(s.sections.len(), 2);
+    assert!(s.sections[1].plane.signed_distance([3.0, 3.0, 1.0]).abs() < 1e-12);
+    assert!(s.sections[0].plane.signed_distance([3.0, 3.0, 0.0]).abs() < 1e-12);
+    for sec in &s.sections {
+        assert_eq!(sec.regions.len(), 1);
+        assert!((sec.area() - 16.0).abs() < 1e-9, "{}", sec.area());
+        assert!(sec.max_off_plane < 1e-12);
+    }
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:10: plane 2") && e.contains("vertex 0 is 2.000e0 off its plane"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "repaired plane equations", "plane 2");
+}
+
+#[test]
+fn plane_equation_off_its_coplanar_vertices_takes_their_plane() {
+    // Stated z = 1; the vertices lie on z = 1 + 0.01 x (0.04 off at x = 4; tolerance 5.8e-3).
+    let text = two_planes("0 0 1 -1", "0 0 1\n4 0 1.04\n4 4 1.04\n0 4 1");
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let r = repairs(&s);
+    assert_eq!(r.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.csl:9: plane 2: repaired plane equation")
+            && r[0].contains("up to 4.000e-2 off")
+            && r[0].contains("normal turned by 0.573 degrees"),
+        "{}",
+        r[0]
+    );
+    let sec = &s.sections[1];
+    for v in [
+        [0.0, 0.0, 1.0],
+        [4.0, 0.0, 1.04],
+        [4.0, 4.0, 1.04],
+        [0.0, 4.0, 1.0],
+    ] {
+        assert!(sec.plane.signed_distance(v).abs() < 1e-12);
+    }
+    let area = 16.0 * (1.0f64 + 1e-4).sqrt();
+    assert!((sec.area() - area).abs() < 1e-9, "{}", sec.area());
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:11: plane 2") && e.contains("vertex 1 is 4.000e-2 off its plane"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "repaired plane equation", "plane 2");
+}
+
+#[test]
+fn one_vertex_off_an_agreeing_plane_is_still_rejected() {
+    // Three of four vertices agree with z = 1; the fourth is misplaced, not the plane.
+    let text = two_planes("0 0 1 -1", "0 0 1\n4 0 1\n4 4 1.5\n0 4 1");
+    let e = parse_csl(&text, "t.csl").unwrap_err().to_string();
+    assert!(
+        e.starts_with("t.csl:12: plane 2") && e.contains("off its plane"),
+        "{e}"
+    );
+    // Non-coplanar vertices with no majority on the stated plane: rejected too.
+    let text = two_planes("0 0 1 -1", "0 0 1.2\n4 0 1\n4 4 1.2\n0 4 1");
+    let e = parse_csl(&text, "t.csl").unwrap_err().to_string();
+    assert!(e.contains("plane 2") && e.contains("off its plane"), "{e}");
+}
+
+/// Nothing valid is repaired: every shared file reads without a repair warning, and to the same
+/// sections (CSL text, byte for byte) as strict reading, which performs no repair at all.
+#[test]
+fn shared_files_are_not_repaired() {
+    for path in common::shared_csl_files() {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let name = path.display().to_string();
+        let repaired = parse_csl(&text, &name).unwrap();
+        let strict = parse_csl_with(&text, &name, &STRICT).unwrap();
+        assert!(
+            repairs(&repaired).is_empty(),
+            "{name}: {:?}",
+            repaired.warnings
+        );
+        assert_eq!(repaired.warnings, strict.warnings, "{name}");
+        assert!(
+            to_csl_string(&repaired) == to_csl_string(&strict),
+            "{name}: sections differ"
+        );
+    }
+}
