@@ -2,7 +2,10 @@
 //! builds a [`Sections`] in memory (the mesh slicer, tests).
 //!
 //! Repairs (reported in `Sections::warnings`): duplicate consecutive vertices are removed, contours
-//! are re-oriented (outer counter-clockwise, holes clockwise seen from the normal).
+//! are re-oriented (outer counter-clockwise, holes clockwise seen from the normal), and unless
+//! `ReadOptions::strict`, a region with a self-intersecting or self-touching contour is replaced by
+//! the simple regions it encloses (nonzero winding, see `repair`); the CSL reader also repairs plane
+//! equations (`io::csl`). In strict mode these are the errors below.
 //! Errors (`Error::Input`, located by a [`Locator`]): non-finite or out-of-range numbers, zero normal,
 //! a vertex off its plane beyond `OFF_PLANE_RELATIVE_TOLERANCE` × the model's bounding-box diagonal,
 //! fewer than 3 distinct vertices, a self-intersecting (or self-touching) contour, two contours of
@@ -14,6 +17,9 @@
 use crate::error::{Error, Result};
 use crate::geom::predicates::orient2d;
 use crate::sections::{cross, dot, sub, Contour, Plane, Sections};
+
+mod repair;
+pub use repair::NUDGE_RELATIVE;
 
 /// A vertex may lie this far from its plane, relative to the diagonal of the model's bounding box.
 /// Measured on the shared CSL files: at most 4.9e-5 (Horsers, coordinates printed with 2 decimals,
@@ -134,7 +140,7 @@ pub fn validate_with(sections: Sections, loc: &dyn Locator) -> Result<Sections> 
 pub fn validate_with_options(
     mut sections: Sections,
     loc: &dyn Locator,
-    _options: &ReadOptions,
+    options: &ReadOptions,
 ) -> Result<Sections> {
     for (s, sec) in sections.sections.iter().enumerate() {
         check_plane(&sec.plane).map_err(|r| Error::input(loc.plane(s), r))?;
@@ -240,6 +246,24 @@ pub fn validate_with_options(
             }
         }
     }
+
+    // Self-intersecting and self-touching contours (unless strict): see `repair`.
+    let remap;
+    let loc: &dyn Locator = if options.strict {
+        loc
+    } else {
+        let nudge = NUDGE_RELATIVE * model_diagonal(&sections);
+        let mut repairs = Vec::new();
+        let map = sections
+            .sections
+            .iter_mut()
+            .enumerate()
+            .map(|(s, sec)| repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs))
+            .collect();
+        sections.warnings.extend(repairs);
+        remap = repair::RemapLocator { inner: loc, map };
+        &remap
+    };
 
     check_duplicate_planes(&sections, loc)?;
 
@@ -805,20 +829,32 @@ mod tests {
         assert!((r.area() - 8.0).abs() < 1e-12);
     }
 
+    fn validate_strict(sections: Sections, source: &str) -> Result<Sections> {
+        let loc = MemoryLocator {
+            source,
+            source_index: sections.sections.iter().map(|s| s.source_index).collect(),
+        };
+        validate_with_options(sections, &loc, &ReadOptions { strict: true })
+    }
+
     #[test]
-    fn bow_tie_is_rejected() {
+    fn bow_tie_is_rejected_when_strict_and_repaired_otherwise() {
         let p = z1();
         let c = Contour::from_2d(&p, vec![[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]);
-        let e = validate(
-            one_plane(vec![Region {
-                label: 1,
-                outer: c,
-                holes: vec![],
-            }]),
-            "mem",
-        )
-        .unwrap_err()
-        .to_string();
+        let s = one_plane(vec![Region {
+            label: 1,
+            outer: c,
+            holes: vec![],
+        }]);
+        let v = validate(s.clone(), "mem").unwrap();
+        assert_eq!(v.sections[0].regions.len(), 2);
+        assert!(
+            v.warnings[0]
+                .starts_with("mem: section 0 (plane 0), region 0, outer contour: repaired"),
+            "{:?}",
+            v.warnings
+        );
+        let e = validate_strict(s, "mem").unwrap_err().to_string();
         assert!(
             e.contains("self-intersecting") && e.contains("mem: section 0"),
             "{e}"
@@ -830,7 +866,7 @@ mod tests {
         let p = z1();
         // Goes to (2,0) and back along the same line to (1,0).
         let spike = Contour::from_2d(&p, vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
-        let e = validate(
+        let e = validate_strict(
             one_plane(vec![Region {
                 label: 1,
                 outer: spike,
@@ -841,6 +877,18 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("self-intersecting"), "{e}");
+        // Repaired: the spike has no area, the triangle (0,0) (1,0) (1,1) is left.
+        let v = validate(
+            one_plane(vec![Region {
+                label: 1,
+                outer: Contour::from_2d(&p, vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]),
+                holes: vec![],
+            }]),
+            "m",
+        )
+        .unwrap();
+        assert_eq!(v.sections[0].regions.len(), 1);
+        assert!((v.sections[0].regions[0].area() - 0.5).abs() < 1e-12);
         // Two squares sharing one corner.
         let e = validate(
             one_plane(vec![
@@ -979,13 +1027,15 @@ mod tests {
         assert!(t.elapsed().as_secs_f64() < 1.0);
         let mut crossed = circle;
         crossed.swap(777, 778);
-        let e = validate(one_plane(vec![region(crossed)]), "m")
+        let e = validate_strict(one_plane(vec![region(crossed.clone())]), "m")
             .unwrap_err()
             .to_string();
         assert!(
             e.contains("edges 776 and 778") || e.contains("self-intersecting"),
             "{e}"
         );
+        let v = validate(one_plane(vec![region(crossed)]), "m").unwrap();
+        assert_eq!(v.sections[0].regions.len(), 2, "{:?}", v.warnings);
     }
 
     #[test]

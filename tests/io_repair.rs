@@ -15,6 +15,19 @@ fn two_planes(plane2: &str, v2: &str) -> String {
     format!("CSLC\n2 1\n1 4 1 0 0 1 0\n0 0 0\n4 0 0\n4 4 0\n0 4 0\n4 1 0 1 2 3\n2 4 1 {plane2}\n{v2}\n4 1 0 1 2 3\n")
 }
 
+/// Plane 1 as in `two_planes`; plane 2 (line 9) on z = 1 with the 2D vertices `v2` (x y, one a line,
+/// from line 10) and the components `comps` (one a line, after the vertices).
+fn plane2(v2: &[[f64; 2]], comps: &[&str]) -> String {
+    let v: Vec<String> = v2.iter().map(|p| format!("{} {} 1", p[0], p[1])).collect();
+    format!(
+        "CSLC\n2 1\n1 4 1 0 0 1 0\n0 0 0\n4 0 0\n4 4 0\n0 4 0\n4 1 0 1 2 3\n2 {} {} 0 0 1 -1\n{}\n{}\n",
+        v2.len(),
+        comps.len(),
+        v.join("\n"),
+        comps.join("\n")
+    )
+}
+
 fn repairs(s: &Sections) -> Vec<&String> {
     s.warnings
         .iter()
@@ -152,4 +165,78 @@ fn shared_files_are_not_repaired() {
             "{name}: sections differ"
         );
     }
+}
+
+#[test]
+fn bow_tie_splits_into_two_regions() {
+    let text = plane2(
+        &[[0.0, 0.0], [4.0, 4.0], [4.0, 0.0], [0.0, 4.0]],
+        &["4 1 0 1 2 3"],
+    );
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let r = repairs(&s);
+    assert_eq!(r.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.csl:14: plane 2, component 0: repaired self-intersecting")
+            && r[0].contains("split into 2 regions with 0 hole(s)"),
+        "{}",
+        r[0]
+    );
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    let sec = &s.sections[1];
+    assert_eq!(sec.regions.len(), 2);
+    for region in &sec.regions {
+        assert_eq!(region.label, 1);
+        assert!(region.holes.is_empty());
+        assert_eq!(region.outer.points2.len(), 3);
+        assert!((region.area() - 4.0).abs() < 1e-6, "{}", region.area());
+        assert!(region.outer.signed_area() > 0.0);
+    }
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:14: plane 2, component 0") && e.contains("self-intersecting contour"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "split into 2 regions", "self-intersecting");
+}
+
+#[test]
+fn keyhole_becomes_an_outer_contour_and_a_hole() {
+    // The outline runs up a zero-width channel at x = 2 into the hole [1,3]x[1,3], round it
+    // clockwise, and back down.
+    let v = [
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 1.0],
+        [1.0, 1.0],
+        [1.0, 3.0],
+        [3.0, 3.0],
+        [3.0, 1.0],
+        [4.0, 0.0],
+        [4.0, 4.0],
+        [0.0, 4.0],
+    ];
+    let text = plane2(&v, &["12 1 0 1 2 3 4 5 6 2 1 7 8 9"]);
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let r = repairs(&s);
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.csl:20: plane 2, component 0: repaired self-intersecting")
+            && r[0].contains("keyhole: 1 outer + 1 hole(s)"),
+        "{}",
+        r[0]
+    );
+    let sec = &s.sections[1];
+    assert_eq!(sec.regions.len(), 1);
+    let region = &sec.regions[0];
+    assert_eq!(region.holes.len(), 1);
+    assert!((region.outer.signed_area() - 16.0).abs() < 1e-9);
+    assert!((region.holes[0].signed_area() + 4.0).abs() < 1e-9);
+    assert!((region.area() - 12.0).abs() < 1e-9);
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:20: plane 2, component 0") && e.contains("self-intersecting contour"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "keyhole", "self-intersecting");
 }
