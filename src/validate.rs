@@ -4,7 +4,9 @@
 //! Repairs (reported in `Sections::warnings`): duplicate consecutive vertices are removed, contours
 //! are re-oriented (outer counter-clockwise, holes clockwise seen from the normal), and unless
 //! `ReadOptions::strict`, a region with a self-intersecting or self-touching contour is replaced by
-//! the simple regions it encloses (nonzero winding, see `repair`); the CSL reader also repairs plane
+//! the simple regions it encloses (nonzero winding, see `repair`), and touching or overlapping
+//! regions of one label (or a hole touching its outer contour) are merged into the union of their
+//! material; the CSL reader also repairs plane
 //! equations (`io::csl`). In strict mode these are the errors below.
 //! Errors (`Error::Input`, located by a [`Locator`]): non-finite or out-of-range numbers, zero normal,
 //! a vertex off its plane beyond `OFF_PLANE_RELATIVE_TOLERANCE` × the model's bounding-box diagonal,
@@ -258,7 +260,11 @@ pub fn validate_with_options(
             .sections
             .iter_mut()
             .enumerate()
-            .map(|(s, sec)| repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs))
+            .map(|(s, sec)| {
+                let mut map = repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs);
+                repair::repair_label_conflicts(sec, s, loc, nudge, &mut map, &mut repairs);
+                map
+            })
             .collect();
         sections.warnings.extend(repairs);
         remap = repair::RemapLocator { inner: loc, map };
@@ -889,8 +895,23 @@ mod tests {
         .unwrap();
         assert_eq!(v.sections[0].regions.len(), 1);
         assert!((v.sections[0].regions[0].area() - 0.5).abs() < 1e-12);
-        // Two squares sharing one corner.
-        let e = validate(
+        // Two squares sharing one corner: refused when strict, moved apart otherwise.
+        let corner = one_plane(vec![
+            Region {
+                label: 1,
+                outer: square(&p, 0.0, 0.0, 1.0),
+                holes: vec![],
+            },
+            Region {
+                label: 1,
+                outer: square(&p, 1.0, 1.0, 1.0),
+                holes: vec![],
+            },
+        ]);
+        let v = validate(corner, "m").unwrap();
+        assert_eq!(v.sections[0].regions.len(), 2);
+        assert!((v.sections[0].area() - 2.0).abs() < 1e-6);
+        let e = validate_strict(
             one_plane(vec![
                 Region {
                     label: 1,
@@ -932,8 +953,13 @@ mod tests {
                 holes: vec![],
             },
         ]);
-        let e = validate(overlapping, "m").unwrap_err().to_string();
+        let e = validate_strict(overlapping.clone(), "m")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("regions overlap"), "{e}");
+        let v = validate(overlapping, "m").unwrap();
+        assert_eq!(v.sections[0].regions.len(), 1);
+        assert!((v.sections[0].area() - 100.0).abs() < 1e-9);
         // An island inside a hole is fine.
         let island = one_plane(vec![
             Region {

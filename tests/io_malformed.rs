@@ -176,12 +176,27 @@ fn csl_crossing_contours() {
         "0 0 1\n4 0 1\n4 4 1\n0 4 1\n2 2 1\n6 2 1\n6 6 1\n2 6 1",
         "4 1 0 1 2 3\n4 1 4 5 6 7",
     );
+    // Same label: refused in strict mode, merged by default (tests/io_repair.rs).
+    let e = parse_csl_with(&text, "t.csl", &ReadOptions { strict: true })
+        .unwrap_err()
+        .to_string();
+    expect(
+        &e,
+        "t.csl:20: plane 2, component 0",
+        "contours of one plane cross",
+    );
+    assert!(e.contains("t.csl:21: plane 2, component 1"));
+    assert_eq!(
+        parse_csl(&text, "t.csl").unwrap().sections[1].regions.len(),
+        1
+    );
+    // Different labels: refused.
+    let text = text.replace("4 1 4 5 6 7", "4 2 4 5 6 7");
     expect(
         &csl_error(&text),
         "t.csl:20: plane 2, component 0",
         "contours of one plane cross",
     );
-    assert!(csl_error(&text).contains("t.csl:21: plane 2, component 1"));
 }
 
 #[test]
@@ -278,7 +293,7 @@ fn json_malformed() {
     );
     expect(
         &json_error(&p(
-            r#"{"points": [[0,0,1],[4,0,1],[4,4,1],[0,4,1]]}, {"points": [[2,2,1],[6,2,1],[6,6,1]]}"#,
+            r#"{"points": [[0,0,1],[4,0,1],[4,4,1],[0,4,1]]}, {"points": [[2,2,1],[6,2,1],[6,6,1]], "label": 2}"#,
         )),
         "t.json: $.planes[1].contours[0]",
         "contours of one plane cross",

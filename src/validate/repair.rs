@@ -11,9 +11,12 @@
 //! the resulting contours meet at a vertex (a bow-tie's two lobes at the crossing), each contour's
 //! copy of that vertex is moved into its own material by `NUDGE_RELATIVE` × the model's diagonal, so
 //! the pieces no longer touch; the exact validator then checks the result like any input.
-use super::{check_intersections, orientation, ContourId, Locator, Role};
+use super::{
+    check_intersections, check_nesting, orientation, winding_number, ContourId, Locator, Role,
+};
 use crate::sections::{Contour, Region, Section};
 use i_overlay::core::{fill_rule::FillRule, overlay_rule::OverlayRule};
+use i_overlay::float::simplify::SimplifyShape;
 use i_overlay::float::single::SingleFloatOverlay;
 use std::collections::HashMap;
 
@@ -33,17 +36,22 @@ impl Locator for RemapLocator<'_> {
         self.inner.plane(s)
     }
     fn contour(&self, id: ContourId) -> String {
-        let (orig, repaired) = self.map[id.section][id.region];
-        if repaired {
-            let outer = ContourId {
-                section: id.section,
-                region: orig,
-                role: Role::Outer,
-            };
-            format!("{} (as repaired)", self.inner.contour(outer))
-        } else {
-            self.inner.contour(ContourId { region: orig, ..id })
-        }
+        remapped(self.inner, &self.map[id.section], id)
+    }
+}
+
+/// The location of contour `id` of a section whose regions came from the input by `map`.
+fn remapped(inner: &dyn Locator, map: &[(usize, bool)], id: ContourId) -> String {
+    let (orig, repaired) = map[id.region];
+    if repaired {
+        let outer = ContourId {
+            section: id.section,
+            region: orig,
+            role: Role::Outer,
+        };
+        format!("{} (as repaired)", inner.contour(outer))
+    } else {
+        inner.contour(ContourId { region: orig, ..id })
     }
 }
 
@@ -129,6 +137,12 @@ fn resolve(region: &Region, nudge: f64) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
     let subject = vec![region.outer.points2.clone()];
     let clip: Vec<Vec<[f64; 2]>> = region.holes.iter().map(|h| h.points2.clone()).collect();
     let shapes = subject.overlay_as::<i64>(&clip, OverlayRule::Difference, FillRule::NonZero);
+    pieces_of(shapes, nudge)
+}
+
+/// i_overlay's shapes as pieces (outer counter-clockwise, then holes clockwise), without repeated
+/// vertices, vertices shared by two contours moved apart. None if nothing has area.
+fn pieces_of(shapes: Vec<Vec<Vec<[f64; 2]>>>, nudge: f64) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
     let mut pieces: Vec<Vec<Vec<[f64; 2]>>> = Vec::new();
     for shape in shapes {
         let mut piece = Vec::new();
@@ -189,5 +203,155 @@ fn separate_shared_vertices(pieces: &mut [Vec<Vec<[f64; 2]>>], nudge: f64) {
                 c[i] = [v[0] + nudge * d[0] / l, v[1] + nudge * d[1] / l];
             }
         }
+    }
+}
+
+/// Same-label conflicts of section `s` (after `repair_self_intersections`, whose `map` this
+/// extends): when the contours of one label's regions touch or cross (two components, or a hole and
+/// its outer contour), or a region lies inside the material of another of its label, that label's
+/// regions are replaced by the union of their material (outer contours counted +1, holes -1, kept
+/// where the count is positive: a hole touching its outer contour is subtracted from it). A hole
+/// outside its parent, not touching it, stays an error. Different labels are left to the validator.
+pub(super) fn repair_label_conflicts(
+    sec: &mut Section,
+    s: usize,
+    loc: &dyn Locator,
+    nudge: f64,
+    map: &mut Vec<(usize, bool)>,
+    warnings: &mut Vec<String>,
+) {
+    let mut labels: Vec<i32> = sec.regions.iter().map(|r| r.label).collect();
+    labels.sort_unstable();
+    labels.dedup();
+    for label in labels {
+        let members: Vec<usize> = (0..sec.regions.len())
+            .filter(|&r| sec.regions[r].label == label)
+            .collect();
+        let contours: Vec<(ContourId, &Contour)> = members
+            .iter()
+            .flat_map(|&r| {
+                let region = &sec.regions[r];
+                std::iter::once((Role::Outer, &region.outer))
+                    .chain(
+                        region
+                            .holes
+                            .iter()
+                            .enumerate()
+                            .map(|(h, c)| (Role::Hole(h), c)),
+                    )
+                    .map(move |(role, c)| {
+                        (
+                            ContourId {
+                                section: s,
+                                region: r,
+                                role,
+                            },
+                            c,
+                        )
+                    })
+            })
+            .collect();
+        let touching = check_intersections(&contours, loc).is_err();
+        if !touching {
+            let holes_inside = members.iter().all(|&r| {
+                let region = &sec.regions[r];
+                region
+                    .holes
+                    .iter()
+                    .all(|h| winding_number(h.points2[0], &region.outer.points2) != 0)
+            });
+            if !holes_inside || check_nesting(&contours, loc).is_ok() {
+                continue;
+            }
+        }
+        let mut material: Vec<Vec<[f64; 2]>> = Vec::new();
+        for &r in &members {
+            let region = &sec.regions[r];
+            for (k, c) in std::iter::once(&region.outer)
+                .chain(&region.holes)
+                .enumerate()
+            {
+                let mut p = c.points2.clone();
+                if (orientation(&p) > 0.0) != (k == 0) {
+                    p.reverse();
+                }
+                material.push(p);
+            }
+        }
+        let shapes = material.simplify_shape_as::<i64>(FillRule::Positive);
+        let Some(pieces) = pieces_of(shapes, nudge) else {
+            continue;
+        };
+        let n = pieces.len();
+        let holes: usize = pieces.iter().map(|p| p.len() - 1).sum();
+        let names: Vec<String> = members
+            .iter()
+            .take(3)
+            .map(|&r| {
+                remapped(
+                    loc,
+                    map,
+                    ContourId {
+                        section: s,
+                        region: r,
+                        role: Role::Outer,
+                    },
+                )
+            })
+            .collect();
+        let more = if members.len() > 3 {
+            format!(" and {} more", members.len() - 3)
+        } else {
+            String::new()
+        };
+        let what = if members.len() == 1 {
+            "a hole touching or crossing its outer contour".to_string()
+        } else {
+            format!(
+                "{} touching or overlapping components of label {label}",
+                members.len()
+            )
+        };
+        let with = if members.len() > 1 {
+            format!(" (with {}{more})", names[1..].join("; "))
+        } else {
+            String::new()
+        };
+        warnings.push(format!(
+            "{}: repaired {what}{with}: merged into {n} region(s) with {holes} hole(s) (union of their material)",
+            names[0]
+        ));
+        let origin = map[members[0]].0;
+        let new: Vec<Region> = pieces
+            .into_iter()
+            .map(|mut p| {
+                let outer = p.remove(0);
+                Region {
+                    label,
+                    outer: Contour::from_2d(&sec.plane, outer),
+                    holes: p
+                        .into_iter()
+                        .map(|h| Contour::from_2d(&sec.plane, h))
+                        .collect(),
+                }
+            })
+            .collect();
+        // Replace the members by the pieces, in place of the first member.
+        let mut regions = Vec::new();
+        let mut new_map = Vec::new();
+        let mut new = Some(new);
+        for (r, region) in std::mem::take(&mut sec.regions).into_iter().enumerate() {
+            if r == members[0] {
+                for piece in new.take().expect("inserted once") {
+                    regions.push(piece);
+                    new_map.push((origin, true));
+                }
+            } else if region.label != label {
+                regions.push(region);
+                new_map.push(map[r]);
+            }
+        }
+        sec.regions = regions;
+        *map = new_map;
     }
 }
