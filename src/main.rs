@@ -103,6 +103,10 @@ pub struct ReconstructArgs {
     /// sides, so that they triangulate the face alike
     #[arg(long)]
     pub shared_samples: bool,
+    /// Refuse input that would be repaired (plane equations off their vertices, self-intersecting
+    /// contours, touching or overlapping components): each repair becomes a located error
+    #[arg(long)]
+    pub strict: bool,
 }
 
 #[derive(clap::Args)]
@@ -182,6 +186,10 @@ pub struct InfoArgs {
     /// Also build the plane arrangement and print its size
     #[arg(long)]
     pub cells: bool,
+    /// Refuse input that would be repaired (plane equations off their vertices, self-intersecting
+    /// contours, touching or overlapping components): each repair becomes a located error
+    #[arg(long)]
+    pub strict: bool,
 }
 
 fn main() -> ExitCode {

@@ -2,7 +2,12 @@
 //! builds a [`Sections`] in memory (the mesh slicer, tests).
 //!
 //! Repairs (reported in `Sections::warnings`): duplicate consecutive vertices are removed, contours
-//! are re-oriented (outer counter-clockwise, holes clockwise seen from the normal).
+//! are re-oriented (outer counter-clockwise, holes clockwise seen from the normal), and unless
+//! `ReadOptions::strict`, a region with a self-intersecting or self-touching contour is replaced by
+//! the simple regions it encloses (nonzero winding, see `repair`), and touching or overlapping
+//! regions of one label (or a hole touching its outer contour) are merged into the union of their
+//! material; the CSL reader also repairs plane
+//! equations (`io::csl`). In strict mode these are the errors below.
 //! Errors (`Error::Input`, located by a [`Locator`]): non-finite or out-of-range numbers, zero normal,
 //! a vertex off its plane beyond `OFF_PLANE_RELATIVE_TOLERANCE` × the model's bounding-box diagonal,
 //! fewer than 3 distinct vertices, a self-intersecting (or self-touching) contour, two contours of
@@ -14,6 +19,9 @@
 use crate::error::{Error, Result};
 use crate::geom::predicates::orient2d;
 use crate::sections::{cross, dot, sub, Contour, Plane, Sections};
+
+mod repair;
+pub use repair::NUDGE_RELATIVE;
 
 /// A vertex may lie this far from its plane, relative to the diagonal of the model's bounding box.
 /// Measured on the shared CSL files: at most 4.9e-5 (Horsers, coordinates printed with 2 decimals,
@@ -31,6 +39,15 @@ pub const MAX_COORDINATE: f64 = 1e30;
 
 /// Nonzero magnitudes below this are flushed to zero (they would underflow in the predicates).
 pub const TINY_COORDINATE: f64 = 1e-100;
+
+/// How input is read. By default the readers repair what real segmentations contain (see the
+/// module docs and README, "Input formats") and say so in `Sections::warnings`; with `strict`
+/// every such repair is instead the located `Error::Input` it was before repairs existed.
+/// (Duplicate consecutive vertices and orientation are always repaired.)
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    pub strict: bool,
+}
 
 /// Which contour of a region.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -116,8 +133,17 @@ impl RepairLog {
     }
 }
 
+/// Validate and repair, naming places with `loc`, with the default (repairing) options.
+pub fn validate_with(sections: Sections, loc: &dyn Locator) -> Result<Sections> {
+    validate_with_options(sections, loc, &ReadOptions::default())
+}
+
 /// Validate and repair, naming places with `loc`. Readers call this after building the sections.
-pub fn validate_with(mut sections: Sections, loc: &dyn Locator) -> Result<Sections> {
+pub fn validate_with_options(
+    mut sections: Sections,
+    loc: &dyn Locator,
+    options: &ReadOptions,
+) -> Result<Sections> {
     for (s, sec) in sections.sections.iter().enumerate() {
         check_plane(&sec.plane).map_err(|r| Error::input(loc.plane(s), r))?;
     }
@@ -222,6 +248,28 @@ pub fn validate_with(mut sections: Sections, loc: &dyn Locator) -> Result<Sectio
             }
         }
     }
+
+    // Self-intersecting and self-touching contours (unless strict): see `repair`.
+    let remap;
+    let loc: &dyn Locator = if options.strict {
+        loc
+    } else {
+        let nudge = NUDGE_RELATIVE * model_diagonal(&sections);
+        let mut repairs = Vec::new();
+        let map = sections
+            .sections
+            .iter_mut()
+            .enumerate()
+            .map(|(s, sec)| {
+                let mut map = repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs);
+                repair::repair_label_conflicts(sec, s, loc, nudge, &mut map, &mut repairs);
+                map
+            })
+            .collect();
+        sections.warnings.extend(repairs);
+        remap = repair::RemapLocator { inner: loc, map };
+        &remap
+    };
 
     check_duplicate_planes(&sections, loc)?;
 
@@ -787,20 +835,32 @@ mod tests {
         assert!((r.area() - 8.0).abs() < 1e-12);
     }
 
+    fn validate_strict(sections: Sections, source: &str) -> Result<Sections> {
+        let loc = MemoryLocator {
+            source,
+            source_index: sections.sections.iter().map(|s| s.source_index).collect(),
+        };
+        validate_with_options(sections, &loc, &ReadOptions { strict: true })
+    }
+
     #[test]
-    fn bow_tie_is_rejected() {
+    fn bow_tie_is_rejected_when_strict_and_repaired_otherwise() {
         let p = z1();
         let c = Contour::from_2d(&p, vec![[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]);
-        let e = validate(
-            one_plane(vec![Region {
-                label: 1,
-                outer: c,
-                holes: vec![],
-            }]),
-            "mem",
-        )
-        .unwrap_err()
-        .to_string();
+        let s = one_plane(vec![Region {
+            label: 1,
+            outer: c,
+            holes: vec![],
+        }]);
+        let v = validate(s.clone(), "mem").unwrap();
+        assert_eq!(v.sections[0].regions.len(), 2);
+        assert!(
+            v.warnings[0]
+                .starts_with("mem: section 0 (plane 0), region 0, outer contour: repaired"),
+            "{:?}",
+            v.warnings
+        );
+        let e = validate_strict(s, "mem").unwrap_err().to_string();
         assert!(
             e.contains("self-intersecting") && e.contains("mem: section 0"),
             "{e}"
@@ -812,7 +872,7 @@ mod tests {
         let p = z1();
         // Goes to (2,0) and back along the same line to (1,0).
         let spike = Contour::from_2d(&p, vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
-        let e = validate(
+        let e = validate_strict(
             one_plane(vec![Region {
                 label: 1,
                 outer: spike,
@@ -823,8 +883,35 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("self-intersecting"), "{e}");
-        // Two squares sharing one corner.
-        let e = validate(
+        // Repaired: the spike has no area, the triangle (0,0) (1,0) (1,1) is left.
+        let v = validate(
+            one_plane(vec![Region {
+                label: 1,
+                outer: Contour::from_2d(&p, vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]),
+                holes: vec![],
+            }]),
+            "m",
+        )
+        .unwrap();
+        assert_eq!(v.sections[0].regions.len(), 1);
+        assert!((v.sections[0].regions[0].area() - 0.5).abs() < 1e-12);
+        // Two squares sharing one corner: refused when strict, moved apart otherwise.
+        let corner = one_plane(vec![
+            Region {
+                label: 1,
+                outer: square(&p, 0.0, 0.0, 1.0),
+                holes: vec![],
+            },
+            Region {
+                label: 1,
+                outer: square(&p, 1.0, 1.0, 1.0),
+                holes: vec![],
+            },
+        ]);
+        let v = validate(corner, "m").unwrap();
+        assert_eq!(v.sections[0].regions.len(), 2);
+        assert!((v.sections[0].area() - 2.0).abs() < 1e-6);
+        let e = validate_strict(
             one_plane(vec![
                 Region {
                     label: 1,
@@ -866,8 +953,13 @@ mod tests {
                 holes: vec![],
             },
         ]);
-        let e = validate(overlapping, "m").unwrap_err().to_string();
+        let e = validate_strict(overlapping.clone(), "m")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("regions overlap"), "{e}");
+        let v = validate(overlapping, "m").unwrap();
+        assert_eq!(v.sections[0].regions.len(), 1);
+        assert!((v.sections[0].area() - 100.0).abs() < 1e-9);
         // An island inside a hole is fine.
         let island = one_plane(vec![
             Region {
@@ -961,13 +1053,15 @@ mod tests {
         assert!(t.elapsed().as_secs_f64() < 1.0);
         let mut crossed = circle;
         crossed.swap(777, 778);
-        let e = validate(one_plane(vec![region(crossed)]), "m")
+        let e = validate_strict(one_plane(vec![region(crossed.clone())]), "m")
             .unwrap_err()
             .to_string();
         assert!(
             e.contains("edges 776 and 778") || e.contains("self-intersecting"),
             "{e}"
         );
+        let v = validate(one_plane(vec![region(crossed)]), "m").unwrap();
+        assert_eq!(v.sections[0].regions.len(), 2, "{:?}", v.warnings);
     }
 
     #[test]

@@ -2,7 +2,9 @@
 //! the reason; random mutations of a real file never panic.
 mod common;
 use proptest::prelude::*;
-use slice2solid::io::{csl::parse_csl, json::parse_json};
+use slice2solid::io::csl::{parse_csl, parse_csl_with};
+use slice2solid::io::json::{parse_json, parse_json_with};
+use slice2solid::io::ReadOptions;
 
 /// Two 4x4 squares on z = 0 (lines 4-10) and z = 1 (lines 11-16).
 const BASE: &str = "CSLC
@@ -134,12 +136,18 @@ fn csl_fewer_than_three_vertices() {
 
 #[test]
 fn csl_self_intersecting() {
+    // Refused in strict mode; repaired by default (tests/io_repair.rs).
     let text = BASE.replacen("4 1 0 1 2 3", "4 1 0 2 1 3", 1);
+    let e = parse_csl_with(&text, "t.csl", &ReadOptions { strict: true })
+        .unwrap_err()
+        .to_string();
     expect(
-        &csl_error(&text),
+        &e,
         "t.csl:10: plane 1, component 0",
         "self-intersecting contour",
     );
+    let s = parse_csl(&text, "t.csl").unwrap();
+    assert_eq!(s.sections[0].regions.len(), 2);
 }
 
 #[test]
@@ -168,12 +176,27 @@ fn csl_crossing_contours() {
         "0 0 1\n4 0 1\n4 4 1\n0 4 1\n2 2 1\n6 2 1\n6 6 1\n2 6 1",
         "4 1 0 1 2 3\n4 1 4 5 6 7",
     );
+    // Same label: refused in strict mode, merged by default (tests/io_repair.rs).
+    let e = parse_csl_with(&text, "t.csl", &ReadOptions { strict: true })
+        .unwrap_err()
+        .to_string();
+    expect(
+        &e,
+        "t.csl:20: plane 2, component 0",
+        "contours of one plane cross",
+    );
+    assert!(e.contains("t.csl:21: plane 2, component 1"));
+    assert_eq!(
+        parse_csl(&text, "t.csl").unwrap().sections[1].regions.len(),
+        1
+    );
+    // Different labels: refused.
+    let text = text.replace("4 1 4 5 6 7", "4 2 4 5 6 7");
     expect(
         &csl_error(&text),
         "t.csl:20: plane 2, component 0",
         "contours of one plane cross",
     );
-    assert!(csl_error(&text).contains("t.csl:21: plane 2, component 1"));
 }
 
 #[test]
@@ -249,11 +272,18 @@ fn json_malformed() {
         "t.json: $.planes[1].contours[0]",
         "at least 3",
     );
+    // Refused in strict mode; repaired by default (tests/io_repair.rs).
+    let bow_tie = p(r#"{"points": [[0,0,1],[4,4,1],[4,0,1],[0,4,1]]}"#);
     expect(
-        &json_error(&p(r#"{"points": [[0,0,1],[4,4,1],[4,0,1],[0,4,1]]}"#)),
+        &parse_json_with(&bow_tie, "t.json", &ReadOptions { strict: true })
+            .unwrap_err()
+            .to_string(),
         "t.json: $.planes[1].contours[0]",
         "self-intersecting",
     );
+    let s = parse_json(&bow_tie, "t.json").unwrap();
+    assert_eq!(s.sections[1].regions.len(), 2);
+    assert!(s.warnings[0].starts_with("t.json: $.planes[1].contours[0]: repaired"));
     expect(
         &json_error(&p(
             r#"{"points": [[0,0,1],[4,0,1],[4,4,1],[0,4,1]]}, {"points": [[5,5,1],[5,6,1],[6,6,1]], "hole_of": 0}"#,
@@ -263,7 +293,7 @@ fn json_malformed() {
     );
     expect(
         &json_error(&p(
-            r#"{"points": [[0,0,1],[4,0,1],[4,4,1],[0,4,1]]}, {"points": [[2,2,1],[6,2,1],[6,6,1]]}"#,
+            r#"{"points": [[0,0,1],[4,0,1],[4,4,1],[0,4,1]]}, {"points": [[2,2,1],[6,2,1],[6,6,1]], "label": 2}"#,
         )),
         "t.json: $.planes[1].contours[0]",
         "contours of one plane cross",

@@ -2,7 +2,7 @@
 use crate::InfoArgs;
 use serde_json::json;
 use slice2solid::arrangement::Arrangement;
-use slice2solid::io::read_sections;
+use slice2solid::io::{read_sections_with, ReadOptions};
 use slice2solid::Result;
 use std::collections::BTreeMap;
 use std::process::ExitCode;
@@ -10,7 +10,12 @@ use std::time::Instant;
 
 pub fn run(args: InfoArgs) -> Result<ExitCode> {
     let t0 = Instant::now();
-    let s = read_sections(&args.input)?;
+    let s = read_sections_with(
+        &args.input,
+        &ReadOptions {
+            strict: args.strict,
+        },
+    )?;
     let read_ms = t0.elapsed().as_secs_f64() * 1e3;
 
     let regions: usize = s.sections.iter().map(|x| x.regions.len()).sum();

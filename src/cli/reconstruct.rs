@@ -1,11 +1,16 @@
 use crate::ReconstructArgs;
-use slice2solid::io::{mesh, read_sections};
+use slice2solid::io::{mesh, read_sections_with, ReadOptions};
 use slice2solid::{Error, Options, Result};
 use std::io::IsTerminal;
 use std::process::ExitCode;
 
 pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
-    let sections = read_sections(&args.input)?;
+    let sections = read_sections_with(
+        &args.input,
+        &ReadOptions {
+            strict: args.strict,
+        },
+    )?;
     let options = Options {
         method: match args.method {
             crate::Method::Delaunay => slice2solid::Method::Delaunay,

@@ -16,16 +16,21 @@
 use crate::error::{Error, Result};
 use crate::sections::{Contour, Plane, Region, Section, Sections};
 use crate::validate::{
-    self, check_coordinate, ContourId, Locator, Role, OFF_PLANE_RELATIVE_TOLERANCE,
+    self, check_coordinate, ContourId, Locator, ReadOptions, Role, OFF_PLANE_RELATIVE_TOLERANCE,
 };
 use serde_json::{json, Map, Value};
 use std::path::Path;
 
-/// Read a JSON sections file.
+/// Read a JSON sections file (repairing, see `ReadOptions`).
 pub fn read_json(path: &Path) -> Result<Sections> {
+    read_json_with(path, &ReadOptions::default())
+}
+
+/// Read a JSON sections file with `options`.
+pub fn read_json_with(path: &Path, options: &ReadOptions) -> Result<Sections> {
     let text = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let text = String::from_utf8_lossy(&text);
-    parse_json(&text, &path.display().to_string())
+    parse_json_with(&text, &path.display().to_string(), options)
 }
 
 /// Write a JSON sections file.
@@ -82,6 +87,11 @@ impl Locator for JsonLocator<'_> {
 
 /// Parse JSON text; `file_name` is used in messages. The result is validated (see `validate`).
 pub fn parse_json(text: &str, file_name: &str) -> Result<Sections> {
+    parse_json_with(text, file_name, &ReadOptions::default())
+}
+
+/// Parse JSON text with `options` (`strict`: no repairs, see `ReadOptions`).
+pub fn parse_json_with(text: &str, file_name: &str, options: &ReadOptions) -> Result<Sections> {
     let doc: Value = serde_json::from_str(text).map_err(|e| {
         Error::input(
             format!("{file_name}:{}:{}", e.line(), e.column()),
@@ -333,13 +343,14 @@ pub fn parse_json(text: &str, file_name: &str) -> Result<Sections> {
             max_off_plane: max_off,
         });
     }
-    validate::validate_with(
+    validate::validate_with_options(
         Sections {
             sections,
             n_labels,
             warnings: Vec::new(),
         },
         &loc,
+        options,
     )
 }
 

@@ -7,6 +7,8 @@ use crate::error::{Error, Result};
 use crate::sections::Sections;
 use std::path::Path;
 
+pub use crate::validate::ReadOptions;
+
 /// The section formats, chosen by file extension (case-insensitive).
 fn section_format(path: &Path) -> Result<&'static str> {
     let ext = path
@@ -25,9 +27,14 @@ fn section_format(path: &Path) -> Result<&'static str> {
 
 /// Read cross-sections, CSL or JSON by extension (`.csl`, `.json`), validated and repaired.
 pub fn read_sections(path: &Path) -> Result<Sections> {
+    read_sections_with(path, &ReadOptions::default())
+}
+
+/// Read cross-sections with `options` (`strict`: refuse instead of repairing, see `ReadOptions`).
+pub fn read_sections_with(path: &Path, options: &ReadOptions) -> Result<Sections> {
     match section_format(path)? {
-        "csl" => csl::read_csl(path),
-        _ => json::read_json(path),
+        "csl" => csl::read_csl_with(path, options),
+        _ => json::read_json_with(path, options),
     }
 }
 

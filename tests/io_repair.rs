@@ -1,0 +1,365 @@
+//! Input repairs (README, "Input formats"): each kind on a small synthetic file, the warning that
+//! names where it happened, the same input refused with `strict` (library and `info --strict`),
+//! and the shared files untouched (no repair, same sections as strict reading).
+mod common;
+use common::bin;
+use slice2solid::io::csl::{parse_csl, parse_csl_with, to_csl_string};
+use slice2solid::io::ReadOptions;
+use slice2solid::Sections;
+
+const STRICT: ReadOptions = ReadOptions { strict: true };
+
+/// Plane 1: a 4x4 square on z = 0 (lines 3-8); plane 2 (line 9) with `plane2` as its equation
+/// `a b c d` and the vertices `v2` (lines 10-13), one component (line 14).
+fn two_planes(plane2: &str, v2: &str) -> String {
+    format!("CSLC\n2 1\n1 4 1 0 0 1 0\n0 0 0\n4 0 0\n4 4 0\n0 4 0\n4 1 0 1 2 3\n2 4 1 {plane2}\n{v2}\n4 1 0 1 2 3\n")
+}
+
+/// Plane 1 as in `two_planes`; plane 2 (line 9) on z = 1 with the 2D vertices `v2` (x y, one a line,
+/// from line 10) and the components `comps` (one a line, after the vertices).
+fn plane2(v2: &[[f64; 2]], comps: &[&str]) -> String {
+    let v: Vec<String> = v2.iter().map(|p| format!("{} {} 1", p[0], p[1])).collect();
+    format!(
+        "CSLC\n2 1\n1 4 1 0 0 1 0\n0 0 0\n4 0 0\n4 4 0\n0 4 0\n4 1 0 1 2 3\n2 {} {} 0 0 1 -1\n{}\n{}\n",
+        v2.len(),
+        comps.len(),
+        v.join("\n"),
+        comps.join("\n")
+    )
+}
+
+fn repairs(s: &Sections) -> Vec<&String> {
+    s.warnings
+        .iter()
+        .filter(|w| w.contains("repaired"))
+        .collect()
+}
+
+fn strict_error(text: &str) -> String {
+    match parse_csl_with(text, "t.csl", &STRICT) {
+        Ok(_) => panic!("strict accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// `slice2solid info` on `text` written to a file: (success, stdout, stderr).
+fn info(text: &str, strict: bool) -> (bool, String, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("t.csl");
+    std::fs::write(&p, text).unwrap();
+    let mut cmd = bin();
+    cmd.arg("info").arg(&p);
+    if strict {
+        cmd.arg("--strict");
+    }
+    let out = cmd.output().unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn assert_cli_repairs_and_strict_refuses(text: &str, warning: &str, error: &str) {
+    let (ok, out, err) = info(text, false);
+    assert!(ok && out.contains(warning), "{out}{err}");
+    let (ok, out, err) = info(text, true);
+    assert!(!ok && err.contains(error), "{out}{err}");
+}
+
+#[test]
+fn flipped_offset_file_is_read_with_that_convention() {
+    // z = 1 written as 0 0 1 1 (z + 1 = 0): every plane fits z - d = 0 instead.
+    let text = two_planes("0 0 1 1", "0 0 1\n4 0 1\n4 4 1\n0 4 1");
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let r = repairs(&s);
+    assert_eq!(r.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.csl: repaired plane equations")
+            && r[0].contains("1 of 2 plane(s)")
+            && r[0].contains("- d = 0"),
+        "{}",
+        r[0]
+    );
+    assert_eq!(s.sections.len(), 2);
+    assert!(s.sections[1].plane.signed_distance([3.0, 3.0, 1.0]).abs() < 1e-12);
+    assert!(s.sections[0].plane.signed_distance([3.0, 3.0, 0.0]).abs() < 1e-12);
+    for sec in &s.sections {
+        assert_eq!(sec.regions.len(), 1);
+        assert!((sec.area() - 16.0).abs() < 1e-9, "{}", sec.area());
+        assert!(sec.max_off_plane < 1e-12);
+    }
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:10: plane 2") && e.contains("vertex 0 is 2.000e0 off its plane"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "repaired plane equations", "plane 2");
+}
+
+#[test]
+fn plane_equation_off_its_coplanar_vertices_takes_their_plane() {
+    // Stated z = 1; the vertices lie on z = 1 + 0.01 x (0.04 off at x = 4; tolerance 5.8e-3).
+    let text = two_planes("0 0 1 -1", "0 0 1\n4 0 1.04\n4 4 1.04\n0 4 1");
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let r = repairs(&s);
+    assert_eq!(r.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.csl:9: plane 2: repaired plane equation")
+            && r[0].contains("up to 4.000e-2 off")
+            && r[0].contains("normal turned by 0.573 degrees"),
+        "{}",
+        r[0]
+    );
+    let sec = &s.sections[1];
+    for v in [
+        [0.0, 0.0, 1.0],
+        [4.0, 0.0, 1.04],
+        [4.0, 4.0, 1.04],
+        [0.0, 4.0, 1.0],
+    ] {
+        assert!(sec.plane.signed_distance(v).abs() < 1e-12);
+    }
+    let area = 16.0 * (1.0f64 + 1e-4).sqrt();
+    assert!((sec.area() - area).abs() < 1e-9, "{}", sec.area());
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:11: plane 2") && e.contains("vertex 1 is 4.000e-2 off its plane"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "repaired plane equation", "plane 2");
+}
+
+#[test]
+fn one_vertex_off_an_agreeing_plane_is_still_rejected() {
+    // Three of four vertices agree with z = 1; the fourth is misplaced, not the plane.
+    let text = two_planes("0 0 1 -1", "0 0 1\n4 0 1\n4 4 1.5\n0 4 1");
+    let e = parse_csl(&text, "t.csl").unwrap_err().to_string();
+    assert!(
+        e.starts_with("t.csl:12: plane 2") && e.contains("off its plane"),
+        "{e}"
+    );
+    // Non-coplanar vertices with no majority on the stated plane: rejected too.
+    let text = two_planes("0 0 1 -1", "0 0 1.2\n4 0 1\n4 4 1.2\n0 4 1");
+    let e = parse_csl(&text, "t.csl").unwrap_err().to_string();
+    assert!(e.contains("plane 2") && e.contains("off its plane"), "{e}");
+}
+
+/// Nothing valid is repaired: every shared file reads without a repair warning, and to the same
+/// sections (CSL text, byte for byte) as strict reading, which performs no repair at all.
+#[test]
+fn shared_files_are_not_repaired() {
+    for path in common::shared_csl_files() {
+        let text = std::fs::read_to_string(&path).unwrap();
+        let name = path.display().to_string();
+        let repaired = parse_csl(&text, &name).unwrap();
+        let strict = parse_csl_with(&text, &name, &STRICT).unwrap();
+        assert!(
+            repairs(&repaired).is_empty(),
+            "{name}: {:?}",
+            repaired.warnings
+        );
+        assert_eq!(repaired.warnings, strict.warnings, "{name}");
+        assert!(
+            to_csl_string(&repaired) == to_csl_string(&strict),
+            "{name}: sections differ"
+        );
+    }
+}
+
+#[test]
+fn bow_tie_splits_into_two_regions() {
+    let text = plane2(
+        &[[0.0, 0.0], [4.0, 4.0], [4.0, 0.0], [0.0, 4.0]],
+        &["4 1 0 1 2 3"],
+    );
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let r = repairs(&s);
+    assert_eq!(r.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.csl:14: plane 2, component 0: repaired self-intersecting")
+            && r[0].contains("split into 2 regions with 0 hole(s)"),
+        "{}",
+        r[0]
+    );
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    let sec = &s.sections[1];
+    assert_eq!(sec.regions.len(), 2);
+    for region in &sec.regions {
+        assert_eq!(region.label, 1);
+        assert!(region.holes.is_empty());
+        assert_eq!(region.outer.points2.len(), 3);
+        assert!((region.area() - 4.0).abs() < 1e-6, "{}", region.area());
+        assert!(region.outer.signed_area() > 0.0);
+    }
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:14: plane 2, component 0") && e.contains("self-intersecting contour"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "split into 2 regions", "self-intersecting");
+}
+
+#[test]
+fn keyhole_becomes_an_outer_contour_and_a_hole() {
+    // The outline runs up a zero-width channel at x = 2 into the hole [1,3]x[1,3], round it
+    // clockwise, and back down.
+    let v = [
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 1.0],
+        [1.0, 1.0],
+        [1.0, 3.0],
+        [3.0, 3.0],
+        [3.0, 1.0],
+        [4.0, 0.0],
+        [4.0, 4.0],
+        [0.0, 4.0],
+    ];
+    let text = plane2(&v, &["12 1 0 1 2 3 4 5 6 2 1 7 8 9"]);
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let r = repairs(&s);
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.csl:20: plane 2, component 0: repaired self-intersecting")
+            && r[0].contains("keyhole: 1 outer + 1 hole(s)"),
+        "{}",
+        r[0]
+    );
+    let sec = &s.sections[1];
+    assert_eq!(sec.regions.len(), 1);
+    let region = &sec.regions[0];
+    assert_eq!(region.holes.len(), 1);
+    assert!((region.outer.signed_area() - 16.0).abs() < 1e-9);
+    assert!((region.holes[0].signed_area() + 4.0).abs() < 1e-9);
+    assert!((region.area() - 12.0).abs() < 1e-9);
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:20: plane 2, component 0") && e.contains("self-intersecting contour"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "keyhole", "self-intersecting");
+}
+
+#[test]
+fn touching_components_of_one_label_are_merged() {
+    // Two 2x2 squares of label 1 sharing the edge x = 2 (components 0 and 1, lines 18 and 19).
+    let v = [
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 2.0],
+        [0.0, 2.0],
+        [2.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 2.0],
+        [2.0, 2.0],
+    ];
+    let text = plane2(&v, &["4 1 0 1 2 3", "4 1 4 5 6 7"]);
+    let s = parse_csl(&text, "t.csl").unwrap();
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    let w = &s.warnings[0];
+    assert!(
+        w.starts_with("t.csl:18: plane 2, component 0: repaired 2 touching or overlapping components of label 1 (with t.csl:19: plane 2, component 1)")
+            && w.contains("merged into 1 region(s) with 0 hole(s)"),
+        "{w}"
+    );
+    let sec = &s.sections[1];
+    assert_eq!(sec.regions.len(), 1);
+    assert_eq!(sec.regions[0].label, 1);
+    assert!(sec.regions[0].holes.is_empty());
+    assert!((sec.area() - 8.0).abs() < 1e-9, "{}", sec.area());
+    let e = strict_error(&text);
+    assert!(
+        e.starts_with("t.csl:18: plane 2, component 0")
+            && e.contains("contours of one plane cross"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "touching or overlapping components", "cross");
+
+    // Overlapping in area: [0,3]x[0,2] and [2,4]x[0,2] become [0,4]x[0,2].
+    let v = [
+        [0.0, 0.0],
+        [3.0, 0.0],
+        [3.0, 2.0],
+        [0.0, 2.0],
+        [2.0, 0.5],
+        [4.0, 0.5],
+        [4.0, 1.5],
+        [2.0, 1.5],
+    ];
+    let s = parse_csl(&plane2(&v, &["4 1 0 1 2 3", "4 1 4 5 6 7"]), "t.csl").unwrap();
+    assert_eq!(s.sections[1].regions.len(), 1, "{:?}", s.warnings);
+    assert!((s.sections[1].area() - 7.0).abs() < 1e-9);
+    // One inside the other's material: the outer one is what is left.
+    let v = [
+        [0.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 4.0],
+        [0.0, 4.0],
+        [1.0, 1.0],
+        [2.0, 1.0],
+        [2.0, 2.0],
+        [1.0, 2.0],
+    ];
+    let text = plane2(&v, &["4 1 0 1 2 3", "4 1 4 5 6 7"]);
+    let s = parse_csl(&text, "t.csl").unwrap();
+    assert_eq!(s.sections[1].regions.len(), 1, "{:?}", s.warnings);
+    assert!((s.sections[1].area() - 16.0).abs() < 1e-9);
+    assert!(strict_error(&text).contains("regions overlap"));
+}
+
+#[test]
+fn hole_touching_its_outer_contour_is_subtracted() {
+    // Hole [1,3]x[0,2] on the bottom edge of [0,4]^2 (component 1, line 19): a U of area 12.
+    let v = [
+        [0.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 4.0],
+        [0.0, 4.0],
+        [1.0, 0.0],
+        [3.0, 0.0],
+        [3.0, 2.0],
+        [1.0, 2.0],
+    ];
+    let text = plane2(&v, &["4 1 0 1 2 3", "4h0 1 4 5 6 7"]);
+    let s = parse_csl(&text, "t.csl").unwrap();
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    let w = &s.warnings[0];
+    assert!(
+        w.starts_with("t.csl:18: plane 2, component 0: repaired a hole touching or crossing its outer contour:")
+            && w.contains("merged into 1 region(s) with 0 hole(s)"),
+        "{w}"
+    );
+    let sec = &s.sections[1];
+    assert_eq!(sec.regions.len(), 1);
+    assert!(sec.regions[0].holes.is_empty());
+    assert_eq!(sec.regions[0].outer.points2.len(), 8);
+    assert!((sec.area() - 12.0).abs() < 1e-9, "{}", sec.area());
+    let e = strict_error(&text);
+    assert!(
+        e.contains("plane 2, component") && e.contains("cross"),
+        "{e}"
+    );
+    assert_cli_repairs_and_strict_refuses(&text, "a hole touching", "cross");
+}
+
+#[test]
+fn different_labels_touching_are_still_refused() {
+    // Not repaired yet (see README): two labels sharing the edge x = 2.
+    let v = [
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 2.0],
+        [0.0, 2.0],
+        [2.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 2.0],
+        [2.0, 2.0],
+    ];
+    let text = plane2(&v, &["4 1 0 1 2 3", "4 2 4 5 6 7"]);
+    let e = parse_csl(&text, "t.csl").unwrap_err().to_string();
+    assert!(
+        e.starts_with("t.csl:18: plane 2, component 0") && e.contains("cross"),
+        "{e}"
+    );
+}
