@@ -274,31 +274,7 @@ pub fn validate_with_options(
     check_duplicate_planes(&sections, loc)?;
 
     for (s, sec) in sections.sections.iter().enumerate() {
-        let contours: Vec<(ContourId, &Contour)> = sec
-            .regions
-            .iter()
-            .enumerate()
-            .flat_map(|(r, region)| {
-                std::iter::once((Role::Outer, &region.outer))
-                    .chain(
-                        region
-                            .holes
-                            .iter()
-                            .enumerate()
-                            .map(|(h, c)| (Role::Hole(h), c)),
-                    )
-                    .map(move |(role, c)| {
-                        (
-                            ContourId {
-                                section: s,
-                                region: r,
-                                role,
-                            },
-                            c,
-                        )
-                    })
-            })
-            .collect();
+        let contours = section_contours(s, sec, 0..sec.regions.len());
         check_intersections(&contours, loc)?;
         check_nesting(&contours, loc)?;
     }
@@ -527,6 +503,38 @@ struct Edge {
 /// No contour of one plane may touch itself (except consecutive edges at their shared vertex) or
 /// another contour. Edges are bucketed in a uniform grid over the plane's bounding box; each pair
 /// sharing cells is tested once, in the lowest cell both cover, with exact predicates.
+/// The contours (outer, then holes) of regions `regions` of section `s`, with their ids.
+fn section_contours(
+    s: usize,
+    sec: &crate::sections::Section,
+    regions: impl IntoIterator<Item = usize>,
+) -> Vec<(ContourId, &Contour)> {
+    regions
+        .into_iter()
+        .flat_map(|r| {
+            let region = &sec.regions[r];
+            std::iter::once((Role::Outer, &region.outer))
+                .chain(
+                    region
+                        .holes
+                        .iter()
+                        .enumerate()
+                        .map(|(h, c)| (Role::Hole(h), c)),
+                )
+                .map(move |(role, c)| {
+                    (
+                        ContourId {
+                            section: s,
+                            region: r,
+                            role,
+                        },
+                        c,
+                    )
+                })
+        })
+        .collect()
+}
+
 fn check_intersections(contours: &[(ContourId, &Contour)], loc: &dyn Locator) -> Result<()> {
     let mut edges = Vec::new();
     let mut lens = Vec::new();

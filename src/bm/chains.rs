@@ -249,15 +249,44 @@ pub struct PairConformity {
 
 /// Is (u, v) an edge of a grounded triangle on slot `s` of a non-flat tet of `dt`?
 pub fn is_grounded_edge(dt: &Delaunay, mask: &[Mask], s: usize, u: u32, v: u32) -> bool {
-    let bit: Mask = 1 << s;
     dt.vertex_tets(u).into_iter().any(|t| {
         let tv = dt.tet_vertices(t);
-        if !tv.contains(&v) || tv.iter().fold(!0 as Mask, |m, &w| m & mask[w as usize]) != 0 {
-            return false;
-        }
-        tv.iter()
-            .any(|&w| w != u && w != v && mask[w as usize] & bit != 0)
+        tv.contains(&v)
+            && tv.iter().fold(!0 as Mask, |m, &w| m & mask[w as usize]) == 0
+            && grounded_on(&tv, u, v, mask, s)
     })
+}
+
+/// Calls `f(tet, u, v)` for every edge uv of a non-flat tet of `dt` whose two ends are diagram
+/// points (ids `>= min_id`), once per tet holding it.
+fn for_each_diagram_edge(
+    dt: &Delaunay,
+    min_id: u32,
+    mask: &[Mask],
+    mut f: impl FnMut(&[u32; 4], u32, u32),
+) {
+    for t in dt.tets() {
+        let tv = dt.tet_vertices(t);
+        if tv.iter().filter(|&&v| v >= min_id).count() < 2
+            || tv.iter().fold(!0 as Mask, |m, &w| m & mask[w as usize]) != 0
+        {
+            continue;
+        }
+        for (a, b) in super::complex::TET_EDGES {
+            let (u, v) = (tv[a], tv[b]);
+            if u >= min_id && v >= min_id {
+                f(&tv, u, v);
+            }
+        }
+    }
+}
+
+/// Whether edge uv of tet `tv` is an edge of a grounded triangle on slot `s` of that tet (another
+/// of its vertices lies on the slot).
+fn grounded_on(tv: &[u32; 4], u: u32, v: u32, mask: &[Mask], s: usize) -> bool {
+    let bit: Mask = 1 << s;
+    tv.iter()
+        .any(|&w| w != u && w != v && mask[w as usize] & bit != 0)
 }
 
 /// Per pair, whether its ends are an edge of a grounded triangle on its slot of a non-flat tet of
@@ -277,32 +306,17 @@ pub fn grounded_pair_edges(
             .or_default()
             .push(i as u32);
     }
-    for t in dt.tets() {
-        let tv = dt.tet_vertices(t);
-        if tv.iter().filter(|&&v| v >= min_id).count() < 2
-            || tv.iter().fold(!0 as Mask, |m, &w| m & mask[w as usize]) != 0
+    for_each_diagram_edge(dt, min_id, mask, |tv, u, v| {
+        for &i in wanted
+            .get(&super::cell_input::edge_key(u, v))
+            .into_iter()
+            .flatten()
         {
-            continue;
-        }
-        for (a, b) in super::complex::TET_EDGES {
-            let (u, v) = (tv[a], tv[b]);
-            if u < min_id || v < min_id {
-                continue;
-            }
-            let Some(list) = wanted.get(&super::cell_input::edge_key(u, v)) else {
-                continue;
-            };
-            for &i in list {
-                let bit: Mask = 1 << pairs[i as usize].slot;
-                if tv
-                    .iter()
-                    .any(|&w| w != u && w != v && mask[w as usize] & bit != 0)
-                {
-                    found[i as usize] = true;
-                }
+            if grounded_on(tv, u, v, mask, pairs[i as usize].slot) {
+                found[i as usize] = true;
             }
         }
-    }
+    });
     found
 }
 
@@ -391,31 +405,15 @@ const ROUTE_MAX_EDGES: usize = 4;
 /// samples, Steiner points, the other side's samples), as adjacency lists.
 fn diagram_edges(dt: &Delaunay, mask: &[Mask], min_id: u32) -> IdMap<(usize, u32), Vec<u32>> {
     let mut adj: IdMap<(usize, u32), Vec<u32>> = IdMap::default();
-    for t in dt.tets() {
-        let tv = dt.tet_vertices(t);
-        if tv.iter().filter(|&&v| v >= min_id).count() < 2
-            || tv.iter().fold(!0 as Mask, |m, &w| m & mask[w as usize]) != 0
-        {
-            continue;
-        }
-        for (a, b) in super::complex::TET_EDGES {
-            let (u, v) = (tv[a], tv[b]);
-            if u < min_id || v < min_id {
-                continue;
-            }
-            let on = mask[u as usize] & mask[v as usize];
-            for s in (0..Mask::BITS as usize).filter(|&s| on >> s & 1 == 1) {
-                let bit: Mask = 1 << s;
-                if tv
-                    .iter()
-                    .any(|&w| w != u && w != v && mask[w as usize] & bit != 0)
-                {
-                    adj.entry((s, u)).or_default().push(v);
-                    adj.entry((s, v)).or_default().push(u);
-                }
+    for_each_diagram_edge(dt, min_id, mask, |tv, u, v| {
+        let on = mask[u as usize] & mask[v as usize];
+        for s in (0..Mask::BITS as usize).filter(|&s| on >> s & 1 == 1) {
+            if grounded_on(tv, u, v, mask, s) {
+                adj.entry((s, u)).or_default().push(v);
+                adj.entry((s, v)).or_default().push(u);
             }
         }
-    }
+    });
     for l in adj.values_mut() {
         l.sort_unstable();
         l.dedup();

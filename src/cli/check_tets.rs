@@ -29,9 +29,7 @@ pub fn run(args: CheckArgs) -> Result<ExitCode> {
     };
     let report = check_tets(&tets, surface.as_ref());
     if args.json {
-        let s = serde_json::to_string_pretty(&report)
-            .map_err(|e| Error::Geometry(format!("cannot serialise the report: {e}")))?;
-        println!("{s}");
+        super::print_json(&report)?;
     } else {
         print_table(&args.mesh.display().to_string(), &report);
     }

@@ -2,7 +2,7 @@
 use crate::CompareArgs;
 use slice2solid::eval::compare::compare_meshes;
 use slice2solid::io::mesh::read_trimesh;
-use slice2solid::{Error, Result};
+use slice2solid::Result;
 use std::process::ExitCode;
 
 pub fn run(args: CompareArgs) -> Result<ExitCode> {
@@ -10,9 +10,7 @@ pub fn run(args: CompareArgs) -> Result<ExitCode> {
     let reference = read_trimesh(&args.reference)?;
     let r = compare_meshes(&mesh, &reference, args.samples, args.seed);
     if args.json {
-        let s = serde_json::to_string_pretty(&r)
-            .map_err(|e| Error::Geometry(format!("cannot serialise the report: {e}")))?;
-        println!("{s}");
+        super::print_json(&r)?;
     } else {
         println!(
             "{} vs {} (distances / reference diagonal {:.6e})",

@@ -79,9 +79,7 @@ pub fn run(args: CompareMethodsArgs) -> Result<ExitCode> {
         rows.push(row);
     }
     if args.json {
-        let s = serde_json::to_string_pretty(&rows)
-            .map_err(|e| Error::Geometry(format!("cannot serialise the report: {e}")))?;
-        println!("{s}");
+        super::print_json(&rows)?;
         return Ok(ExitCode::SUCCESS);
     }
     println!(

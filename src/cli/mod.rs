@@ -9,3 +9,11 @@ pub mod info;
 pub mod reconstruct;
 pub mod slice;
 pub mod warnings;
+
+/// Print `value` as pretty JSON on stdout (the `--json` output of the subcommands).
+pub fn print_json(value: &impl serde::Serialize) -> slice2solid::Result<()> {
+    let s = serde_json::to_string_pretty(value)
+        .map_err(|e| slice2solid::Error::Geometry(format!("cannot serialise the report: {e}")))?;
+    println!("{s}");
+    Ok(())
+}

@@ -109,17 +109,9 @@ pub(super) fn repair_self_intersections(
             loc.contour(bad)
         ));
         let label = region.label;
-        let mut new = pieces.into_iter().map(|mut p| {
-            let outer = p.remove(0);
-            Region {
-                label,
-                outer: Contour::from_2d(&sec.plane, outer),
-                holes: p
-                    .into_iter()
-                    .map(|h| Contour::from_2d(&sec.plane, h))
-                    .collect(),
-            }
-        });
+        let mut new = pieces
+            .into_iter()
+            .map(|p| region_of_piece(label, &sec.plane, p));
         sec.regions[r] = new.next().expect("at least one piece");
         map[r].1 = true;
         for region in new {
@@ -227,30 +219,7 @@ pub(super) fn repair_label_conflicts(
         let members: Vec<usize> = (0..sec.regions.len())
             .filter(|&r| sec.regions[r].label == label)
             .collect();
-        let contours: Vec<(ContourId, &Contour)> = members
-            .iter()
-            .flat_map(|&r| {
-                let region = &sec.regions[r];
-                std::iter::once((Role::Outer, &region.outer))
-                    .chain(
-                        region
-                            .holes
-                            .iter()
-                            .enumerate()
-                            .map(|(h, c)| (Role::Hole(h), c)),
-                    )
-                    .map(move |(role, c)| {
-                        (
-                            ContourId {
-                                section: s,
-                                region: r,
-                                role,
-                            },
-                            c,
-                        )
-                    })
-            })
-            .collect();
+        let contours = super::section_contours(s, sec, members.iter().copied());
         let touching = check_intersections(&contours, loc).is_err();
         if !touching {
             let holes_inside = members.iter().all(|&r| {
@@ -324,17 +293,7 @@ pub(super) fn repair_label_conflicts(
         let origin = map[members[0]].0;
         let new: Vec<Region> = pieces
             .into_iter()
-            .map(|mut p| {
-                let outer = p.remove(0);
-                Region {
-                    label,
-                    outer: Contour::from_2d(&sec.plane, outer),
-                    holes: p
-                        .into_iter()
-                        .map(|h| Contour::from_2d(&sec.plane, h))
-                        .collect(),
-                }
-            })
+            .map(|p| region_of_piece(label, &sec.plane, p))
             .collect();
         // Replace the members by the pieces, in place of the first member.
         let mut regions = Vec::new();
@@ -353,5 +312,22 @@ pub(super) fn repair_label_conflicts(
         }
         sec.regions = regions;
         *map = new_map;
+    }
+}
+
+/// A region of `label` from a boolean result's piece (its outer loop first, then its holes).
+fn region_of_piece(
+    label: i32,
+    plane: &crate::sections::Plane,
+    mut piece: Vec<Vec<[f64; 2]>>,
+) -> Region {
+    let outer = piece.remove(0);
+    Region {
+        label,
+        outer: Contour::from_2d(plane, outer),
+        holes: piece
+            .into_iter()
+            .map(|h| Contour::from_2d(plane, h))
+            .collect(),
     }
 }
