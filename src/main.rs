@@ -24,6 +24,15 @@ pub enum Method {
     Implicit,
 }
 
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Assembly {
+    /// Overlay the two sides of every face, split pinched vertices, thicken flat zones
+    Glue,
+    /// (experimental) The kept tetrahedra of all cells as one complex, the surface its boundary;
+    /// use with --shared-samples, so that the cells triangulate every face alike
+    Complex,
+}
+
 /// Plane placements of `slice` (see `slice2solid::slice::SliceMode` for the exact rules)
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum SliceMode {
@@ -103,6 +112,9 @@ pub struct ReconstructArgs {
     /// sides, so that they triangulate the face alike
     #[arg(long)]
     pub shared_samples: bool,
+    /// Delaunay method: how the cells become one solid
+    #[arg(long, value_enum, default_value = "glue")]
+    pub assembly: Assembly,
     /// Refuse input that would be repaired (plane equations off their vertices, self-intersecting
     /// contours, touching or overlapping components): each repair becomes a located error
     #[arg(long)]

@@ -45,6 +45,22 @@ pub struct DelaunayOptions {
     /// plane to keep the two cells' diagrams from crossing, and with random planes shared samples
     /// leave more crossing pairs (`tests/bm_shared_samples.rs`).
     pub shared_samples: bool,
+    /// How the cells' kept tetrahedra become one solid.
+    pub assembly: Assembly,
+}
+
+/// How the cells become one solid (`docs/design/conforming-complex.md`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Assembly {
+    /// `bm::glue`: per face the overlay of both sides' attached regions, pinched vertices split,
+    /// samples lifted off the plane, flat zones thickened into slabs.
+    #[default]
+    Glue,
+    /// `bm::assembly`: the kept tetrahedra of all cells as one complex, the surface its boundary
+    /// (closed and embedded where the cells triangulate every face alike); flat zones and
+    /// singular edges or vertices are counted and warned, not yet resolved.
+    Complex,
 }
 
 impl Default for DelaunayOptions {
@@ -54,6 +70,7 @@ impl Default for DelaunayOptions {
             cutting: true,
             thicken_flat_zones: true,
             shared_samples: false,
+            assembly: Assembly::Glue,
         }
     }
 }

@@ -116,9 +116,9 @@ shared_file!(
     1,
     5
 );
-shared_file!(elephant, "Elephant", 1.01e-3, 1.01e-3, 2.9e-3, 12, 32, 108);
+shared_file!(elephant, "Elephant", 1.01e-3, 1.01e-3, 2.9e-3, 12, 32, 106);
 shared_file!(heart, "Heart-simplified", 1e-9, 8e-7, 1e-9, 1, 0, 0);
-shared_file!(horsers, "Horsers", 1.8e-3, 1.75e-3, 4.1e-3, 13, 8, 63);
+shared_file!(horsers, "Horsers", 1.8e-3, 1.75e-3, 4.1e-3, 13, 8, 61);
 shared_file!(parallel_eight, "ParallelEight", 1e-9, 4.9e-6, 1e-9, 1, 2, 0);
 shared_file!(
     parallel_eight_more,

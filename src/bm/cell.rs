@@ -48,6 +48,9 @@ pub struct CellResult {
     /// Contour edges (global ids) that are not edges of this cell's section triangulation.
     pub missing: Vec<(u32, u32)>,
     pub kept: Vec<[u32; 4]>,
+    /// The tets that survived step 1 (no external face) but are not kept: adding one keeps every
+    /// section triangle's status outside the section, so singularities can be filled with them.
+    pub fillable: Vec<[u32; 4]>,
     /// Boundary triangles of the kept tets that are not on a face, outward (local ids).
     pub nonplanar: Vec<[u32; 3]>,
     pub faces: Vec<FaceSide>,
@@ -79,6 +82,9 @@ pub struct CellResult {
     /// The cell has no volume (every vertex on one plane): no tets, and its `faces` are each slot's
     /// section triangulated in 2D, none attached.
     pub flat_only: bool,
+    /// The tagged kernel met an exact cosphericity across planes it cannot decide, so the cell was
+    /// triangulated untagged (its faces may then differ from the other side's).
+    pub untagged: bool,
 }
 
 /// CPU seconds per sub-phase of one cell run (summed over cells and rounds in the report).
@@ -164,6 +170,22 @@ pub fn finite_tets(dt: &crate::delaunay::Delaunay) -> Vec<[u32; 4]> {
         .collect();
     tets.sort_unstable();
     tets
+}
+
+/// The Delaunay triangulation of the cell's points: tagged (the plane rules of
+/// `delaunay::tags`, so both cells of a face triangulate it alike and no tet is flat), or, when
+/// `*tagged` is false or the tagged kernel meets an exact cosphericity across planes it cannot
+/// decide, untagged (then `*tagged` becomes false: the cell's faces may differ from the other
+/// side's, counted by the caller).
+fn cell_delaunay(input: &CellInput, tagged: &mut bool) -> Result<crate::delaunay::Delaunay> {
+    if *tagged {
+        match crate::delaunay::Delaunay::try_new_tagged(&input.points, &input.tags) {
+            Ok(dt) => return Ok(dt),
+            Err(crate::Error::Input { .. }) => *tagged = false,
+            Err(e) => return Err(e),
+        }
+    }
+    crate::delaunay::Delaunay::try_new(&input.points)
 }
 
 /// Add to `input` (and `batch`) the shared samples on its faces that it did not sample itself
@@ -280,7 +302,8 @@ fn run_cell_with(
     }
     let mut timing = CellTiming::default();
     let mut clock = std::time::Instant::now();
-    let mut dt = crate::delaunay::Delaunay::try_new(&input.points)?;
+    let mut tagged = true;
+    let mut dt = cell_delaunay(&input, &mut tagged)?;
     let mut cx = Complex::from_delaunay(input.points.len(), &dt);
     timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
@@ -379,7 +402,11 @@ fn run_cell_with(
             if has_shared {
                 n_foreign += add_foreign_samples(&mut input, shared, &mut batch);
             }
-            let ids = dt.insert_batch(&batch);
+            let ids =
+                dt.insert_batch_tagged(&batch, &input.tags[input.points.len() - batch.len()..]);
+            if tagged && dt.consistent().is_err() {
+                dt = cell_delaunay(&input, &mut tagged)?;
+            }
             // ids in local order (a duplicate gets the earlier vertex's id)
             let first = input.points.len() - batch.len();
             debug_assert!(ids
@@ -404,6 +431,9 @@ fn run_cell_with(
             n_pairs += pairs.len() as u64;
             if !pairs.is_empty() {
                 let mut pc = conform_pairs(&mut input, &mut dt, pairs, pair_rounds)?;
+                if tagged && dt.consistent().is_err() {
+                    dt = cell_delaunay(&input, &mut tagged)?;
+                }
                 if shared.is_some() {
                     let not_edges = std::mem::take(&mut pc.not_edges);
                     pc.not_edges = super::chains::route_pairs(
@@ -484,6 +514,7 @@ fn run_cell_with(
             missing,
             tets: cx.len() as u64,
             timing,
+            untagged: !tagged,
             ..Default::default()
         });
     }
@@ -509,8 +540,12 @@ fn run_cell_with(
     }
     let mut kept = Vec::new();
     let mut nonplanar = Vec::new();
+    let mut fillable = Vec::new();
     for (t, tv) in cx.tets.iter().enumerate() {
         if !alive[t] {
+            if !cl.external[t] {
+                fillable.push(*tv);
+            }
             continue;
         }
         kept.push(*tv);
@@ -569,6 +604,7 @@ fn run_cell_with(
         input: Some(input),
         missing,
         kept,
+        fillable,
         nonplanar,
         faces,
         counts,
@@ -586,6 +622,7 @@ fn run_cell_with(
         flat_area,
         timing,
         flat_only: false,
+        untagged: !tagged,
     })
 }
 

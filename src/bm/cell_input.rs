@@ -5,7 +5,9 @@
 //! Plane membership is combinatorial: a vertex is on slot `s` iff its global tag set holds the slot's
 //! plane. Tags of planes on which the cell has no face with a section are ignored inside this cell.
 use crate::arrangement::{Arrangement, FaceId, PlaneId, VertexPool};
+use crate::delaunay::PointTags;
 use crate::geom::predicates::orient2d;
+use smallvec::SmallVec;
 use std::collections::{HashMap, HashSet};
 
 pub type Mask = u128;
@@ -138,7 +140,31 @@ pub struct CellInput {
     pub global: Vec<u32>,
     pub points: Vec<[f64; 3]>,
     pub mask: Vec<Mask>,
+    /// Per local vertex, every input plane it lies on with its pool (u,v) there and its global id
+    /// (cell-local vertices: [`local_gid`]), for the tagged Delaunay kernel: both cells of a face
+    /// hand it the same tags for the same points, so both triangulate the face alike.
+    pub tags: Vec<PointTags>,
     pub slots: Vec<Slot>,
+}
+
+/// The kernel's global id of a cell-local vertex (a diagram sample without a pool id): above every
+/// pool id, so ties against pool vertices are decided alike in every cell.
+pub fn local_gid(local: u32) -> u64 {
+    (1u64 << 32) | local as u64
+}
+
+/// The kernel's tags of pool vertex `g`: its planes, each with the coordinates of the vertex's
+/// *position* in that plane's frame. Not `pool.uv`: a point where two sections cross their common
+/// line keeps each section's own (u,v), while its position is their midpoint (`reconcile`), up to
+/// the snap tolerance away; the tag rules decide for the points their (u,v) describe, the float
+/// predicates for the positions, and the two must be the same points up to rounding.
+pub fn pool_tags(arr: &Arrangement, pool: &VertexPool, g: u32) -> PointTags {
+    let p = pool.positions[g as usize];
+    let planes: SmallVec<[(u32, [f64; 2]); 3]> = pool.tags[g as usize]
+        .iter()
+        .map(|&t| (t, arr.planes[t as usize].plane.to_2d(p)))
+        .collect();
+    PointTags::new(g as u64, &planes)
 }
 
 pub fn edge_key(a: u32, b: u32) -> (u32, u32) {
@@ -243,11 +269,13 @@ impl CellInput {
             slot.loops = loops;
         }
         let points = global.iter().map(|&g| pool.positions[g as usize]).collect();
+        let tags = global.iter().map(|&g| pool_tags(arr, pool, g)).collect();
         Some(CellInput {
             cell,
             global,
             points,
             mask,
+            tags,
             slots,
         })
     }
@@ -263,6 +291,14 @@ impl CellInput {
         self.points.push(p3);
         self.global.push(gid);
         self.mask.push(1 << s);
+        let kernel_gid = if gid == u32::MAX {
+            local_gid(l)
+        } else {
+            gid as u64
+        };
+        let uv = self.slots[s].geom.to_2d(p3);
+        self.tags
+            .push(PointTags::new(kernel_gid, &[(self.slots[s].plane, uv)]));
         for (k, slot) in self.slots.iter_mut().enumerate() {
             slot.uv.push(if k == s { q } else { [f64::NAN; 2] });
         }

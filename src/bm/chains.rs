@@ -374,7 +374,7 @@ pub fn conform_pairs(
             }
             let l = input.add_local_vertex(p.slot, x, p3);
             // an exact duplicate answers with the existing vertex
-            let w = dt.insert(p3);
+            let w = dt.insert_tagged(p3, &input.tags[l as usize]);
             if w == u || w == v {
                 continue;
             }

@@ -532,6 +532,7 @@ pub(super) mod tests {
             global: Vec::new(),
             points: Vec::new(),
             mask: Vec::new(),
+            tags: Vec::new(),
             slots: Vec::new(),
         };
         let mut per_slot = Vec::new();
@@ -583,6 +584,15 @@ pub(super) mod tests {
                 beyond_may_attach: false,
             });
         }
+        input.tags = (0..n)
+            .map(|v| {
+                let planes: Vec<(u32, [f64; 2])> = (0..2)
+                    .filter(|&s| input.mask[v] >> s & 1 == 1)
+                    .map(|s| (s as u32, input.slots[s].uv[v]))
+                    .collect();
+                crate::delaunay::PointTags::new(v as u64, &planes)
+            })
+            .collect();
         input
     }
 

@@ -32,6 +32,7 @@
 //! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
 //! `Options::delaunay` switches branching and cutting samples and flat-zone thickening off; `BM_DEBUG`
 //! prints per-cell diagnostics (it changes no result).
+pub mod assembly;
 pub mod branching;
 pub mod cell;
 pub mod cell_input;
@@ -41,6 +42,7 @@ pub mod complex;
 pub mod conform;
 pub mod cutting;
 pub mod face_overlay;
+pub mod fill;
 pub mod glue;
 pub mod prune;
 pub mod shared_samples;
@@ -417,6 +419,7 @@ pub fn reconstruct(
     for r in results.iter().flatten() {
         report.count("tets_delaunay", r.tets);
         report.count("tets_flat", r.flat_tets);
+        report.count("cells_untagged", r.untagged as u64);
         report.count("step1_removed", r.counts.step1_removed);
         report.count("step2_removed", r.counts.step2_removed);
         report.count("step2_vf_groups_removed", r.counts.step2_vf_groups_removed);
@@ -439,8 +442,22 @@ pub fn reconstruct(
         report.count("cutting_samples_on_flat_border", r.cutting_on_flat_border);
         *report.values.entry("cell_flat_area".into()).or_insert(0.0) += r.flat_area;
     }
+    match options.delaunay.assembly {
+        crate::solid::Assembly::Glue => Ok(glue_cells(arr, &pool, &results, options, report)),
+        crate::solid::Assembly::Complex => Ok(assemble_cells(&pool, &results, report)),
+    }
+}
+
+/// The solid by `glue` (overlay, unpinch, lift, thicken).
+fn glue_cells(
+    arr: &Arrangement,
+    pool: &crate::arrangement::VertexPool,
+    results: &[Option<CellResult>],
+    options: &Options,
+    report: &mut Report,
+) -> Solid {
     let glued = report.time("glue", || {
-        glue::glue(arr, &pool, &results, options.delaunay.thicken_flat_zones)
+        glue::glue(arr, pool, results, options.delaunay.thicken_flat_zones)
     });
     report.count("flat_zone_faces", glued.flat_zone_faces);
     report
@@ -463,11 +480,51 @@ pub fn reconstruct(
         report.values.insert(format!("glue_seconds.{step}"), secs);
     }
     report.warnings.extend(glued.warnings);
-    Ok(Solid {
+    Solid {
         surface: glued.surface,
         tets: Some(glued.tets),
         report: Report::default(),
-    })
+    }
+}
+
+/// The solid as one complex (`assembly`): the surface is the boundary of the kept tetrahedra.
+fn assemble_cells(
+    pool: &crate::arrangement::VertexPool,
+    results: &[Option<CellResult>],
+    report: &mut Report,
+) -> Solid {
+    let k = report.time("assembly", || assembly::assemble(pool, results));
+    report.count("nonconforming_faces", k.nonconforming_faces);
+    report.count("flat_zone_triangles", k.flat_triangles);
+    report.values.insert("flat_zone_area".into(), k.flat_area);
+    report.count("singular_edges_found", k.singular_edges_found);
+    report.count("singular_vertices_found", k.singular_vertices_found);
+    report.count("tets_filled", k.tets_filled);
+    report.count("singular_edges", k.singular_edges);
+    report.count("singular_vertices", k.singular_vertices);
+    if k.nonconforming_faces > 0 {
+        report.warnings.push(format!(
+            "{} faces are triangulated differently by their two cells: the complex is not conforming there and its boundary may cross itself",
+            k.nonconforming_faces
+        ));
+    }
+    if k.flat_triangles > 0 {
+        report.warnings.push(format!(
+            "{} section triangles (area {:.6e}) have no kept tetrahedron on either side (flat zones): left out of the solid",
+            k.flat_triangles, k.flat_area
+        ));
+    }
+    if k.singular_edges + k.singular_vertices > 0 {
+        report.warnings.push(format!(
+            "the boundary of the complex has {} singular edges and {} pinched vertices (not yet resolved with --assembly complex)",
+            k.singular_edges, k.singular_vertices
+        ));
+    }
+    Solid {
+        surface: k.surface,
+        tets: Some(k.tets),
+        report: Report::default(),
+    }
 }
 
 /// An arrangement without planes or cells (unit tests of the gluing steps that do not look at it).

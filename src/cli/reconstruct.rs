@@ -24,6 +24,10 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
             cutting: !args.no_cutting,
             thicken_flat_zones: !args.no_thicken,
             shared_samples: args.shared_samples,
+            assembly: match args.assembly {
+                crate::Assembly::Glue => slice2solid::Assembly::Glue,
+                crate::Assembly::Complex => slice2solid::Assembly::Complex,
+            },
         },
         ..Default::default()
     };

@@ -2,7 +2,7 @@
 //! Bowyer–Watson insertion (conflict region grown from the located tetrahedron, then starred from
 //! the new vertex). All ids here are internal vertex ids (insertion order).
 use super::pred::{self, P};
-use super::tags::{self, PointTags};
+use super::tags;
 use super::tds::{facet_key, other_two, Tet, ID_MASK, INFINITE, IN_CAVITY, NONE, OUTSIDE};
 use super::Delaunay;
 
@@ -205,8 +205,8 @@ impl Delaunay {
 
     /// The tags of the vertices of `v` (`None` for the infinite vertex); tagged triangulations only.
     #[inline(always)]
-    fn tags_of(&self, v: [u32; 4]) -> [Option<&PointTags>; 4] {
-        v.map(|w| (w != INFINITE).then(|| &self.tags[w as usize]))
+    fn tags_of(&self, v: [u32; 4]) -> [Option<tags::TaggedPoint<'_>>; 4] {
+        v.map(|w| (w != INFINITE).then(|| (&self.tags[w as usize], self.pts[w as usize])))
     }
 
     /// Conflict of `t` with internal vertex `qv` at `q` in a tagged triangulation: the line and
@@ -216,7 +216,7 @@ impl Delaunay {
     #[inline]
     pub(super) fn conflict_tagged(&self, t: u32, qv: u32, q: P) -> bool {
         let v = tet(&self.tds.tets, t).v;
-        tags::conflict(self.tags_of(v), &self.tags[qv as usize])
+        tags::conflict(self.tags_of(v), (&self.tags[qv as usize], q))
             .unwrap_or_else(|| self.conflict(t, q))
     }
 
@@ -227,10 +227,15 @@ impl Delaunay {
     /// conflict region is non-empty (the tets on the plane's triangle or line segment containing
     /// `q`, or the float location, conflict) and is usually a few steps away.
     fn locate_tagged(&mut self, qv: u32, q: P) -> Result<u32, u32> {
+        // An exact duplicate first, by the plain walk (it ends in a tetrahedron with the vertex
+        // at q, as in the untagged kernel); the tagged walk may end away from it, and a duplicate
+        // inserted as a new vertex would make a cavity that is not star-shaped.
+        let plain = self.walk_from_hint(q);
+        self.same_position(plain, q)?;
         let mut rng = self.rng;
         let (tets, pts, tags) = (&self.tds.tets, &self.pts, &self.tags);
         let qt = &tags[qv as usize];
-        let t0 = walk_with(tets, pts, q, self.hint, &mut rng, &self.bounds, |v, i| {
+        let t0 = walk_with(tets, pts, q, plain, &mut rng, &self.bounds, |v, i| {
             tags::walk_degenerate(v.map(|w| (w != INFINITE).then(|| &tags[w as usize])), i, qt)
         });
         self.rng = rng;
@@ -265,38 +270,21 @@ impl Delaunay {
         unreachable!("no tetrahedron conflicts with a new point")
     }
 
-    /// Tagged: every new finite tetrahedron is positive, else the conflict rules were inconsistent
-    /// across a cavity facet. Release builds record it (`Delaunay::consistent` then fails); debug
-    /// builds panic with both sides' rules.
-    fn check_cavity(&mut self, boundary: &[BoundaryFacet], qv: u32, q: P) {
+    /// Tagged: whether every new finite tetrahedron would be positive; if not, the conflict rules
+    /// were inconsistent across a cavity facet (an exact cosphericity across planes) and the
+    /// triangulation records it (`Delaunay::consistent` then fails).
+    fn cavity_is_star(&mut self, boundary: &[BoundaryFacet]) -> bool {
         for b in boundary {
             if b.v.contains(&INFINITE) {
                 continue;
             }
             let p = b.v.map(|w| self.pts[w as usize]);
-            let o = pred::orient(p[0], p[1], p[2], p[3]);
-            if o <= 0.0 {
+            if pred::orient(p[0], p[1], p[2], p[3]) <= 0.0 {
                 self.inconsistent = true;
-                if !cfg!(debug_assertions) {
-                    return;
-                }
-                let nb = &self.tds.tets[b.nb as usize];
-                let side = |v: [u32; 4]| {
-                    let rule = tags::conflict(self.tags_of(v), &self.tags[qv as usize]);
-                    (
-                        v.map(|w| (w != INFINITE).then(|| self.tags[w as usize].clone())),
-                        rule,
-                    )
-                };
-                panic!(
-                    "non-positive new tet ({o}) for q {:?}:\n outside neighbour {:?}\n new {:?}",
-                    self.tags[qv as usize],
-                    side(nb.v),
-                    side(b.v),
-                );
+                return false;
             }
         }
-        let _ = q;
+        true
     }
 
     /// `Err(w)` when finite vertex `w` of `t` is at position `q`.
@@ -347,6 +335,10 @@ impl Delaunay {
     /// Inserts internal vertex `v` (already in `pts`) into the 3D triangulation. Returns `v`, or the
     /// internal id of the vertex already at that position (then nothing changed).
     pub(super) fn insert_vertex(&mut self, v: u32) -> u32 {
+        if self.inconsistent {
+            // a triangulation the tag rules could not keep valid takes no more points
+            return v;
+        }
         if self.tagged {
             self.insert_vertex_with::<true>(v)
         } else {
@@ -438,8 +430,20 @@ impl Delaunay {
                 });
             }
         }
-        if TAGGED {
-            self.check_cavity(&boundary, v, q);
+        if TAGGED && !self.cavity_is_star(&boundary) {
+            // leave the triangulation as it was (valid, without `v`): a non-star cavity would
+            // break the structure; the caller learns of it from `Delaunay::consistent`
+            for &c in &cavity {
+                tet_mut(&mut self.tds.tets, c).n[0] &= ID_MASK;
+            }
+            for &n in &outside {
+                tet_mut(&mut self.tds.tets, n).n[1] &= ID_MASK;
+            }
+            self.cavity = cavity;
+            self.boundary = boundary;
+            self.outside = outside;
+            self.newt = newt;
+            return v;
         }
         // Pass 1: one new tetrahedron per boundary facet (in the cavity's own slots first, they are
         // in cache), glued to the outside.

@@ -506,6 +506,30 @@ impl Delaunay {
     /// grid) makes fewer and smaller conflict regions. Returns each point's id (the kept vertex's
     /// for a duplicate). Panics on non-finite coordinates.
     pub fn insert_batch(&mut self, points: &[[f64; 3]]) -> Vec<VertexId> {
+        self.insert_batch_with(points, None)
+    }
+
+    /// [`Delaunay::insert_batch`] of points lying on the planes of `tags` (one per point; ignored on
+    /// a triangulation built untagged). Panics on non-finite coordinates, a length mismatch or bad
+    /// tags. After it, [`Delaunay::consistent`] says whether the triangulation can be trusted.
+    pub fn insert_batch_tagged(
+        &mut self,
+        points: &[[f64; 3]],
+        tags: &[PointTags],
+    ) -> Vec<VertexId> {
+        assert_eq!(
+            tags.len(),
+            points.len(),
+            "Delaunay::insert_batch_tagged: one tag set per point"
+        );
+        self.insert_batch_with(points, Some(tags))
+    }
+
+    fn insert_batch_with(
+        &mut self,
+        points: &[[f64; 3]],
+        tags: Option<&[PointTags]>,
+    ) -> Vec<VertexId> {
         assert!(
             points.iter().all(|p| p.iter().all(|c| c.is_finite())),
             "Delaunay::insert_batch: non-finite coordinate"
@@ -524,7 +548,13 @@ impl Delaunay {
             }
             let e = e0 + i;
             // a kept vertex is an earlier one (never of this batch: those are at distinct positions)
-            if let Some(kept) = self.place(e, norm(points[i as usize]), PointTags::none()) {
+            let t = match tags {
+                Some(tags) if self.tagged => tags[i as usize]
+                    .normalized()
+                    .expect("Delaunay::insert_batch_tagged: bad tags"),
+                _ => PointTags::none(),
+            };
+            if let Some(kept) = self.place(e, norm(points[i as usize]), t) {
                 new_dups.push((e, kept));
             }
         }

@@ -1,33 +1,34 @@
 //! A small reference 2D Delaunay triangulation of the points of one plane, in that plane's uv, with
-//! the tagged kernel's tie-breaking (exact `incircle`, 2D symbolic perturbation on gid, the line rule
+//! the tagged kernel's tie-breaking (exact `incircle`, 2D symbolic perturbation in the lexicographic
+//! order of the 3D positions, the line rule
 //! for points sharing a second plane). Brute force on purpose: a triangle is kept iff it is not
 //! degenerate and no other point conflicts with it, which is the definition, with no incremental
 //! state that could share a bug with the 3D kernel. O(n⁴): for checks on up to a few hundred points.
 use super::pred;
-use super::tags::{line_plane, on_one_line, PointTags};
+use super::tags::{line_plane, on_one_line, PointTags, TaggedPoint};
 
 /// Whether `q` conflicts with triangle `f` of `plane`: the line rule when two of `f`'s vertices
 /// and `q` lie on one line (share a second plane), else the perturbed in-circle test in uv.
-fn conflicts(plane: u32, f: [&PointTags; 3], q: &PointTags) -> bool {
+fn conflicts(plane: u32, f: [TaggedPoint; 3], q: TaggedPoint) -> bool {
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
-        if let Some(pl) = line_plane(f[i], f[j], q) {
+        if let Some(pl) = line_plane(f[i].0, f[j].0, q.0) {
             let uv = |t: &PointTags| t.uv(pl).unwrap();
-            return pred::line_between(uv(f[i]), uv(f[j]), uv(q));
+            return pred::line_between(uv(f[i].0), uv(f[j].0), uv(q.0));
         }
     }
-    let uvg = |t: &PointTags| (t.uv(plane).unwrap(), t.gid);
-    pred::plane_incircle(uvg(f[0]), uvg(f[1]), uvg(f[2]), uvg(q)).unwrap_or(false)
+    let uvp = |(t, p): TaggedPoint| (t.uv(plane).unwrap(), p);
+    pred::plane_incircle(uvp(f[0]), uvp(f[1]), uvp(f[2]), uvp(q)).unwrap_or(false)
 }
 
 /// The Delaunay triangles of `pts` (every one must lie on `plane`), as index triples counter-
 /// clockwise in uv, sorted. Collinear triples (in uv, or by sharing a second plane) are never
 /// triangles.
-pub fn delaunay(plane: u32, pts: &[&PointTags]) -> Vec<[usize; 3]> {
+pub fn delaunay(plane: u32, pts: &[TaggedPoint]) -> Vec<[usize; 3]> {
     assert!(
-        pts.iter().all(|p| p.on(plane)),
+        pts.iter().all(|p| p.0.on(plane)),
         "a point is not on the plane"
     );
-    let uv = |i: usize| pts[i].uv(plane).unwrap();
+    let uv = |i: usize| pts[i].0.uv(plane).unwrap();
     let n = pts.len();
     let mut out = Vec::new();
     let mut witness = 0;
@@ -35,7 +36,7 @@ pub fn delaunay(plane: u32, pts: &[&PointTags]) -> Vec<[usize; 3]> {
         for j in i + 1..n {
             for k in j + 1..n {
                 let o = crate::geom::predicates::orient2d(uv(i), uv(j), uv(k));
-                if o == 0.0 || on_one_line(pts[i], pts[j], pts[k]) {
+                if o == 0.0 || on_one_line(pts[i].0, pts[j].0, pts[k].0) {
                     continue;
                 }
                 let f = [pts[i], pts[j], pts[k]];
@@ -70,7 +71,11 @@ mod tests {
         let pts: Vec<PointTags> = (0..12)
             .map(|k| PointTags::new(100 - k, &[(4, [(k % 4) as f64, (k / 4) as f64])]))
             .collect();
-        let refs: Vec<&PointTags> = pts.iter().collect();
+        let refs: Vec<TaggedPoint> = pts
+            .iter()
+            .enumerate()
+            .map(|(k, t)| (t, [k as f64, 0.0, 0.0]))
+            .collect();
         let tris = delaunay(4, &refs);
         assert_eq!(tris.len(), 12);
         let area: f64 = tris

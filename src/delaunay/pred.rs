@@ -588,16 +588,20 @@ fn coplanar_conflict(t: [P; 4], k: usize, d: P, q: P) -> bool {
     false
 }
 
-/// A point of a plane for [`plane_incircle`]: its uv in the plane's frame and its global id.
-pub type UvPoint = ([f64; 2], u64);
+/// A point of a plane for [`plane_incircle`]: its uv in the plane's frame and its 3D position (the
+/// key of the symbolic perturbation).
+pub type UvPoint = ([f64; 2], P);
 
 /// Whether `q` is inside the circumcircle of `a, b, c` in one plane's uv (any orientation of the
 /// three: the exact `incircle` is oriented by the exact `orient2d`). An exact tie is broken by a 2D
-/// symbolic perturbation on the global ids, the planar analogue of [`conflict_finite`]'s 3D one with
-/// gid instead of lexicographic order (so it depends on the points' identities only, never on the
-/// cell or the insertion order): the point of largest gid decides; if it is `q`, `q` is outside;
+/// symbolic perturbation, the planar analogue of [`conflict_finite`]'s 3D one with the same order
+/// (lexicographic on the 3D positions, a function of the points alone, never of the cell or the
+/// insertion order): the lexicographically largest point decides; if it is `q`, `q` is outside;
 /// else the answer is the orientation of the triangle with that point replaced by `q`, and on a
-/// collinear substitution the next point decides. `None` when `a, b, c` are collinear in uv (no
+/// collinear substitution the next point decides. Being the same order matters: for exactly
+/// coplanar points the 3D perturbation restricted to their plane is this 2D one (an off-plane
+/// apex's term is an orientation of four coplanar points, zero), so a plane-rule decision never
+/// contradicts a 3D decision on a tuple spanning two parallel planes. `None` when `a, b, c` are collinear in uv (no
 /// circle: the caller falls back to the 3D predicates).
 pub fn plane_incircle(a: UvPoint, b: UvPoint, c: UvPoint, q: UvPoint) -> Option<bool> {
     let o = gp::orient2d(a.0, b.0, c.0);
@@ -617,7 +621,7 @@ pub fn plane_incircle(a: UvPoint, b: UvPoint, c: UvPoint, q: UvPoint) -> Option<
 fn perturbed_incircle_tie(f: [UvPoint; 3], q: UvPoint) -> bool {
     let pts = [f[0], f[1], f[2], q];
     let mut idx = [0usize, 1, 2, 3];
-    idx.sort_by_key(|&i| pts[i].1);
+    idx.sort_by(|&i, &j| cmp_lex(&pts[i].1, &pts[j].1));
     for k in (0..4).rev() {
         let j = idx[k];
         if j == 3 {
@@ -867,12 +871,13 @@ mod tests {
         assert_eq!(Bounds::for_extent(f64::INFINITY), Bounds::NONE);
     }
     #[test]
-    fn plane_incircle_ties_by_gid() {
-        // the unit square's corners are cocircular: the two diagonals are decided by gid alone
+    fn plane_incircle_ties_by_position() {
+        // the unit square's corners are cocircular: the two diagonals are decided by the order of
+        // the 3D keys alone
         let sq = [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]];
         let ids = [[0u64, 1, 2, 3], [3, 2, 1, 0], [5, 9, 2, 7], [1, 3, 0, 2]];
         for g in ids {
-            let p: Vec<UvPoint> = (0..4).map(|i| (sq[i], g[i])).collect();
+            let p: Vec<UvPoint> = (0..4).map(|i| (sq[i], [g[i] as f64, 0.0, 0.0])).collect();
             // exactly one diagonal: triangles (0,1,2)+(0,2,3) or (0,1,3)+(1,2,3), both orientations
             let d02 = !plane_incircle(p[0], p[1], p[2], p[3]).unwrap()
                 && !plane_incircle(p[0], p[2], p[3], p[1]).unwrap();
@@ -886,10 +891,10 @@ mod tests {
         }
         assert_eq!(
             plane_incircle(
-                ([0.0, 0.0], 0),
-                ([1.0, 0.0], 1),
-                ([2.0, 0.0], 2),
-                ([0.5, 0.5], 3)
+                ([0.0, 0.0], [0.0; 3]),
+                ([1.0, 0.0], [1.0; 3]),
+                ([2.0, 0.0], [2.0; 3]),
+                ([0.5, 0.5], [3.0; 3])
             ),
             None
         );

@@ -176,8 +176,8 @@ fn tag_rule(dt: &Delaunay, v: [u32; 4], q: u32) -> Option<bool> {
     if !dt.tagged {
         return None;
     }
-    let tv = v.map(|w| (w != INFINITE).then(|| &dt.tags[w as usize]));
-    tags::conflict(tv, &dt.tags[q as usize])
+    let tv = v.map(|w| (w != INFINITE).then(|| (&dt.tags[w as usize], dt.pts[w as usize])));
+    tags::conflict(tv, (&dt.tags[q as usize], dt.pts[q as usize]))
 }
 
 fn ext_of(dt: &Delaunay, v: [u32; 4]) -> [u32; 4] {
@@ -206,7 +206,10 @@ fn check_planes(dt: &Delaunay) -> Result<(), String> {
         let ids: Vec<u32> = (0..dt.pts.len() as u32)
             .filter(|&w| dt.tags[w as usize].on(pl))
             .collect();
-        let refs: Vec<&PointTags> = ids.iter().map(|&w| &dt.tags[w as usize]).collect();
+        let refs: Vec<(&PointTags, [f64; 3])> = ids
+            .iter()
+            .map(|&w| (&dt.tags[w as usize], dt.pts[w as usize]))
+            .collect();
         let want: BTreeSet<[u32; 3]> = plane2d::delaunay(pl, &refs)
             .into_iter()
             .map(|t| {
