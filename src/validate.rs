@@ -6,8 +6,8 @@
 //! `ReadOptions::strict`, a region with a self-intersecting or self-touching contour is replaced by
 //! the simple regions it encloses (nonzero winding, see `repair`), and touching or overlapping
 //! regions of one label (or a hole touching its outer contour) are merged into the union of their
-//! material; the CSL reader also repairs plane
-//! equations (`io::csl`). In strict mode these are the errors below.
+//! material; the CSL and JSON readers also repair plane
+//! equations (`planes`). In strict mode these are the errors below.
 //! Errors (`Error::Input`, located by a [`Locator`]): non-finite or out-of-range numbers, zero normal,
 //! a vertex off its plane beyond `OFF_PLANE_RELATIVE_TOLERANCE` × the model's bounding-box diagonal,
 //! fewer than 3 distinct vertices, a self-intersecting (or self-touching) contour, two contours of
@@ -20,6 +20,7 @@ use crate::error::{Error, Result};
 use crate::geom::predicates::orient2d;
 use crate::sections::{cross, dot, sub, Contour, Plane, Sections};
 
+pub mod planes;
 mod repair;
 pub use repair::NUDGE_RELATIVE;
 

@@ -4,6 +4,7 @@
 mod common;
 use common::bin;
 use slice2solid::io::csl::{parse_csl, parse_csl_with, to_csl_string};
+use slice2solid::io::json::{parse_json, parse_json_with};
 use slice2solid::io::ReadOptions;
 use slice2solid::Sections;
 
@@ -360,6 +361,88 @@ fn different_labels_touching_are_still_refused() {
     let e = parse_csl(&text, "t.csl").unwrap_err().to_string();
     assert!(
         e.starts_with("t.csl:18: plane 2, component 0") && e.contains("cross"),
+        "{e}"
+    );
+}
+
+/// A 4x4 square at height `z` (x + 0.01 `tilt` x), as a JSON contour given in 3D.
+fn json_square(z: f64, tilt: f64) -> String {
+    format!(
+        r#"{{"points": [[0,0,{z}],[4,0,{}],[4,4,{}],[0,4,{z}]]}}"#,
+        z + 0.04 * tilt,
+        z + 0.04 * tilt
+    )
+}
+
+fn json_error(text: &str, options: &ReadOptions) -> String {
+    match parse_json_with(text, "t.json", options) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn json_planes_get_the_csl_plane_repairs() {
+    // Plane 1 is z = 1 stated as normal (0,0,1), offset 1 (z + 1 = 0); plane 0 is given by a
+    // point (no sign convention) and fits.
+    let text = format!(
+        r#"{{"planes": [{{"point": [0,0,0], "normal": [0,0,1], "contours": [{}]}},
+            {{"normal": [0,0,1], "offset": 1, "contours": [{}]}}]}}"#,
+        json_square(0.0, 0.0),
+        json_square(1.0, 0.0)
+    );
+    let s = parse_json(&text, "t.json").unwrap();
+    let r = repairs(&s);
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.json: repaired plane equations")
+            && r[0].contains("1 of 2 plane(s)")
+            && r[0].contains("(the planes stated with an offset)"),
+        "{}",
+        r[0]
+    );
+    assert!(s.sections[1].plane.signed_distance([3.0, 3.0, 1.0]).abs() < 1e-12);
+    assert!((s.sections[1].area() - 16.0).abs() < 1e-9);
+    let e = json_error(&text, &STRICT);
+    assert!(
+        e.starts_with("t.json: $.planes[1].contours[0].points[0]") && e.contains("off its plane"),
+        "{e}"
+    );
+
+    // Plane 1 stated as z = 1 through a point, its vertices on z = 1 + 0.01 x: their plane.
+    let text = format!(
+        r#"{{"planes": [{{"point": [0,0,0], "normal": [0,0,1], "contours": [{}]}},
+            {{"point": [0,0,1], "normal": [0,0,1], "contours": [{}]}}]}}"#,
+        json_square(0.0, 0.0),
+        json_square(1.0, 1.0)
+    );
+    let s = parse_json(&text, "t.json").unwrap();
+    let r = repairs(&s);
+    assert_eq!(s.warnings.len(), 1, "{:?}", s.warnings);
+    assert!(
+        r[0].starts_with("t.json: $.planes[1]: repaired plane equation")
+            && r[0].contains("normal turned by 0.573 degrees"),
+        "{}",
+        r[0]
+    );
+    assert!(s.sections[1].plane.signed_distance([4.0, 4.0, 1.04]).abs() < 1e-12);
+    let area = 16.0 * (1.0f64 + 1e-4).sqrt();
+    assert!((s.sections[1].area() - area).abs() < 1e-9);
+    let e = json_error(&text, &STRICT);
+    assert!(
+        e.starts_with("t.json: $.planes[1].contours[0].points[1]") && e.contains("off its plane"),
+        "{e}"
+    );
+
+    // A contour in the plane's own frame (points2d) pins the stated plane: no re-fit.
+    let pinned = text.replacen(
+        r#"{"point": [0,0,1], "normal": [0,0,1], "contours": ["#,
+        r#"{"point": [0,0,1], "normal": [0,0,1], "contours": [{"points2d": [[-7,5],[-6,5],[-6,6]], "label": 2}, "#,
+        1,
+    );
+    let e = json_error(&pinned, &ReadOptions::default());
+    assert!(
+        e.starts_with("t.json: $.planes[1].contours[1].points[1]") && e.contains("off its plane"),
         "{e}"
     );
 }
