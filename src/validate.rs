@@ -4,15 +4,16 @@
 //! Repairs (reported in `Sections::warnings`): duplicate consecutive vertices are removed, contours
 //! are re-oriented (outer counter-clockwise, holes clockwise seen from the normal), and unless
 //! `ReadOptions::strict`, a region with a self-intersecting or self-touching contour is replaced by
-//! the simple regions it encloses (nonzero winding, see `repair`), and touching or overlapping
+//! the simple regions it encloses (nonzero winding, see `repair`), touching or overlapping
 //! regions of one label (or a hole touching its outer contour) are merged into the union of their
-//! material; the CSL and JSON readers also repair plane
-//! equations (`planes`). In strict mode these are the errors below.
+//! material, regions of different labels that touch are kept and ones that overlap in area are
+//! resolved by the lower label keeping the overlap (`labels`); the CSL and JSON readers also repair
+//! plane equations (`planes`). In strict mode these are the errors below.
 //! Errors (`Error::Input`, located by a [`Locator`]): non-finite or out-of-range numbers, zero normal,
 //! a vertex off its plane beyond `OFF_PLANE_RELATIVE_TOLERANCE` × the model's bounding-box diagonal,
 //! fewer than 3 distinct vertices, a self-intersecting (or self-touching) contour, two contours of
-//! one plane crossing or touching, a hole not inside its parent, a region inside another region's
-//! material, and the same plane given twice.
+//! one plane crossing or touching (of one label; of different labels, overlapping in area), a hole
+//! not inside its parent, a region inside another region's material, and the same plane given twice.
 //!
 //! Every intersection and containment decision uses the exact `orient2d` predicate on the
 //! authoritative 2D coordinates (`points2`); floats are only used for bucketing and distances.
@@ -20,8 +21,10 @@ use crate::error::{Error, Result};
 use crate::geom::predicates::orient2d;
 use crate::sections::{cross, dot, sub, Contour, Plane, Sections};
 
+mod labels;
 pub mod planes;
 mod repair;
+pub use labels::{one_material, LABEL_OVERLAP_RELATIVE_AREA};
 pub use repair::NUDGE_RELATIVE;
 
 /// A vertex may lie this far from its plane, relative to the diagonal of the model's bounding box.
@@ -250,7 +253,9 @@ pub fn validate_with_options(
         }
     }
 
-    // Self-intersecting and self-touching contours (unless strict): see `repair`.
+    // Self-intersecting and self-touching contours, then same-label and different-label
+    // conflicts (unless strict): see `repair` and `labels`.
+    let area_tol = labels::area_tolerance(&sections);
     let remap;
     let loc: &dyn Locator = if options.strict {
         loc
@@ -264,6 +269,7 @@ pub fn validate_with_options(
             .map(|(s, sec)| {
                 let mut map = repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs);
                 repair::repair_label_conflicts(sec, s, loc, nudge, &mut map, &mut repairs);
+                labels::repair_label_overlaps(sec, s, loc, area_tol, nudge, &mut map, &mut repairs);
                 map
             })
             .collect();
@@ -276,8 +282,23 @@ pub fn validate_with_options(
 
     for (s, sec) in sections.sections.iter().enumerate() {
         let contours = section_contours(s, sec, 0..sec.regions.len());
-        check_intersections(&contours, loc)?;
-        check_nesting(&contours, loc)?;
+        let all = check_intersections(&contours, loc).and_then(|_| check_nesting(&contours, loc));
+        if all.is_ok() || options.strict {
+            all?;
+            continue;
+        }
+        // Not strict: regions of different labels may touch. Each label must be valid on its
+        // own, and no two labels may overlap in area.
+        let mut labels: Vec<i32> = sec.regions.iter().map(|r| r.label).collect();
+        labels.sort_unstable();
+        labels.dedup();
+        for label in labels {
+            let members = (0..sec.regions.len()).filter(|&r| sec.regions[r].label == label);
+            let contours = section_contours(s, sec, members);
+            check_intersections(&contours, loc)?;
+            check_nesting(&contours, loc)?;
+        }
+        labels::check_labels_disjoint(sec, s, loc, area_tol)?;
     }
 
     // Orientation: outer counter-clockwise, holes clockwise (the contours are simple by now).

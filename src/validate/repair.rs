@@ -41,7 +41,7 @@ impl Locator for RemapLocator<'_> {
 }
 
 /// The location of contour `id` of a section whose regions came from the input by `map`.
-fn remapped(inner: &dyn Locator, map: &[(usize, bool)], id: ContourId) -> String {
+pub(super) fn remapped(inner: &dyn Locator, map: &[(usize, bool)], id: ContourId) -> String {
     let (orig, repaired) = map[id.region];
     if repaired {
         let outer = ContourId {
@@ -134,7 +134,10 @@ fn resolve(region: &Region, nudge: f64) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
 
 /// i_overlay's shapes as pieces (outer counter-clockwise, then holes clockwise), without repeated
 /// vertices, vertices shared by two contours moved apart. None if nothing has area.
-fn pieces_of(shapes: Vec<Vec<Vec<[f64; 2]>>>, nudge: f64) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
+pub(super) fn pieces_of(
+    shapes: Vec<Vec<Vec<[f64; 2]>>>,
+    nudge: f64,
+) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
     let mut pieces: Vec<Vec<Vec<[f64; 2]>>> = Vec::new();
     for shape in shapes {
         let mut piece = Vec::new();
@@ -203,7 +206,7 @@ fn separate_shared_vertices(pieces: &mut [Vec<Vec<[f64; 2]>>], nudge: f64) {
 /// its outer contour), or a region lies inside the material of another of its label, that label's
 /// regions are replaced by the union of their material (outer contours counted +1, holes -1, kept
 /// where the count is positive: a hole touching its outer contour is subtracted from it). A hole
-/// outside its parent, not touching it, stays an error. Different labels are left to the validator.
+/// outside its parent, not touching it, stays an error. Different labels are left to `labels`.
 pub(super) fn repair_label_conflicts(
     sec: &mut Section,
     s: usize,
@@ -235,17 +238,7 @@ pub(super) fn repair_label_conflicts(
         }
         let mut material: Vec<Vec<[f64; 2]>> = Vec::new();
         for &r in &members {
-            let region = &sec.regions[r];
-            for (k, c) in std::iter::once(&region.outer)
-                .chain(&region.holes)
-                .enumerate()
-            {
-                let mut p = c.points2.clone();
-                if (orientation(&p) > 0.0) != (k == 0) {
-                    p.reverse();
-                }
-                material.push(p);
-            }
+            material_of(&sec.regions[r], &mut material);
         }
         let shapes = material.simplify_shape_as::<i64>(FillRule::Positive);
         let Some(pieces) = pieces_of(shapes, nudge) else {
@@ -315,8 +308,23 @@ pub(super) fn repair_label_conflicts(
     }
 }
 
+/// Append the contours of `region` to `out` as material for the booleans: the outer contour
+/// counter-clockwise, the holes clockwise (so `FillRule::Positive` counts outer +1, holes -1).
+pub(super) fn material_of(region: &Region, out: &mut Vec<Vec<[f64; 2]>>) {
+    for (k, c) in std::iter::once(&region.outer)
+        .chain(&region.holes)
+        .enumerate()
+    {
+        let mut p = c.points2.clone();
+        if (orientation(&p) > 0.0) != (k == 0) {
+            p.reverse();
+        }
+        out.push(p);
+    }
+}
+
 /// A region of `label` from a boolean result's piece (its outer loop first, then its holes).
-fn region_of_piece(
+pub(super) fn region_of_piece(
     label: i32,
     plane: &crate::sections::Plane,
     mut piece: Vec<Vec<[f64; 2]>>,
