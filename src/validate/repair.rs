@@ -20,9 +20,13 @@ use i_overlay::float::simplify::SimplifyShape;
 use i_overlay::float::single::SingleFloatOverlay;
 use std::collections::HashMap;
 
-/// How far a vertex shared by two repaired contours is moved apart, relative to the model diagonal
-/// (a millionth of the off-plane tolerance).
-pub const NUDGE_RELATIVE: f64 = 1e-9;
+/// How far a vertex shared by two repaired contours is moved apart, relative to the model diagonal:
+/// a hundredth of the off-plane tolerance, below the precision of real files (Horsers prints two
+/// decimals, 4.9e-5 of its diagonal). Not smaller: the Delaunay engine thickens a piece that no
+/// cell attaches into a slab up to 2e-5 of the diagonal thick, whose walls cross a neighbouring
+/// piece much closer than that (a bow-tie's lobes 2e-9 apart lost one lobe; 2e-5 apart both are
+/// kept, `tests/io_repair.rs`).
+pub const NUDGE_RELATIVE: f64 = 1e-5;
 
 /// Locations after repairs: a region made by a repair is named by the component it came from.
 pub(super) struct RemapLocator<'a> {
