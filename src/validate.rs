@@ -74,6 +74,19 @@ pub trait Locator {
     fn contour(&self, id: ContourId) -> String;
 }
 
+/// No locations: for checks whose outcome decides a repair, where the message is not used (and the
+/// regions may already differ from the input's, which the readers' locators index).
+pub(super) struct NoLocation;
+
+impl Locator for NoLocation {
+    fn plane(&self, _: usize) -> String {
+        String::new()
+    }
+    fn contour(&self, _: ContourId) -> String {
+        String::new()
+    }
+}
+
 /// Locations for a `Sections` built in memory: `SOURCE: section S (plane P), region R, hole H`.
 struct MemoryLocator<'a> {
     source: &'a str,
@@ -260,66 +273,17 @@ pub fn validate_with_options(
     let loc: &dyn Locator = if options.strict {
         loc
     } else {
-        let nudge = NUDGE_RELATIVE * model_diagonal(&sections);
-        let mut repairs = Vec::new();
-        let map = sections
-            .sections
-            .iter_mut()
-            .enumerate()
-            .map(|(s, sec)| {
-                let mut map = repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs);
-                repair::repair_label_conflicts(sec, s, loc, nudge, &mut map, &mut repairs);
-                labels::repair_label_overlaps(sec, s, loc, area_tol, nudge, &mut map, &mut repairs);
-                map
-            })
-            .collect();
-        sections.warnings.extend(repairs);
-        remap = repair::RemapLocator { inner: loc, map };
+        remap = repair_regions(&mut sections, loc, area_tol);
         &remap
     };
 
     check_duplicate_planes(&sections, loc)?;
-
     for (s, sec) in sections.sections.iter().enumerate() {
-        let contours = section_contours(s, sec, 0..sec.regions.len());
-        let all = check_intersections(&contours, loc).and_then(|_| check_nesting(&contours, loc));
-        if all.is_ok() || options.strict {
-            all?;
-            continue;
-        }
-        // Not strict: regions of different labels may touch. Each label must be valid on its
-        // own, and no two labels may overlap in area.
-        let mut labels: Vec<i32> = sec.regions.iter().map(|r| r.label).collect();
-        labels.sort_unstable();
-        labels.dedup();
-        for label in labels {
-            let members = (0..sec.regions.len()).filter(|&r| sec.regions[r].label == label);
-            let contours = section_contours(s, sec, members);
-            check_intersections(&contours, loc)?;
-            check_nesting(&contours, loc)?;
-        }
-        labels::check_labels_disjoint(sec, s, loc, area_tol)?;
+        check_section_contours(sec, s, loc, options.strict, area_tol)?;
     }
 
     // Orientation: outer counter-clockwise, holes clockwise (the contours are simple by now).
-    for (s, sec) in sections.sections.iter_mut().enumerate() {
-        for (r, region) in sec.regions.iter_mut().enumerate() {
-            for (role, c) in contours_mut(region) {
-                let ccw = orientation(&c.points2) > 0.0;
-                if ccw != (role == Role::Outer) {
-                    c.points2.reverse();
-                    c.points3.reverse();
-                    reoriented.add(|| {
-                        loc.contour(ContourId {
-                            section: s,
-                            region: r,
-                            role,
-                        })
-                    });
-                }
-            }
-        }
-    }
+    orient_contours(&mut sections, loc, &mut reoriented);
 
     let max_label = sections
         .sections
@@ -338,6 +302,80 @@ pub fn validate_with_options(
         &mut sections.warnings,
     );
     Ok(sections)
+}
+
+/// The region repairs of every section (not strict): self-intersections, same-label conflicts,
+/// different labels touching or overlapping. Their warnings go to `sections.warnings`; the
+/// locator names repaired regions by the input component they came from.
+fn repair_regions<'a>(
+    sections: &mut Sections,
+    loc: &'a dyn Locator,
+    area_tol: f64,
+) -> repair::RemapLocator<'a> {
+    let nudge = NUDGE_RELATIVE * model_diagonal(sections);
+    let mut repairs = Vec::new();
+    let map = sections
+        .sections
+        .iter_mut()
+        .enumerate()
+        .map(|(s, sec)| {
+            let mut map = repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs);
+            repair::repair_label_conflicts(sec, s, loc, nudge, &mut map, &mut repairs);
+            labels::repair_label_overlaps(sec, s, loc, area_tol, nudge, &mut map, &mut repairs);
+            map
+        })
+        .collect();
+    sections.warnings.extend(repairs);
+    repair::RemapLocator { inner: loc, map }
+}
+
+/// The contours of section `s` are simple, disjoint and properly nested. Strict: all of them.
+/// Otherwise regions of different labels may touch: each label must pass on its own, and no two
+/// labels may overlap in area (`labels`).
+fn check_section_contours(
+    sec: &crate::sections::Section,
+    s: usize,
+    loc: &dyn Locator,
+    strict: bool,
+    area_tol: f64,
+) -> Result<()> {
+    let contours = section_contours(s, sec, 0..sec.regions.len());
+    let all = check_intersections(&contours, loc).and_then(|_| check_nesting(&contours, loc));
+    if all.is_ok() || strict {
+        return all;
+    }
+    let mut labels: Vec<i32> = sec.regions.iter().map(|r| r.label).collect();
+    labels.sort_unstable();
+    labels.dedup();
+    for label in labels {
+        let members = (0..sec.regions.len()).filter(|&r| sec.regions[r].label == label);
+        let contours = section_contours(s, sec, members);
+        check_intersections(&contours, loc)?;
+        check_nesting(&contours, loc)?;
+    }
+    labels::check_labels_disjoint(sec, s, loc, area_tol)
+}
+
+/// Reverse the contours that run the wrong way (outer counter-clockwise, holes clockwise).
+fn orient_contours(sections: &mut Sections, loc: &dyn Locator, reoriented: &mut RepairLog) {
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let ccw = orientation(&c.points2) > 0.0;
+                if ccw != (role == Role::Outer) {
+                    c.points2.reverse();
+                    c.points3.reverse();
+                    reoriented.add(|| {
+                        loc.contour(ContourId {
+                            section: s,
+                            region: r,
+                            role,
+                        })
+                    });
+                }
+            }
+        }
+    }
 }
 
 fn contours_mut(

@@ -19,7 +19,7 @@
 use super::repair::{material_of, pieces_of, region_of_piece, remapped};
 use super::{
     check_intersections, check_nesting, model_diagonal, section_contours, ContourId, Locator,
-    MemoryLocator, Role, NUDGE_RELATIVE,
+    MemoryLocator, NoLocation, Role, NUDGE_RELATIVE,
 };
 use crate::error::{Error, Result};
 use crate::sections::{polygon_signed_area, Region, Section, Sections};
@@ -49,7 +49,8 @@ fn bbox(region: &Region) -> ([f64; 2], [f64; 2]) {
 /// The pairs (lower label, higher label) of regions of section `s` in contact. Regions that are
 /// not valid on their own are left out (the validator reports them). Empty, without pairwise
 /// tests, when the section's contours are disjoint and properly nested.
-fn contacts(sec: &Section, s: usize, loc: &dyn Locator) -> Vec<(usize, usize)> {
+fn contacts(sec: &Section, s: usize) -> Vec<(usize, usize)> {
+    let loc = &NoLocation;
     let all = section_contours(s, sec, 0..sec.regions.len());
     if check_intersections(&all, loc).is_ok() && check_nesting(&all, loc).is_ok() {
         return Vec::new();
@@ -112,7 +113,7 @@ pub(super) fn repair_label_overlaps(
     map: &mut Vec<(usize, bool)>,
     warnings: &mut Vec<String>,
 ) {
-    let pairs = contacts(sec, s, loc);
+    let pairs = contacts(sec, s);
     if pairs.is_empty() {
         return;
     }
@@ -189,7 +190,7 @@ pub(super) fn check_labels_disjoint(
     loc: &dyn Locator,
     area_tol: f64,
 ) -> Result<()> {
-    for (lo, hi) in contacts(sec, s, loc) {
+    for (lo, hi) in contacts(sec, s) {
         let area = overlap_area(&sec.regions[lo], &sec.regions[hi]);
         if area > area_tol {
             let id = |r| ContourId {

@@ -227,7 +227,8 @@ pub(super) fn repair_label_conflicts(
             .filter(|&r| sec.regions[r].label == label)
             .collect();
         let contours = super::section_contours(s, sec, members.iter().copied());
-        let touching = check_intersections(&contours, loc).is_err();
+        // Decisions only: the regions may be repaired pieces the input's locator does not know.
+        let touching = check_intersections(&contours, &super::NoLocation).is_err();
         if !touching {
             let holes_inside = members.iter().all(|&r| {
                 let region = &sec.regions[r];
@@ -236,7 +237,7 @@ pub(super) fn repair_label_conflicts(
                     .iter()
                     .all(|h| winding_number(h.points2[0], &region.outer.points2) != 0)
             });
-            if !holes_inside || check_nesting(&contours, loc).is_ok() {
+            if !holes_inside || check_nesting(&contours, &super::NoLocation).is_ok() {
                 continue;
             }
         }
