@@ -33,7 +33,7 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
             ));
         }
     }
-    let selected = sections.select_label(options.label);
+    let selected = sections.select_label(options.label)?;
     let arrangement = report.time("arrangement", || {
         Arrangement::build(&selected, &options.arrangement)
     })?;

@@ -8,6 +8,10 @@
 //! * Outer contours are counter-clockwise in (u,v), i.e. seen from the tip of the normal; holes are
 //!   clockwise. Contours are open polylines (the closing edge last→first is implicit), with no two
 //!   consecutive equal vertices.
+//! * In a plane, the contours of one label are disjoint (no two touch) and properly nested.
+//!   Regions of different labels have disjoint interiors but may touch (organs in contact share
+//!   part of their outline); `Sections::select_label` gives the view the engines take, with
+//!   disjoint contours.
 //! * `points2` are the authoritative coordinates (exact decisions inside a plane use them);
 //!   `points3` are `origin + s u + t v` evaluated in floating point (not exactly coplanar).
 use serde::{Deserialize, Serialize};
@@ -185,15 +189,19 @@ impl Sections {
         labels
     }
 
-    /// Keep only the regions of one label (`Some(l)`), or every region (`None`): what `--label` selects.
-    pub fn select_label(&self, label: Option<i32>) -> Sections {
+    /// What `--label` selects: the regions of one label (`Some(l)`), or all labels as one material
+    /// (`None`): every region, and where regions of different labels touch (which validated input
+    /// allows, see `validate`), the union of the plane's material instead
+    /// ([`crate::validate::one_material`]). The result has disjoint contours in every plane.
+    pub fn select_label(&self, label: Option<i32>) -> crate::error::Result<Sections> {
+        let Some(l) = label else {
+            return crate::validate::one_material(self);
+        };
         let mut out = self.clone();
-        if let Some(l) = label {
-            for s in &mut out.sections {
-                s.regions.retain(|r| r.label == l);
-            }
+        for s in &mut out.sections {
+            s.regions.retain(|r| r.label == l);
         }
-        out
+        Ok(out)
     }
 }
 

@@ -4,15 +4,16 @@
 //! Repairs (reported in `Sections::warnings`): duplicate consecutive vertices are removed, contours
 //! are re-oriented (outer counter-clockwise, holes clockwise seen from the normal), and unless
 //! `ReadOptions::strict`, a region with a self-intersecting or self-touching contour is replaced by
-//! the simple regions it encloses (nonzero winding, see `repair`), and touching or overlapping
+//! the simple regions it encloses (nonzero winding, see `repair`), touching or overlapping
 //! regions of one label (or a hole touching its outer contour) are merged into the union of their
-//! material; the CSL reader also repairs plane
-//! equations (`io::csl`). In strict mode these are the errors below.
+//! material, regions of different labels that touch are kept and ones that overlap in area are
+//! resolved by the lower label keeping the overlap (`labels`); the CSL and JSON readers also repair
+//! plane equations (`planes`). In strict mode these are the errors below.
 //! Errors (`Error::Input`, located by a [`Locator`]): non-finite or out-of-range numbers, zero normal,
 //! a vertex off its plane beyond `OFF_PLANE_RELATIVE_TOLERANCE` × the model's bounding-box diagonal,
 //! fewer than 3 distinct vertices, a self-intersecting (or self-touching) contour, two contours of
-//! one plane crossing or touching, a hole not inside its parent, a region inside another region's
-//! material, and the same plane given twice.
+//! one plane crossing or touching (of one label; of different labels, overlapping in area), a hole
+//! not inside its parent, a region inside another region's material, and the same plane given twice.
 //!
 //! Every intersection and containment decision uses the exact `orient2d` predicate on the
 //! authoritative 2D coordinates (`points2`); floats are only used for bucketing and distances.
@@ -20,7 +21,10 @@ use crate::error::{Error, Result};
 use crate::geom::predicates::orient2d;
 use crate::sections::{cross, dot, sub, Contour, Plane, Sections};
 
+mod labels;
+pub mod planes;
 mod repair;
+pub use labels::{one_material, LABEL_OVERLAP_RELATIVE_AREA};
 pub use repair::NUDGE_RELATIVE;
 
 /// A vertex may lie this far from its plane, relative to the diagonal of the model's bounding box.
@@ -68,6 +72,19 @@ pub struct ContourId {
 pub trait Locator {
     fn plane(&self, section: usize) -> String;
     fn contour(&self, id: ContourId) -> String;
+}
+
+/// No locations: for checks whose outcome decides a repair, where the message is not used (and the
+/// regions may already differ from the input's, which the readers' locators index).
+pub(super) struct NoLocation;
+
+impl Locator for NoLocation {
+    fn plane(&self, _: usize) -> String {
+        String::new()
+    }
+    fn contour(&self, _: ContourId) -> String {
+        String::new()
+    }
 }
 
 /// Locations for a `Sections` built in memory: `SOURCE: section S (plane P), region R, hole H`.
@@ -249,55 +266,24 @@ pub fn validate_with_options(
         }
     }
 
-    // Self-intersecting and self-touching contours (unless strict): see `repair`.
+    // Self-intersecting and self-touching contours, then same-label and different-label
+    // conflicts (unless strict): see `repair` and `labels`.
+    let area_tol = labels::area_tolerance(&sections);
     let remap;
     let loc: &dyn Locator = if options.strict {
         loc
     } else {
-        let nudge = NUDGE_RELATIVE * model_diagonal(&sections);
-        let mut repairs = Vec::new();
-        let map = sections
-            .sections
-            .iter_mut()
-            .enumerate()
-            .map(|(s, sec)| {
-                let mut map = repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs);
-                repair::repair_label_conflicts(sec, s, loc, nudge, &mut map, &mut repairs);
-                map
-            })
-            .collect();
-        sections.warnings.extend(repairs);
-        remap = repair::RemapLocator { inner: loc, map };
+        remap = repair_regions(&mut sections, loc, area_tol);
         &remap
     };
 
     check_duplicate_planes(&sections, loc)?;
-
     for (s, sec) in sections.sections.iter().enumerate() {
-        let contours = section_contours(s, sec, 0..sec.regions.len());
-        check_intersections(&contours, loc)?;
-        check_nesting(&contours, loc)?;
+        check_section_contours(sec, s, loc, options.strict, area_tol)?;
     }
 
     // Orientation: outer counter-clockwise, holes clockwise (the contours are simple by now).
-    for (s, sec) in sections.sections.iter_mut().enumerate() {
-        for (r, region) in sec.regions.iter_mut().enumerate() {
-            for (role, c) in contours_mut(region) {
-                let ccw = orientation(&c.points2) > 0.0;
-                if ccw != (role == Role::Outer) {
-                    c.points2.reverse();
-                    c.points3.reverse();
-                    reoriented.add(|| {
-                        loc.contour(ContourId {
-                            section: s,
-                            region: r,
-                            role,
-                        })
-                    });
-                }
-            }
-        }
-    }
+    orient_contours(&mut sections, loc, &mut reoriented);
 
     let max_label = sections
         .sections
@@ -316,6 +302,80 @@ pub fn validate_with_options(
         &mut sections.warnings,
     );
     Ok(sections)
+}
+
+/// The region repairs of every section (not strict): self-intersections, same-label conflicts,
+/// different labels touching or overlapping. Their warnings go to `sections.warnings`; the
+/// locator names repaired regions by the input component they came from.
+fn repair_regions<'a>(
+    sections: &mut Sections,
+    loc: &'a dyn Locator,
+    area_tol: f64,
+) -> repair::RemapLocator<'a> {
+    let nudge = NUDGE_RELATIVE * model_diagonal(sections);
+    let mut repairs = Vec::new();
+    let map = sections
+        .sections
+        .iter_mut()
+        .enumerate()
+        .map(|(s, sec)| {
+            let mut map = repair::repair_self_intersections(sec, s, loc, nudge, &mut repairs);
+            repair::repair_label_conflicts(sec, s, loc, nudge, &mut map, &mut repairs);
+            labels::repair_label_overlaps(sec, s, loc, area_tol, nudge, &mut map, &mut repairs);
+            map
+        })
+        .collect();
+    sections.warnings.extend(repairs);
+    repair::RemapLocator { inner: loc, map }
+}
+
+/// The contours of section `s` are simple, disjoint and properly nested. Strict: all of them.
+/// Otherwise regions of different labels may touch: each label must pass on its own, and no two
+/// labels may overlap in area (`labels`).
+fn check_section_contours(
+    sec: &crate::sections::Section,
+    s: usize,
+    loc: &dyn Locator,
+    strict: bool,
+    area_tol: f64,
+) -> Result<()> {
+    let contours = section_contours(s, sec, 0..sec.regions.len());
+    let all = check_intersections(&contours, loc).and_then(|_| check_nesting(&contours, loc));
+    if all.is_ok() || strict {
+        return all;
+    }
+    let mut labels: Vec<i32> = sec.regions.iter().map(|r| r.label).collect();
+    labels.sort_unstable();
+    labels.dedup();
+    for label in labels {
+        let members = (0..sec.regions.len()).filter(|&r| sec.regions[r].label == label);
+        let contours = section_contours(s, sec, members);
+        check_intersections(&contours, loc)?;
+        check_nesting(&contours, loc)?;
+    }
+    labels::check_labels_disjoint(sec, s, loc, area_tol)
+}
+
+/// Reverse the contours that run the wrong way (outer counter-clockwise, holes clockwise).
+fn orient_contours(sections: &mut Sections, loc: &dyn Locator, reoriented: &mut RepairLog) {
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let ccw = orientation(&c.points2) > 0.0;
+                if ccw != (role == Role::Outer) {
+                    c.points2.reverse();
+                    c.points3.reverse();
+                    reoriented.add(|| {
+                        loc.contour(ContourId {
+                            section: s,
+                            region: r,
+                            role,
+                        })
+                    });
+                }
+            }
+        }
+    }
 }
 
 fn contours_mut(
@@ -918,7 +978,7 @@ mod tests {
         ]);
         let v = validate(corner, "m").unwrap();
         assert_eq!(v.sections[0].regions.len(), 2);
-        assert!((v.sections[0].area() - 2.0).abs() < 1e-6);
+        assert!((v.sections[0].area() - 2.0).abs() < 1e-4);
         let e = validate_strict(
             one_plane(vec![
                 Region {

@@ -165,7 +165,8 @@ fn consecutive_diagram_samples_are_delaunay_edges() {
     for name in common::SHARED_CSL {
         let sections = slice2solid::io::read_sections(&common::shared_csl(name)).unwrap();
         let options = Options::default();
-        let arr = Arrangement::build(&sections.select_label(None), &options.arrangement).unwrap();
+        let arr = Arrangement::build(&sections.select_label(None).unwrap(), &options.arrangement)
+            .unwrap();
         let runs = slice2solid::bm::run_cells(&arr, &options).unwrap();
         let (mut pairs, mut samples, mut off) = (0u64, 0u64, Vec::new());
         for (c, r) in runs.results.iter().enumerate() {

@@ -190,13 +190,23 @@ fn csl_crossing_contours() {
         parse_csl(&text, "t.csl").unwrap().sections[1].regions.len(),
         1
     );
-    // Different labels: refused.
+    // Different labels: refused in strict mode; by default the lower label keeps the overlap
+    // (tests/io_repair.rs).
     let text = text.replace("4 1 4 5 6 7", "4 2 4 5 6 7");
     expect(
-        &csl_error(&text),
+        &parse_csl_with(&text, "t.csl", &ReadOptions { strict: true })
+            .unwrap_err()
+            .to_string(),
         "t.csl:20: plane 2, component 0",
         "contours of one plane cross",
     );
+    let s = parse_csl(&text, "t.csl").unwrap();
+    let areas: Vec<(i32, f64)> = s.sections[1]
+        .regions
+        .iter()
+        .map(|r| (r.label, r.area()))
+        .collect();
+    assert_eq!(areas, vec![(1, 16.0), (2, 12.0)]);
 }
 
 #[test]
@@ -291,12 +301,22 @@ fn json_malformed() {
         "t.json: $.planes[1].contours[1]",
         "hole is not inside its parent t.json: $.planes[1].contours[0]",
     );
+    // Different labels overlapping: refused in strict mode, resolved by default.
+    let overlap = p(
+        r#"{"points": [[0,0,1],[4,0,1],[4,4,1],[0,4,1]]}, {"points": [[2,2,1],[6,2,1],[6,6,1]], "label": 2}"#,
+    );
     expect(
-        &json_error(&p(
-            r#"{"points": [[0,0,1],[4,0,1],[4,4,1],[0,4,1]]}, {"points": [[2,2,1],[6,2,1],[6,6,1]], "label": 2}"#,
-        )),
+        &parse_json_with(&overlap, "t.json", &ReadOptions { strict: true })
+            .unwrap_err()
+            .to_string(),
         "t.json: $.planes[1].contours[0]",
         "contours of one plane cross",
+    );
+    let s = parse_json(&overlap, "t.json").unwrap();
+    assert!(
+        s.warnings[0].starts_with("t.json: $.planes[1].contours[0] (label 1) and t.json: $.planes[1].contours[1] (label 2): repaired overlapping"),
+        "{:?}",
+        s.warnings
     );
     expect(
         &json_error(&json_doc(&format!("{SQ0}, {SQ0}"))),

@@ -39,7 +39,7 @@ pub fn run(args: InfoArgs) -> Result<ExitCode> {
 
     let cells = if args.cells {
         let t = Instant::now();
-        let a = Arrangement::build(&s, &Default::default())?;
+        let a = Arrangement::build(&s.select_label(None)?, &Default::default())?;
         let ms = t.elapsed().as_secs_f64() * 1e3;
         let with_sections = a
             .cells

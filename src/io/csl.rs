@@ -20,7 +20,8 @@
 //! The writer prints shortest round-trip decimals (`{}` of f64), so CSL → CSL reproduces the 3D
 //! vertices exactly; the 2D coordinates come back within a few ulps (re-projection).
 use crate::error::{Error, Result};
-use crate::sections::{dot, sub, Contour, Plane, Region, Section, Sections};
+use crate::sections::{Contour, Plane, Region, Section, Sections};
+use crate::validate::planes::{repair_plane_equations, StatedPlane};
 use crate::validate::{
     self, check_coordinate, ContourId, Locator, ReadOptions, Role, OFF_PLANE_RELATIVE_TOLERANCE,
 };
@@ -372,7 +373,22 @@ pub fn parse_csl_with(text: &str, file_name: &str, options: &ReadOptions) -> Res
     };
     let tol = OFF_PLANE_RELATIVE_TOLERANCE * diag;
     if !options.strict {
-        repair_plane_equations(&mut raw, tol, file_name, &mut warnings);
+        let mut stated: Vec<StatedPlane> = raw
+            .iter()
+            .map(|r| StatedPlane {
+                plane: r.plane,
+                vertices: &r.vertices,
+                loops: r.components.iter().map(|c| &c.indices[..]).collect(),
+                offset_form: true,
+                refittable: true,
+                location: at(file_name, r.line, Some(r.index), None),
+            })
+            .collect();
+        repair_plane_equations(&mut stated, tol, file_name, &mut warnings);
+        let repaired: Vec<Plane> = stated.iter().map(|p| p.plane).collect();
+        for (r, plane) in raw.iter_mut().zip(repaired) {
+            r.plane = plane;
+        }
     }
 
     let mut sections = Vec::new();
@@ -443,122 +459,6 @@ pub fn parse_csl_with(text: &str, file_name: &str, options: &ReadOptions) -> Res
         warnings,
     };
     validate::validate_with_options(sections, &loc, options)
-}
-
-/// Largest distance of `vertices` from `plane` (0 when there are none).
-fn max_off(plane: &Plane, vertices: &[[f64; 3]]) -> f64 {
-    vertices
-        .iter()
-        .map(|v| plane.signed_distance(*v).abs())
-        .fold(0.0, f64::max)
-}
-
-/// The same equation with the opposite sign of the offset: a x + b y + c z - d = 0.
-fn flipped(plane: &Plane) -> Plane {
-    Plane::from_equation(plane.normal, -plane.offset).expect("a valid plane stays valid")
-}
-
-/// Repairs of plane equations that disagree with their vertices (beyond `tol`), before the
-/// vertices are projected; not called in strict mode, where the off-plane vertex is the error.
-///
-/// 1. Sign convention: when the stated planes do not all fit, but every plane's vertices satisfy
-///    a x + b y + c z - d = 0 within `tol`, the whole file is read with that convention (one warning).
-/// 2. Otherwise, per plane whose vertices do not fit its equation: when the vertices are coplanar
-///    within `tol` (plane fitted as the Newell normal of its components, each turned to the stated
-///    normal's side, through the mean of its vertices), that plane replaces the stated one, with a
-///    warning giving the distance, the angle and the offset change. Not when most vertices agree
-///    with the stated plane: then the others are misplaced, and the reader rejects them.
-fn repair_plane_equations(
-    raw: &mut [RawPlane],
-    tol: f64,
-    file_name: &str,
-    warnings: &mut Vec<String>,
-) {
-    let fails = |r: &RawPlane| max_off(&r.plane, &r.vertices) > tol;
-    let n_failing = raw.iter().filter(|r| fails(r)).count();
-    if n_failing == 0 {
-        return;
-    }
-    if raw
-        .iter()
-        .all(|r| max_off(&flipped(&r.plane), &r.vertices) <= tol)
-    {
-        for r in raw.iter_mut() {
-            r.plane = flipped(&r.plane);
-        }
-        warnings.push(format!(
-            "{file_name}: repaired plane equations: the vertices of {n_failing} of {} plane(s) are off their plane a x + b y + c z + d = 0, but every plane fits a x + b y + c z - d = 0; read the file with that convention",
-            raw.len()
-        ));
-        return;
-    }
-    for r in raw.iter_mut() {
-        let stated_off = max_off(&r.plane, &r.vertices);
-        if stated_off <= tol {
-            continue;
-        }
-        let agree = r
-            .vertices
-            .iter()
-            .filter(|v| r.plane.signed_distance(**v).abs() <= tol)
-            .count();
-        if 2 * agree > r.vertices.len() {
-            continue;
-        }
-        let Some(fit) = fit_plane(r) else { continue };
-        let fit_off = max_off(&fit, &r.vertices);
-        if fit_off > tol {
-            continue;
-        }
-        let angle = dot(fit.normal, r.plane.normal)
-            .clamp(-1.0, 1.0)
-            .acos()
-            .to_degrees();
-        warnings.push(format!(
-            "{}: repaired plane equation: its vertices are up to {stated_off:.3e} off the stated plane (tolerance {tol:.3e}) but coplanar within {fit_off:.3e}; took the plane through them: normal turned by {angle:.3} degrees, offset {:.6e} -> {:.6e} (unit normal)",
-            at(file_name, r.line, Some(r.index), None),
-            r.plane.offset,
-            fit.offset
-        ));
-        r.plane = fit;
-    }
-}
-
-/// The plane through a plane's vertices: Newell normal of its components (each on the stated
-/// normal's side, so holes add instead of cancelling), through the vertices' mean.
-fn fit_plane(r: &RawPlane) -> Option<Plane> {
-    if r.vertices.is_empty() {
-        return None;
-    }
-    let nv = r.vertices.len() as f64;
-    let mut mean = [0.0; 3];
-    for v in &r.vertices {
-        for k in 0..3 {
-            mean[k] += v[k] / nv;
-        }
-    }
-    let mut normal = [0.0; 3];
-    for comp in &r.components {
-        let m = comp.indices.len();
-        let mut n = [0.0; 3];
-        for i in 0..m {
-            let p = sub(r.vertices[comp.indices[i]], mean);
-            let q = sub(r.vertices[comp.indices[(i + 1) % m]], mean);
-            n[0] += (p[1] - q[1]) * (p[2] + q[2]);
-            n[1] += (p[2] - q[2]) * (p[0] + q[0]);
-            n[2] += (p[0] - q[0]) * (p[1] + q[1]);
-        }
-        let s = if dot(n, r.plane.normal) < 0.0 {
-            -1.0
-        } else {
-            1.0
-        };
-        for k in 0..3 {
-            normal[k] += s * n[k];
-        }
-    }
-    let plane = Plane::from_equation(normal, 0.0)?;
-    Plane::from_equation(plane.normal, -dot(plane.normal, mean))
 }
 
 fn clip(s: &str) -> String {

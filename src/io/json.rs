@@ -15,6 +15,7 @@
 //! The file is parsed to a `serde_json::Value` and walked by hand, so every error names its JSON path.
 use crate::error::{Error, Result};
 use crate::sections::{Contour, Plane, Region, Section, Sections};
+use crate::validate::planes::{repair_plane_equations, StatedPlane};
 use crate::validate::{
     self, check_coordinate, ContourId, Locator, ReadOptions, Role, OFF_PLANE_RELATIVE_TOLERANCE,
 };
@@ -136,6 +137,7 @@ pub fn parse_json_with(text: &str, file_name: &str, options: &ReadOptions) -> Re
                 "plane normal is zero".into(),
             ));
         }
+        let offset_form = p.contains_key("offset");
         let plane = match (p.get("point"), p.get("offset")) {
             (Some(pt), None) => {
                 let point =
@@ -264,14 +266,14 @@ pub fn parse_json_with(text: &str, file_name: &str, options: &ReadOptions) -> Re
                 }
             }
         }
-        raw.push((plane, contours));
+        raw.push((plane, contours, offset_form));
     }
 
     // Snap 3D points to their plane; the tolerance is relative to the model's bounding box.
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for p in raw
         .iter()
-        .flat_map(|(_, cs)| cs.iter().flat_map(|c| &c.points))
+        .flat_map(|(_, cs, _)| cs.iter().flat_map(|c| &c.points))
     {
         for k in 0..3 {
             lo[k] = lo[k].min(p[k]);
@@ -284,13 +286,57 @@ pub fn parse_json_with(text: &str, file_name: &str, options: &ReadOptions) -> Re
         0.0
     };
     let tol = OFF_PLANE_RELATIVE_TOLERANCE * diag;
+    let mut warnings = Vec::new();
+    if !options.strict {
+        // The plane repairs of CSL (validate::planes), on the contours given in 3D; a plane with
+        // a contour in its own frame (points2d) is not re-fitted.
+        let vertices: Vec<Vec<[f64; 3]>> = raw
+            .iter()
+            .map(|(_, cs, _)| {
+                cs.iter()
+                    .filter(|c| c.is_3d)
+                    .flat_map(|c| c.points.iter().copied())
+                    .collect()
+            })
+            .collect();
+        let loops: Vec<Vec<Vec<usize>>> = raw
+            .iter()
+            .map(|(_, cs, _)| {
+                let mut next = 0;
+                cs.iter()
+                    .filter(|c| c.is_3d)
+                    .map(|c| {
+                        next += c.points.len();
+                        (next - c.points.len()..next).collect()
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut stated: Vec<StatedPlane> = raw
+            .iter()
+            .enumerate()
+            .map(|(pi, (plane, cs, offset_form))| StatedPlane {
+                plane: *plane,
+                vertices: &vertices[pi],
+                loops: loops[pi].iter().map(|l| &l[..]).collect(),
+                offset_form: *offset_form,
+                refittable: cs.iter().all(|c| c.is_3d),
+                location: format!("{file_name}: $.planes[{pi}]"),
+            })
+            .collect();
+        repair_plane_equations(&mut stated, tol, file_name, &mut warnings);
+        let repaired: Vec<Plane> = stated.iter().map(|p| p.plane).collect();
+        for (r, plane) in raw.iter_mut().zip(repaired) {
+            r.0 = plane;
+        }
+    }
     let mut loc = JsonLocator {
         file: file_name,
         planes: Vec::new(),
         regions: Vec::new(),
     };
     let mut sections = Vec::new();
-    for (pi, (plane, contours)) in raw.into_iter().enumerate() {
+    for (pi, (plane, contours, _)) in raw.into_iter().enumerate() {
         let mut max_off: f64 = 0.0;
         let mut built = Vec::with_capacity(contours.len());
         for c in &contours {
@@ -347,7 +393,7 @@ pub fn parse_json_with(text: &str, file_name: &str, options: &ReadOptions) -> Re
         Sections {
             sections,
             n_labels,
-            warnings: Vec::new(),
+            warnings,
         },
         &loc,
         options,

@@ -20,9 +20,13 @@ use i_overlay::float::simplify::SimplifyShape;
 use i_overlay::float::single::SingleFloatOverlay;
 use std::collections::HashMap;
 
-/// How far a vertex shared by two repaired contours is moved apart, relative to the model diagonal
-/// (a millionth of the off-plane tolerance).
-pub const NUDGE_RELATIVE: f64 = 1e-9;
+/// How far a vertex shared by two repaired contours is moved apart, relative to the model diagonal:
+/// a hundredth of the off-plane tolerance, below the precision of real files (Horsers prints two
+/// decimals, 4.9e-5 of its diagonal). Not smaller: the Delaunay engine thickens a piece that no
+/// cell attaches into a slab up to 2e-5 of the diagonal thick, whose walls cross a neighbouring
+/// piece much closer than that (a bow-tie's lobes 2e-9 apart lost one lobe; 2e-5 apart both are
+/// kept, `tests/io_repair.rs`).
+pub const NUDGE_RELATIVE: f64 = 1e-5;
 
 /// Locations after repairs: a region made by a repair is named by the component it came from.
 pub(super) struct RemapLocator<'a> {
@@ -41,7 +45,7 @@ impl Locator for RemapLocator<'_> {
 }
 
 /// The location of contour `id` of a section whose regions came from the input by `map`.
-fn remapped(inner: &dyn Locator, map: &[(usize, bool)], id: ContourId) -> String {
+pub(super) fn remapped(inner: &dyn Locator, map: &[(usize, bool)], id: ContourId) -> String {
     let (orig, repaired) = map[id.region];
     if repaired {
         let outer = ContourId {
@@ -134,7 +138,10 @@ fn resolve(region: &Region, nudge: f64) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
 
 /// i_overlay's shapes as pieces (outer counter-clockwise, then holes clockwise), without repeated
 /// vertices, vertices shared by two contours moved apart. None if nothing has area.
-fn pieces_of(shapes: Vec<Vec<Vec<[f64; 2]>>>, nudge: f64) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
+pub(super) fn pieces_of(
+    shapes: Vec<Vec<Vec<[f64; 2]>>>,
+    nudge: f64,
+) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
     let mut pieces: Vec<Vec<Vec<[f64; 2]>>> = Vec::new();
     for shape in shapes {
         let mut piece = Vec::new();
@@ -203,7 +210,7 @@ fn separate_shared_vertices(pieces: &mut [Vec<Vec<[f64; 2]>>], nudge: f64) {
 /// its outer contour), or a region lies inside the material of another of its label, that label's
 /// regions are replaced by the union of their material (outer contours counted +1, holes -1, kept
 /// where the count is positive: a hole touching its outer contour is subtracted from it). A hole
-/// outside its parent, not touching it, stays an error. Different labels are left to the validator.
+/// outside its parent, not touching it, stays an error. Different labels are left to `labels`.
 pub(super) fn repair_label_conflicts(
     sec: &mut Section,
     s: usize,
@@ -220,7 +227,8 @@ pub(super) fn repair_label_conflicts(
             .filter(|&r| sec.regions[r].label == label)
             .collect();
         let contours = super::section_contours(s, sec, members.iter().copied());
-        let touching = check_intersections(&contours, loc).is_err();
+        // Decisions only: the regions may be repaired pieces the input's locator does not know.
+        let touching = check_intersections(&contours, &super::NoLocation).is_err();
         if !touching {
             let holes_inside = members.iter().all(|&r| {
                 let region = &sec.regions[r];
@@ -229,23 +237,13 @@ pub(super) fn repair_label_conflicts(
                     .iter()
                     .all(|h| winding_number(h.points2[0], &region.outer.points2) != 0)
             });
-            if !holes_inside || check_nesting(&contours, loc).is_ok() {
+            if !holes_inside || check_nesting(&contours, &super::NoLocation).is_ok() {
                 continue;
             }
         }
         let mut material: Vec<Vec<[f64; 2]>> = Vec::new();
         for &r in &members {
-            let region = &sec.regions[r];
-            for (k, c) in std::iter::once(&region.outer)
-                .chain(&region.holes)
-                .enumerate()
-            {
-                let mut p = c.points2.clone();
-                if (orientation(&p) > 0.0) != (k == 0) {
-                    p.reverse();
-                }
-                material.push(p);
-            }
+            material_of(&sec.regions[r], &mut material);
         }
         let shapes = material.simplify_shape_as::<i64>(FillRule::Positive);
         let Some(pieces) = pieces_of(shapes, nudge) else {
@@ -315,8 +313,23 @@ pub(super) fn repair_label_conflicts(
     }
 }
 
+/// Append the contours of `region` to `out` as material for the booleans: the outer contour
+/// counter-clockwise, the holes clockwise (so `FillRule::Positive` counts outer +1, holes -1).
+pub(super) fn material_of(region: &Region, out: &mut Vec<Vec<[f64; 2]>>) {
+    for (k, c) in std::iter::once(&region.outer)
+        .chain(&region.holes)
+        .enumerate()
+    {
+        let mut p = c.points2.clone();
+        if (orientation(&p) > 0.0) != (k == 0) {
+            p.reverse();
+        }
+        out.push(p);
+    }
+}
+
 /// A region of `label` from a boolean result's piece (its outer loop first, then its holes).
-fn region_of_piece(
+pub(super) fn region_of_piece(
     label: i32,
     plane: &crate::sections::Plane,
     mut piece: Vec<Vec<[f64; 2]>>,
