@@ -2,6 +2,7 @@
 pub mod csl;
 pub mod json;
 pub mod mesh;
+pub mod plain;
 
 use crate::error::{Error, Result};
 use crate::sections::Sections;
