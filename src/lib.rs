@@ -6,6 +6,7 @@
 //! `eval` measures any mesh (check, compare); `slice` makes sections from a mesh.
 pub mod arrangement;
 pub mod bm;
+pub mod cell_data;
 pub mod delaunay;
 pub mod error;
 pub mod eval;
