@@ -8,14 +8,21 @@ use pyo3::prelude::*;
 pub fn rows_f64<const K: usize>(obj: &Bound<'_, PyAny>, location: &str) -> PyResult<Vec<[f64; K]>> {
     let py = obj.py();
     let a: PyArrayLike2<f64, AllowTypeChange> = obj.extract().map_err(|e| {
-        crate::input_err(py, location, format!("expected an (n, {K}) array of numbers ({e})"))
+        crate::input_err(
+            py,
+            location,
+            format!("expected an (n, {K}) array of numbers ({e})"),
+        )
     })?;
     let a = a.as_array();
     if a.ncols() != K {
         return Err(crate::input_err(
             py,
             location,
-            format!("expected an (n, {K}) array of numbers, got shape {:?}", a.shape()),
+            format!(
+                "expected an (n, {K}) array of numbers, got shape {:?}",
+                a.shape()
+            ),
         ));
     }
     Ok(a.rows()
@@ -49,14 +56,21 @@ pub fn index_rows<const K: usize>(
 ) -> PyResult<Vec<[u32; K]>> {
     let py = obj.py();
     let a: PyArrayLike2<i64, AllowTypeChange> = obj.extract().map_err(|e| {
-        crate::input_err(py, location, format!("expected an (m, {K}) array of integers ({e})"))
+        crate::input_err(
+            py,
+            location,
+            format!("expected an (m, {K}) array of integers ({e})"),
+        )
     })?;
     let a = a.as_array();
     if a.ncols() != K {
         return Err(crate::input_err(
             py,
             location,
-            format!("expected an (m, {K}) array of integers, got shape {:?}", a.shape()),
+            format!(
+                "expected an (m, {K}) array of integers, got shape {:?}",
+                a.shape()
+            ),
         ));
     }
     let mut out = Vec::with_capacity(a.nrows());

@@ -6,7 +6,11 @@ use slice2solid::eval::{check_mesh, compare_meshes};
 use slice2solid::TriMesh;
 
 /// A triangle mesh from arrays (`location` names them in errors).
-fn trimesh(vertices: &Bound<'_, PyAny>, faces: &Bound<'_, PyAny>, location: &str) -> PyResult<TriMesh> {
+fn trimesh(
+    vertices: &Bound<'_, PyAny>,
+    faces: &Bound<'_, PyAny>,
+    location: &str,
+) -> PyResult<TriMesh> {
     let vertices = rows_f64::<3>(vertices, &format!("{location}vertices"))?;
     let triangles = index_rows::<3>(faces, vertices.len(), &format!("{location}faces"))?;
     let mesh = TriMesh {
@@ -14,7 +18,11 @@ fn trimesh(vertices: &Bound<'_, PyAny>, faces: &Bound<'_, PyAny>, location: &str
         triangles,
     };
     match mesh.problem() {
-        Some(p) => Err(crate::input_err(faces.py(), &format!("{location}vertices"), p)),
+        Some(p) => Err(crate::input_err(
+            faces.py(),
+            &format!("{location}vertices"),
+            p,
+        )),
         None => Ok(mesh),
     }
 }
@@ -71,7 +79,11 @@ pub fn compare<'py>(
         }
     }
     if samples == 0 {
-        return Err(crate::input_err(py, "samples", "at least one sample is needed"));
+        return Err(crate::input_err(
+            py,
+            "samples",
+            "at least one sample is needed",
+        ));
     }
     let report = py.detach(|| compare_meshes(&a, &b, samples, seed));
     Ok(pythonize::pythonize(py, &report)?)

@@ -84,7 +84,11 @@ impl Sections {
         format!(
             "<slice2solid.Sections: {} planes, {} regions, {} warnings>",
             self.inner.sections.len(),
-            self.inner.sections.iter().map(|s| s.regions.len()).sum::<usize>(),
+            self.inner
+                .sections
+                .iter()
+                .map(|s| s.regions.len())
+                .sum::<usize>(),
             self.inner.warnings.len()
         )
     }
@@ -115,7 +119,11 @@ pub fn sections_from_arrays(
     source: &str,
 ) -> PyResult<Sections> {
     let list: Vec<Bound<'_, PyAny>> = planes.extract().map_err(|_| {
-        crate::input_err(py, &format!("{source}: planes"), "expected a list of plane dicts")
+        crate::input_err(
+            py,
+            &format!("{source}: planes"),
+            "expected a list of plane dicts",
+        )
     })?;
     let specs = list
         .iter()
@@ -184,7 +192,11 @@ fn section_spec(obj: &Bound<'_, PyAny>, at: &str) -> PyResult<SectionSpec> {
         None => Vec::new(),
         Some(c) => {
             let list: Vec<Bound<'_, PyAny>> = c.extract().map_err(|_| {
-                crate::input_err(py, &format!("{at}.contours"), "expected a list of contour dicts")
+                crate::input_err(
+                    py,
+                    &format!("{at}.contours"),
+                    "expected a list of contour dicts",
+                )
             })?;
             list.iter()
                 .enumerate()
@@ -219,7 +231,11 @@ fn contour_spec(obj: &Bound<'_, PyAny>, at: &str) -> PyResult<ContourSpec> {
         None => None,
         Some(h) if h.is_none() => None,
         Some(h) => Some(h.extract().map_err(|_| {
-            crate::input_err(py, &format!("{at}.hole_of"), "expected a contour index or None")
+            crate::input_err(
+                py,
+                &format!("{at}.hole_of"),
+                "expected a contour index or None",
+            )
         })?),
     };
     Ok(ContourSpec {

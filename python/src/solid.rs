@@ -33,7 +33,10 @@ impl Solid {
 
     #[getter]
     fn tet_vertices<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray2<f64>>> {
-        self.solid.tets.as_ref().map(|t| points_array(py, &t.vertices))
+        self.solid
+            .tets
+            .as_ref()
+            .map(|t| points_array(py, &t.vertices))
     }
 
     #[getter]
@@ -59,7 +62,10 @@ impl Solid {
     #[getter]
     fn tet_labels<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<i32>>> {
         let t = self.solid.tets.as_ref()?;
-        Some(PyArray1::from_vec(py, tet_labels(t, &self.sections, self.label)))
+        Some(PyArray1::from_vec(
+            py,
+            tet_labels(t, &self.sections, self.label),
+        ))
     }
 
     #[getter]
