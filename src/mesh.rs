@@ -13,7 +13,11 @@ impl TriMesh {
     /// coordinate that is not finite (meshes made by callers, e.g. from arrays, not read from files).
     pub fn problem(&self) -> Option<String> {
         let n = self.vertices.len();
-        if let Some(i) = self.vertices.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+        if let Some(i) = self
+            .vertices
+            .iter()
+            .position(|p| !p.iter().all(|c| c.is_finite()))
+        {
             return Some(format!("vertex {i} has a coordinate that is not finite"));
         }
         self.triangles
