@@ -2,10 +2,12 @@
 //!
 //! Pipeline (data flows one way): `io` reads `Sections` → `arrangement` of the cutting planes with
 //! the section pieces on its faces → per cell `bm` (Boissonnat–Memari Delaunay pruning, on our exact
-//! `delaunay` kernel) or `implicit` (Bermano et al. mean-value interpolation) → a solid → `io::mesh`.
+//! `delaunay` kernel) or `implicit` (Bermano et al. mean-value interpolation) → a solid → `io::mesh`
+//! (or `io::vtk_xml`, with the `cell_data` of each triangle and tetrahedron).
 //! `eval` measures any mesh (check, compare); `slice` makes sections from a mesh.
 pub mod arrangement;
 pub mod bm;
+pub mod cell_data;
 pub mod delaunay;
 pub mod error;
 pub mod eval;

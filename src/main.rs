@@ -75,10 +75,10 @@ enum Command {
 #[derive(clap::Args)]
 pub struct ReconstructArgs {
     pub input: PathBuf,
-    /// Output surface (.obj, .ply, .stl, .off)
+    /// Output surface (.obj, .ply, .stl, .off, or .vtp: VTK XML with each triangle's input plane and label)
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Also write the tetrahedral mesh (.vtk or .mesh)
+    /// Also write the tetrahedral mesh (.vtk, .mesh, or .vtu: VTK XML with each tetrahedron's label)
     #[arg(long)]
     pub tets: Option<PathBuf>,
     /// Write a JSON report (timings, counts, topology, warnings)

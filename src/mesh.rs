@@ -8,6 +8,25 @@ pub struct TriMesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
+impl TriMesh {
+    /// Why this mesh cannot be measured, if it cannot: a triangle index past the vertices or a
+    /// coordinate that is not finite (meshes made by callers, e.g. from arrays, not read from files).
+    pub fn problem(&self) -> Option<String> {
+        let n = self.vertices.len();
+        if let Some(i) = self
+            .vertices
+            .iter()
+            .position(|p| !p.iter().all(|c| c.is_finite()))
+        {
+            return Some(format!("vertex {i} has a coordinate that is not finite"));
+        }
+        self.triangles
+            .iter()
+            .position(|t| t.iter().any(|&v| v as usize >= n))
+            .map(|i| format!("triangle {i} has a vertex index out of range ({n} vertices)"))
+    }
+}
+
 /// A tetrahedral mesh. Tetrahedra have positive volume: (b−a)·((c−a)×(d−a)) > 0, i.e. `robust::orient3d(a,b,c,d) < 0`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct TetMesh {

@@ -1,5 +1,5 @@
 use crate::ReconstructArgs;
-use slice2solid::io::{mesh, read_sections_with, ReadOptions};
+use slice2solid::io::{read_sections_with, write_surface, write_tets, ReadOptions};
 use slice2solid::{Error, Options, Result};
 use std::io::IsTerminal;
 use std::process::ExitCode;
@@ -32,10 +32,10 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
         ..Default::default()
     };
     let solid = slice2solid::reconstruct(&sections, &options)?;
-    mesh::write_trimesh(&args.output, &solid.surface)?;
+    write_surface(&args.output, &solid.surface, &sections, options.label)?;
     if let Some(path) = &args.tets {
         match &solid.tets {
-            Some(t) => mesh::write_tetmesh(path, t)?,
+            Some(t) => write_tets(path, t, &sections, options.label)?,
             None => {
                 return Err(Error::Unavailable(format!(
                     "{}: this method produces no tetrahedra",

@@ -133,7 +133,8 @@ pub fn mesh_section_offset(mesh: &TriMesh, s: &Section, offset: f64) -> Vec<Segm
 /// How far (relative to the mesh's bounding-box diagonal) the plane is moved to each side.
 pub const SECTION_OFFSETS: [f64; 2] = [1e-12, 1e-6];
 
-fn bbox_diagonal(mesh: &TriMesh) -> f64 {
+/// Diagonal of the mesh's axis-aligned bounding box (0 for no vertices).
+pub fn bbox_diagonal(mesh: &TriMesh) -> f64 {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in &mesh.vertices {

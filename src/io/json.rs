@@ -13,12 +13,10 @@
 //! `Plane::from_point_normal`), `label` (default 1), `hole_of` (index of the outer contour in the same
 //! plane's list, or null). Unknown keys are errors (typos must not be ignored).
 //! The file is parsed to a `serde_json::Value` and walked by hand, so every error names its JSON path.
+use super::plain::{build_sections, ContourPoints, ContourSpec, Naming, PlaneSpec, SectionSpec};
 use crate::error::{Error, Result};
-use crate::sections::{Contour, Plane, Region, Section, Sections};
-use crate::validate::planes::{repair_plane_equations, StatedPlane};
-use crate::validate::{
-    self, check_coordinate, ContourId, Locator, ReadOptions, Role, OFF_PLANE_RELATIVE_TOLERANCE,
-};
+use crate::sections::Sections;
+use crate::validate::ReadOptions;
 use serde_json::{json, Map, Value};
 use std::path::Path;
 
@@ -65,33 +63,13 @@ pub fn to_json_string(sections: &Sections) -> String {
     text
 }
 
-struct JsonLocator<'a> {
-    file: &'a str,
-    /// Per section: its `planes[i]` index, and per region (outer contour index, hole contour indices).
-    planes: Vec<usize>,
-    regions: Vec<Vec<(usize, Vec<usize>)>>,
-}
-
-impl Locator for JsonLocator<'_> {
-    fn plane(&self, s: usize) -> String {
-        format!("{}: $.planes[{}]", self.file, self.planes[s])
-    }
-    fn contour(&self, id: ContourId) -> String {
-        let (outer, holes) = &self.regions[id.section][id.region];
-        let c = match id.role {
-            Role::Outer => *outer,
-            Role::Hole(h) => holes[h],
-        };
-        format!("{}.contours[{c}]", self.plane(id.section))
-    }
-}
-
 /// Parse JSON text; `file_name` is used in messages. The result is validated (see `validate`).
 pub fn parse_json(text: &str, file_name: &str) -> Result<Sections> {
     parse_json_with(text, file_name, &ReadOptions::default())
 }
 
-/// Parse JSON text with `options` (`strict`: no repairs, see `ReadOptions`).
+/// Parse JSON text with `options` (`strict`: no repairs, see `ReadOptions`). The file's structure is
+/// checked here (keys, types, arities); its numbers and geometry by `plain::build_sections`.
 pub fn parse_json_with(text: &str, file_name: &str, options: &ReadOptions) -> Result<Sections> {
     let doc: Value = serde_json::from_str(text).map_err(|e| {
         Error::input(
@@ -113,291 +91,117 @@ pub fn parse_json_with(text: &str, file_name: &str, options: &ReadOptions) -> Re
         .ok_or_else(|| err("$", "missing key \"planes\"".into()))?
         .as_array()
         .ok_or_else(|| err("$.planes", "expected an array of planes".into()))?;
-
-    struct RawContour {
-        path: String,
-        label: i32,
-        hole_of: Option<usize>,
-        /// 3D points (given, or the plane points of the 2D input: they count in the bounding box).
-        points: Vec<[f64; 3]>,
-        /// The 2D input, empty for 3D input.
-        points2: Vec<[f64; 2]>,
-        is_3d: bool,
-    }
-    let mut raw = Vec::new();
-    for (pi, pv) in planes.iter().enumerate() {
-        let ppath = format!("$.planes[{pi}]");
-        let p = object(pv, &ppath, &["point", "normal", "offset", "contours"])
-            .map_err(|r| err(&ppath, r))?;
-        let normal =
-            vec3(p.get("normal"), &format!("{ppath}.normal")).map_err(|(path, r)| err(&path, r))?;
-        if normal == [0.0; 3] {
-            return Err(err(
-                &format!("{ppath}.normal"),
-                "plane normal is zero".into(),
-            ));
-        }
-        let offset_form = p.contains_key("offset");
-        let plane = match (p.get("point"), p.get("offset")) {
-            (Some(pt), None) => {
-                let point =
-                    vec3(Some(pt), &format!("{ppath}.point")).map_err(|(path, r)| err(&path, r))?;
-                Plane::from_point_normal(point, normal)
-            }
-            (None, Some(off)) => {
-                let d = off
-                    .as_f64()
-                    .ok_or_else(|| err(&format!("{ppath}.offset"), "expected a number".into()))?;
-                let d = check_coordinate(d).map_err(|r| err(&format!("{ppath}.offset"), r))?;
-                Plane::from_equation(normal, d)
-            }
-            _ => {
-                return Err(err(
-                    &ppath,
-                    "give exactly one of \"point\" and \"offset\"".into(),
-                ))
-            }
-        }
-        .ok_or_else(|| {
-            err(
-                &ppath,
-                "plane cannot be normalised (numbers too large or too small)".into(),
-            )
-        })?;
-
-        let mut contours = Vec::new();
-        let list = match p.get("contours") {
-            None => &[][..],
-            Some(v) => v
-                .as_array()
-                .ok_or_else(|| err(&format!("{ppath}.contours"), "expected an array".into()))?,
-        };
-        for (ci, cv) in list.iter().enumerate() {
-            let cpath = format!("{ppath}.contours[{ci}]");
-            let c = object(cv, &cpath, &["points", "points2d", "label", "hole_of"])
-                .map_err(|r| err(&cpath, r))?;
-            let label = match c.get("label") {
-                None => 1,
-                Some(v) => v
-                    .as_i64()
-                    .and_then(|l| i32::try_from(l).ok())
-                    .ok_or_else(|| err(&format!("{cpath}.label"), "expected an integer".into()))?,
-            };
-            let hole_of = match c.get("hole_of") {
-                None | Some(Value::Null) => None,
-                Some(v) => {
-                    let h = v
-                        .as_u64()
-                        .and_then(|h| usize::try_from(h).ok())
-                        .ok_or_else(|| {
-                            err(
-                                &format!("{cpath}.hole_of"),
-                                "expected a contour index or null".into(),
-                            )
-                        })?;
-                    if h >= list.len() || h == ci {
-                        return Err(err(
-                            &format!("{cpath}.hole_of"),
-                            format!(
-                                "{h} is not another contour of this plane (0..{})",
-                                list.len()
-                            ),
-                        ));
-                    }
-                    Some(h)
-                }
-            };
-            let (key, dim) = match (c.get("points"), c.get("points2d")) {
-                (Some(_), None) => ("points", 3),
-                (None, Some(_)) => ("points2d", 2),
-                _ => {
-                    return Err(err(
-                        &cpath,
-                        "give exactly one of \"points\" and \"points2d\"".into(),
-                    ))
-                }
-            };
-            let arr = c[key].as_array().ok_or_else(|| {
-                err(
-                    &format!("{cpath}.{key}"),
-                    "expected an array of points".into(),
-                )
-            })?;
-            let mut points = Vec::with_capacity(arr.len());
-            let mut points2 = Vec::new();
-            for (k, q) in arr.iter().enumerate() {
-                let qpath = format!("{cpath}.{key}[{k}]");
-                let q = q
-                    .as_array()
-                    .filter(|a| a.len() == dim)
-                    .ok_or_else(|| err(&qpath, format!("expected a point of {dim} numbers")))?;
-                let mut x = [0.0; 3];
-                for (j, v) in q.iter().enumerate() {
-                    let f = v
-                        .as_f64()
-                        .ok_or_else(|| err(&format!("{qpath}[{j}]"), "expected a number".into()))?;
-                    x[j] = check_coordinate(f).map_err(|r| err(&format!("{qpath}[{j}]"), r))?;
-                }
-                if dim == 2 {
-                    points2.push([x[0], x[1]]);
-                }
-                points.push(if dim == 3 {
-                    x
-                } else {
-                    plane.to_3d([x[0], x[1]])
-                });
-            }
-            contours.push(RawContour {
-                path: cpath,
-                label,
-                hole_of,
-                points,
-                points2,
-                is_3d: dim == 3,
-            });
-        }
-        for c in &contours {
-            if let Some(h) = c.hole_of {
-                if contours[h].hole_of.is_some() {
-                    return Err(err(
-                        &format!("{}.hole_of", c.path),
-                        format!("contour {h} is itself a hole"),
-                    ));
-                }
-            }
-        }
-        raw.push((plane, contours, offset_form));
-    }
-
-    // Snap 3D points to their plane; the tolerance is relative to the model's bounding box.
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in raw
+    let specs = planes
         .iter()
-        .flat_map(|(_, cs, _)| cs.iter().flat_map(|c| &c.points))
-    {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let diag = if lo[0] <= hi[0] {
-        ((0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>()).sqrt()
-    } else {
-        0.0
+        .enumerate()
+        .map(|(pi, pv)| section_spec(pv, &format!("$.planes[{pi}]")).map_err(|(p, r)| err(&p, r)))
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    let naming = Naming {
+        source: file_name,
+        root: "$.planes",
     };
-    let tol = OFF_PLANE_RELATIVE_TOLERANCE * diag;
-    let mut warnings = Vec::new();
-    if !options.strict {
-        // The plane repairs of CSL (validate::planes), on the contours given in 3D; a plane with
-        // a contour in its own frame (points2d) is not re-fitted.
-        let vertices: Vec<Vec<[f64; 3]>> = raw
-            .iter()
-            .map(|(_, cs, _)| {
-                cs.iter()
-                    .filter(|c| c.is_3d)
-                    .flat_map(|c| c.points.iter().copied())
-                    .collect()
-            })
-            .collect();
-        let loops: Vec<Vec<Vec<usize>>> = raw
-            .iter()
-            .map(|(_, cs, _)| {
-                let mut next = 0;
-                cs.iter()
-                    .filter(|c| c.is_3d)
-                    .map(|c| {
-                        next += c.points.len();
-                        (next - c.points.len()..next).collect()
-                    })
-                    .collect()
-            })
-            .collect();
-        let mut stated: Vec<StatedPlane> = raw
-            .iter()
-            .enumerate()
-            .map(|(pi, (plane, cs, offset_form))| StatedPlane {
-                plane: *plane,
-                vertices: &vertices[pi],
-                loops: loops[pi].iter().map(|l| &l[..]).collect(),
-                offset_form: *offset_form,
-                refittable: cs.iter().all(|c| c.is_3d),
-                location: format!("{file_name}: $.planes[{pi}]"),
-            })
-            .collect();
-        repair_plane_equations(&mut stated, tol, file_name, &mut warnings);
-        let repaired: Vec<Plane> = stated.iter().map(|p| p.plane).collect();
-        for (r, plane) in raw.iter_mut().zip(repaired) {
-            r.0 = plane;
-        }
-    }
-    let mut loc = JsonLocator {
-        file: file_name,
-        planes: Vec::new(),
-        regions: Vec::new(),
-    };
-    let mut sections = Vec::new();
-    for (pi, (plane, contours, _)) in raw.into_iter().enumerate() {
-        let mut max_off: f64 = 0.0;
-        let mut built = Vec::with_capacity(contours.len());
-        for c in &contours {
-            let mut points2 = Vec::with_capacity(c.points.len());
-            for (k, p) in c.points.iter().enumerate() {
-                if c.is_3d {
-                    let off = plane.signed_distance(*p).abs();
-                    if off > tol {
-                        return Err(err(
-                            &format!("{}.points[{k}]", c.path),
-                            format!(
-                                "vertex is {off:.3e} off its plane; tolerance {tol:.3e} ({OFF_PLANE_RELATIVE_TOLERANCE} x model bounding-box diagonal {diag:.3e})"
-                            ),
-                        ));
-                    }
-                    max_off = max_off.max(off);
-                    points2.push(plane.to_2d(*p));
-                } else {
-                    // 2D input is kept exactly as given (not re-projected).
-                    points2.push(c.points2[k]);
-                }
-            }
-            built.push(points2);
-        }
-        let mut regions = Vec::new();
-        let mut region_contours = Vec::new();
-        for (ci, c) in contours.iter().enumerate() {
-            if c.hole_of.is_some() {
-                continue;
-            }
-            let holes: Vec<usize> = (0..contours.len())
-                .filter(|&h| contours[h].hole_of == Some(ci))
-                .collect();
-            regions.push(Region {
-                label: c.label,
-                outer: Contour::from_2d(&plane, built[ci].clone()),
-                holes: holes
-                    .iter()
-                    .map(|&h| Contour::from_2d(&plane, built[h].clone()))
-                    .collect(),
-            });
-            region_contours.push((ci, holes));
-        }
-        loc.planes.push(pi);
-        loc.regions.push(region_contours);
-        sections.push(Section {
-            plane,
-            regions,
-            source_index: pi,
-            max_off_plane: max_off,
-        });
-    }
-    validate::validate_with_options(
-        Sections {
-            sections,
-            n_labels,
-            warnings,
+    build_sections(&specs, n_labels, &naming, options)
+}
+
+/// An error at a JSON path: (path, reason).
+type PathError = (String, String);
+
+/// One plane object: `point` + `normal` or `normal` + `offset`, and its contours.
+fn section_spec(pv: &Value, ppath: &str) -> std::result::Result<SectionSpec, PathError> {
+    let at = |path: &str, r: &str| (path.to_string(), r.to_string());
+    let p = object(pv, ppath, &["point", "normal", "offset", "contours"])
+        .map_err(|r| (ppath.to_string(), r))?;
+    let normal = vec3(p.get("normal"), &format!("{ppath}.normal"))?;
+    let plane = match (p.get("point"), p.get("offset")) {
+        (Some(pt), None) => PlaneSpec::PointNormal {
+            point: vec3(Some(pt), &format!("{ppath}.point"))?,
+            normal,
         },
-        &loc,
-        options,
-    )
+        (None, Some(off)) => PlaneSpec::Equation {
+            normal,
+            offset: off
+                .as_f64()
+                .ok_or_else(|| at(&format!("{ppath}.offset"), "expected a number"))?,
+        },
+        _ => return Err(at(ppath, "give exactly one of \"point\" and \"offset\"")),
+    };
+    let list = match p.get("contours") {
+        None => &[][..],
+        Some(v) => v
+            .as_array()
+            .ok_or_else(|| at(&format!("{ppath}.contours"), "expected an array"))?,
+    };
+    let contours = list
+        .iter()
+        .enumerate()
+        .map(|(ci, cv)| contour_spec(cv, &format!("{ppath}.contours[{ci}]")))
+        .collect::<std::result::Result<Vec<_>, _>>()?;
+    Ok(SectionSpec { plane, contours })
+}
+
+/// One contour object: `points` or `points2d`, optional `label` and `hole_of`.
+fn contour_spec(cv: &Value, cpath: &str) -> std::result::Result<ContourSpec, PathError> {
+    let at = |path: String, r: &str| (path, r.to_string());
+    let c = object(cv, cpath, &["points", "points2d", "label", "hole_of"])
+        .map_err(|r| (cpath.to_string(), r))?;
+    let label = match c.get("label") {
+        None => 1,
+        Some(v) => v
+            .as_i64()
+            .and_then(|l| i32::try_from(l).ok())
+            .ok_or_else(|| at(format!("{cpath}.label"), "expected an integer"))?,
+    };
+    let hole_of = match c.get("hole_of") {
+        None | Some(Value::Null) => None,
+        Some(v) => Some(
+            v.as_u64()
+                .and_then(|h| usize::try_from(h).ok())
+                .ok_or_else(|| {
+                    at(
+                        format!("{cpath}.hole_of"),
+                        "expected a contour index or null",
+                    )
+                })?,
+        ),
+    };
+    let (key, dim) = match (c.get("points"), c.get("points2d")) {
+        (Some(_), None) => ("points", 3),
+        (None, Some(_)) => ("points2d", 2),
+        _ => {
+            return Err(at(
+                cpath.to_string(),
+                "give exactly one of \"points\" and \"points2d\"",
+            ))
+        }
+    };
+    let arr = c[key]
+        .as_array()
+        .ok_or_else(|| at(format!("{cpath}.{key}"), "expected an array of points"))?;
+    let mut coords = Vec::with_capacity(arr.len());
+    for (k, q) in arr.iter().enumerate() {
+        let qpath = format!("{cpath}.{key}[{k}]");
+        let q = q
+            .as_array()
+            .filter(|a| a.len() == dim)
+            .ok_or_else(|| (qpath.clone(), format!("expected a point of {dim} numbers")))?;
+        let mut x = [0.0; 3];
+        for (j, v) in q.iter().enumerate() {
+            x[j] = v
+                .as_f64()
+                .ok_or_else(|| at(format!("{qpath}[{j}]"), "expected a number"))?;
+        }
+        coords.push(x);
+    }
+    let points = if dim == 3 {
+        ContourPoints::Xyz(coords)
+    } else {
+        ContourPoints::Uv(coords.iter().map(|x| [x[0], x[1]]).collect())
+    };
+    Ok(ContourSpec {
+        points,
+        label,
+        hole_of,
+    })
 }
 
 /// `v` as an object with only the allowed keys.
@@ -419,17 +223,16 @@ fn object<'a>(
     Ok(m)
 }
 
-fn vec3(v: Option<&Value>, path: &str) -> std::result::Result<[f64; 3], (String, String)> {
+fn vec3(v: Option<&Value>, path: &str) -> std::result::Result<[f64; 3], PathError> {
     let a = v
         .and_then(Value::as_array)
         .filter(|a| a.len() == 3)
         .ok_or_else(|| (path.to_string(), "expected 3 numbers".to_string()))?;
     let mut x = [0.0; 3];
     for (k, e) in a.iter().enumerate() {
-        let f = e
+        x[k] = e
             .as_f64()
             .ok_or_else(|| (format!("{path}[{k}]"), "expected a number".to_string()))?;
-        x[k] = check_coordinate(f).map_err(|r| (format!("{path}[{k}]"), r))?;
     }
     Ok(x)
 }

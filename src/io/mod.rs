@@ -2,8 +2,11 @@
 pub mod csl;
 pub mod json;
 pub mod mesh;
+pub mod plain;
+pub mod vtk_xml;
 
 use crate::error::{Error, Result};
+use crate::mesh::{TetMesh, TriMesh};
 use crate::sections::Sections;
 use std::path::Path;
 
@@ -44,4 +47,55 @@ pub fn write_sections(path: &Path, sections: &Sections) -> Result<()> {
         "csl" => csl::write_csl(path, sections),
         _ => json::write_json(path, sections),
     }
+}
+
+/// Write a reconstructed surface by extension: `.vtp` (VTK XML PolyData) with the input plane each
+/// triangle lies on and its label as cell data (`cell_data`; `sections` and `label` are the run's
+/// input and `Options::label`), or any format of `mesh::write_trimesh`.
+pub fn write_surface(
+    path: &Path,
+    surface: &TriMesh,
+    sections: &Sections,
+    label: Option<i32>,
+) -> Result<()> {
+    if !has_extension(path, "vtp") {
+        return mesh::write_trimesh(path, surface);
+    }
+    let data = crate::cell_data::surface_cell_data(surface, sections, label)?;
+    let arrays = [
+        vtk_xml::CellArray {
+            name: "plane",
+            values: &data.plane,
+        },
+        vtk_xml::CellArray {
+            name: "label",
+            values: &data.label,
+        },
+    ];
+    vtk_xml::write_vtp(path, surface, &arrays)
+}
+
+/// Write reconstructed tetrahedra by extension: `.vtu` (VTK XML UnstructuredGrid) with each
+/// tetrahedron's label as cell data, or any format of `mesh::write_tetmesh`.
+pub fn write_tets(
+    path: &Path,
+    tets: &TetMesh,
+    sections: &Sections,
+    label: Option<i32>,
+) -> Result<()> {
+    if !has_extension(path, "vtu") {
+        return mesh::write_tetmesh(path, tets);
+    }
+    let labels = crate::cell_data::tet_labels(tets, sections, label)?;
+    let arrays = [vtk_xml::CellArray {
+        name: "label",
+        values: &labels,
+    }];
+    vtk_xml::write_vtu(path, tets, &arrays)
+}
+
+fn has_extension(path: &Path, ext: &str) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
 }
