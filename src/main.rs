@@ -46,7 +46,7 @@ pub enum SliceMode {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Reconstruct a solid from cross-sections (CSL or JSON)
+    /// Reconstruct a solid from cross-sections (CSL, JSON or DICOM RT Structure Set)
     Reconstruct(ReconstructArgs),
     /// Check a triangle mesh (closed, manifold, oriented, self-intersections, genus; optionally its sections)
     /// or a tetrahedral mesh (conforming, inverted/flat tets, boundary; optionally against a surface)
@@ -59,7 +59,7 @@ enum Command {
     Delaunay(DelaunayArgs),
     /// Cut a closed triangle mesh with planes and write the cross-sections as CSL
     Slice(SliceArgs),
-    /// Describe a cross-section file
+    /// Describe a cross-section file (CSL, JSON or DICOM RT Structure Set)
     Info(InfoArgs),
 }
 
@@ -76,8 +76,12 @@ pub struct ReconstructArgs {
     #[arg(long)]
     pub report: Option<PathBuf>,
     /// Reconstruct only this label (default: every region that is not a hole)
-    #[arg(long)]
+    #[arg(long, conflicts_with = "roi")]
     pub label: Option<i32>,
+    /// DICOM RT Structure Set input: reconstruct only the ROI of this name (ROIs may overlap, so
+    /// the others are not even validated)
+    #[arg(long)]
+    pub roi: Option<String>,
     #[arg(long, value_enum, default_value = "delaunay")]
     pub method: Method,
     /// Octree depth for the implicit method
@@ -183,6 +187,9 @@ pub struct InfoArgs {
     pub input: PathBuf,
     #[arg(long)]
     pub json: bool,
+    /// DICOM RT Structure Set input: describe only the ROI of this name
+    #[arg(long)]
+    pub roi: Option<String>,
     /// Also build the plane arrangement and print its size
     #[arg(long)]
     pub cells: bool,

@@ -1,15 +1,16 @@
 use crate::ReconstructArgs;
-use slice2solid::io::{mesh, read_sections_with, ReadOptions};
+use slice2solid::io::{mesh, read_sections_of_roi, ReadOptions};
 use slice2solid::{Error, Options, Result};
 use std::io::IsTerminal;
 use std::process::ExitCode;
 
 pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
-    let sections = read_sections_with(
+    let sections = read_sections_of_roi(
         &args.input,
         &ReadOptions {
             strict: args.strict,
         },
+        args.roi.as_deref(),
     )?;
     let options = Options {
         method: match args.method {

@@ -348,6 +348,7 @@ pub fn parse_json_with(text: &str, file_name: &str, options: &ReadOptions) -> Re
             sections,
             n_labels,
             warnings: Vec::new(),
+            label_names: Default::default(),
         },
         &loc,
         options,
