@@ -3,7 +3,7 @@
 //! Pipeline (data flows one way): `io` reads `Sections` → `arrangement` of the cutting planes with
 //! the section pieces on its faces → per cell `bm` (Boissonnat–Memari Delaunay pruning, on our exact
 //! `delaunay` kernel) or `implicit` (Bermano et al. mean-value interpolation) → a solid → `io::mesh`.
-//! `eval` measures any mesh (check, compare); `slice` makes sections from a mesh.
+//! `eval` measures any mesh (check, compare); `slice` makes sections from a mesh; `render` draws one.
 pub mod arrangement;
 pub mod bm;
 pub mod delaunay;
@@ -15,6 +15,7 @@ pub mod implicit;
 pub mod io;
 pub mod mesh;
 pub mod pipeline;
+pub mod render;
 pub mod sections;
 pub mod slice;
 pub mod solid;

@@ -59,6 +59,8 @@ enum Command {
     Delaunay(DelaunayArgs),
     /// Cut a closed triangle mesh with planes and write the cross-sections as CSL
     Slice(SliceArgs),
+    /// Draw a surface (shaded, with the input contours over it) as a PNG picture
+    Render(RenderArgs),
     /// Describe a cross-section file (CSL, JSON or DICOM RT Structure Set)
     Info(InfoArgs),
 }
@@ -183,6 +185,24 @@ pub struct SliceArgs {
 }
 
 #[derive(clap::Args)]
+pub struct RenderArgs {
+    /// A triangle surface (.obj, .ply, .stl, .off)
+    pub mesh: PathBuf,
+    /// Draw the contours of these cross-sections over the surface (CSL, JSON or RT Structure Set)
+    #[arg(long)]
+    pub sections: Option<PathBuf>,
+    /// The picture (.png)
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Image size in pixels, WxH
+    #[arg(long, default_value = "800x600")]
+    pub size: slice2solid::render::Size,
+    /// Camera direction in degrees: azimuth about +z from +x, elevation above the xy plane
+    #[arg(long, default_value = "30,20", allow_hyphen_values = true)]
+    pub view: slice2solid::render::View,
+}
+
+#[derive(clap::Args)]
 pub struct InfoArgs {
     pub input: PathBuf,
     #[arg(long)]
@@ -214,6 +234,7 @@ fn main() -> ExitCode {
         Command::CompareMethods(a) => cli::compare_methods::run(a),
         Command::Delaunay(a) => cli::delaunay::run(a),
         Command::Slice(a) => cli::slice::run(a),
+        Command::Render(a) => cli::render::run(a),
         Command::Info(a) => cli::info::run(a),
     };
     match result {
