@@ -12,6 +12,7 @@ fn main() {
             sections: Vec::new(),
             n_labels: 1,
             warnings: Vec::new(),
+            label_names: Default::default(),
         };
         for idx in 0..k {
             let n = [

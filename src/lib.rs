@@ -4,7 +4,7 @@
 //! the section pieces on its faces → per cell `bm` (Boissonnat–Memari Delaunay pruning, on our exact
 //! `delaunay` kernel) or `implicit` (Bermano et al. mean-value interpolation) → a solid → `io::mesh`
 //! (or `io::vtk_xml`, with the `cell_data` of each triangle and tetrahedron).
-//! `eval` measures any mesh (check, compare); `slice` makes sections from a mesh.
+//! `eval` measures any mesh (check, compare); `slice` makes sections from a mesh; `render` draws one.
 pub mod arrangement;
 pub mod bm;
 pub mod cell_data;
@@ -17,6 +17,7 @@ pub mod implicit;
 pub mod io;
 pub mod mesh;
 pub mod pipeline;
+pub mod render;
 pub mod sections;
 pub mod slice;
 pub mod solid;

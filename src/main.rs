@@ -55,7 +55,7 @@ pub enum SliceMode {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Reconstruct a solid from cross-sections (CSL or JSON)
+    /// Reconstruct a solid from cross-sections (CSL, JSON or DICOM RT Structure Set)
     Reconstruct(ReconstructArgs),
     /// Check a triangle mesh (closed, manifold, oriented, self-intersections, genus; optionally its sections)
     /// or a tetrahedral mesh (conforming, inverted/flat tets, boundary; optionally against a surface)
@@ -68,7 +68,9 @@ enum Command {
     Delaunay(DelaunayArgs),
     /// Cut a closed triangle mesh with planes and write the cross-sections as CSL
     Slice(SliceArgs),
-    /// Describe a cross-section file
+    /// Draw a surface (shaded, with the input contours over it) as a PNG picture
+    Render(RenderArgs),
+    /// Describe a cross-section file (CSL, JSON or DICOM RT Structure Set)
     Info(InfoArgs),
 }
 
@@ -85,8 +87,12 @@ pub struct ReconstructArgs {
     #[arg(long)]
     pub report: Option<PathBuf>,
     /// Reconstruct only this label (default: every region that is not a hole)
-    #[arg(long)]
+    #[arg(long, conflicts_with = "roi")]
     pub label: Option<i32>,
+    /// DICOM RT Structure Set input: reconstruct only the ROI of this name (ROIs may overlap, so
+    /// the others are not even validated)
+    #[arg(long)]
+    pub roi: Option<String>,
     #[arg(long, value_enum, default_value = "delaunay")]
     pub method: Method,
     /// Octree depth for the implicit method
@@ -191,10 +197,31 @@ pub struct SliceArgs {
 }
 
 #[derive(clap::Args)]
+pub struct RenderArgs {
+    /// A triangle surface (.obj, .ply, .stl, .off)
+    pub mesh: PathBuf,
+    /// Draw the contours of these cross-sections over the surface (CSL, JSON or RT Structure Set)
+    #[arg(long)]
+    pub sections: Option<PathBuf>,
+    /// The picture (.png)
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Image size in pixels, WxH
+    #[arg(long, default_value = "800x600")]
+    pub size: slice2solid::render::Size,
+    /// Camera direction in degrees: azimuth about +z from +x, elevation above the xy plane
+    #[arg(long, default_value = "30,20", allow_hyphen_values = true)]
+    pub view: slice2solid::render::View,
+}
+
+#[derive(clap::Args)]
 pub struct InfoArgs {
     pub input: PathBuf,
     #[arg(long)]
     pub json: bool,
+    /// DICOM RT Structure Set input: describe only the ROI of this name
+    #[arg(long)]
+    pub roi: Option<String>,
     /// Also build the plane arrangement and print its size
     #[arg(long)]
     pub cells: bool,
@@ -219,6 +246,7 @@ fn main() -> ExitCode {
         Command::CompareMethods(a) => cli::compare_methods::run(a),
         Command::Delaunay(a) => cli::delaunay::run(a),
         Command::Slice(a) => cli::slice::run(a),
+        Command::Render(a) => cli::render::run(a),
         Command::Info(a) => cli::info::run(a),
     };
     match result {

@@ -34,6 +34,11 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
         }
     }
     let selected = sections.select_label(options.label)?;
+    let reconstructed = selected.regions_per_label();
+    report.label_names = (selected.label_names.iter())
+        .filter(|(l, _)| reconstructed.contains_key(l))
+        .map(|(l, n)| (*l, n.clone()))
+        .collect();
     let arrangement = report.time("arrangement", || {
         Arrangement::build(&selected, &options.arrangement)
     })?;

@@ -15,6 +15,7 @@
 //! * `points2` are the authoritative coordinates (exact decisions inside a plane use them);
 //!   `points3` are `origin + s u + t v` evaluated in floating point (not exactly coplanar).
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Plane {
@@ -56,6 +57,9 @@ pub struct Sections {
     pub n_labels: usize,
     /// Repairs made while reading (orientation fixed, duplicate vertices removed, ...), with locations.
     pub warnings: Vec<String>,
+    /// Names of labels, where the input names them (an RT Structure Set's ROI names, by ROI number).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub label_names: BTreeMap<i32, String>,
 }
 
 impl Plane {
@@ -181,8 +185,8 @@ impl Sections {
     }
 
     /// Number of regions per label, by label.
-    pub fn regions_per_label(&self) -> std::collections::BTreeMap<i32, usize> {
-        let mut labels = std::collections::BTreeMap::new();
+    pub fn regions_per_label(&self) -> BTreeMap<i32, usize> {
+        let mut labels = BTreeMap::new();
         for r in self.sections.iter().flat_map(|x| &x.regions) {
             *labels.entry(r.label).or_default() += 1;
         }

@@ -377,6 +377,7 @@ pub fn slice_mesh(mesh: &TriMesh, planes: &[Plane]) -> Result<Sections> {
             sections,
             n_labels: 1,
             warnings: Vec::new(),
+            label_names: Default::default(),
         },
         "mesh",
     )

@@ -102,6 +102,9 @@ pub struct Report {
     pub counts: BTreeMap<String, u64>,
     pub values: BTreeMap<String, f64>,
     pub warnings: Vec<String>,
+    /// Names of the reconstructed labels, where the input names them (RTSTRUCT ROI names).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub label_names: BTreeMap<i32, String>,
     pub total_seconds: f64,
     /// Topology of the output surface (combinatorial; self-intersections are left to `check`).
     pub surface: Option<SurfaceTopology>,

@@ -874,6 +874,7 @@ mod tests {
             }],
             n_labels: 1,
             warnings: vec![],
+            label_names: Default::default(),
         }
     }
 

@@ -8,6 +8,7 @@ fn ball_sections(planes: &[([f64; 3], f64)], r: f64, n: usize) -> Sections {
         sections: Vec::new(),
         n_labels: 1,
         warnings: Vec::new(),
+        label_names: Default::default(),
     };
     for (k, &(normal, offset)) in planes.iter().enumerate() {
         let plane = Plane::from_equation(normal, offset).unwrap();

@@ -10,6 +10,7 @@ fn ball_sections(planes: &[([f64; 3], f64)], r: f64, n: usize) -> Sections {
         sections: Vec::new(),
         n_labels: 1,
         warnings: Vec::new(),
+        label_names: Default::default(),
     };
     for (k, &(normal, offset)) in planes.iter().enumerate() {
         let plane = Plane::from_equation(normal, offset).unwrap();
@@ -203,6 +204,7 @@ fn contours_through_lines_and_vertices() {
         ],
         n_labels: 1,
         warnings: Vec::new(),
+        label_names: Default::default(),
     };
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);
@@ -260,6 +262,7 @@ fn two_squares(gap: f64) -> Sections {
         ],
         n_labels: 1,
         warnings: Vec::new(),
+        label_names: Default::default(),
     }
 }
 
@@ -362,6 +365,7 @@ fn contours_crossing_diagonally_through_an_arrangement_vertex() {
         ],
         n_labels: 1,
         warnings: Vec::new(),
+        label_names: Default::default(),
     };
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);

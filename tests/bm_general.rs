@@ -161,6 +161,7 @@ fn two_non_parallel_planes() {
         ],
         n_labels: 1,
         warnings: vec![],
+        label_names: Default::default(),
     };
     let (comps, genus, vol) = run("two-planes", &sections);
     assert_eq!((comps, genus), (1, 0));
@@ -199,6 +200,7 @@ fn island_attached_from_neither_side_is_thickened() {
         ],
         n_labels: 1,
         warnings: vec![],
+        label_names: Default::default(),
     };
     let solid = slice2solid::reconstruct(&sections, &Options::default()).expect("reconstruct");
     eprintln!("island: {:?}", solid.report.warnings);
@@ -242,6 +244,7 @@ fn a_single_section_is_a_thin_slab() {
         sections: vec![square_section(plane, 0.0, 0)],
         n_labels: 1,
         warnings: vec![],
+        label_names: Default::default(),
     };
     let solid = slice2solid::reconstruct(&sections, &Options::default()).unwrap();
     assert_eq!(thickened(&solid.report), 1, "{:?}", solid.report.warnings);
@@ -267,6 +270,7 @@ fn sections_apart_from_an_empty_plane_between_them_are_kept() {
         ],
         n_labels: 1,
         warnings: vec![],
+        label_names: Default::default(),
     };
     let solid = slice2solid::reconstruct(&sections, &Options::default()).unwrap();
     assert_eq!(thickened(&solid.report), 2, "{:?}", solid.report.warnings);

@@ -255,6 +255,7 @@ fn cube_section_agrees_with_its_square() {
         sections: vec![good, bad],
         n_labels: 1,
         warnings: vec![],
+        label_names: Default::default(),
     };
     let r = check_mesh(&m, Some(&secs));
     let s = &r.sections;

@@ -133,5 +133,8 @@ fn unknown_extension_is_an_error() {
     let e = read_sections(std::path::Path::new("x.txt"))
         .unwrap_err()
         .to_string();
-    assert!(e.contains("x.txt") && e.contains(".csl or .json"), "{e}");
+    assert!(
+        e.contains("x.txt") && e.contains(".csl, .json or .dcm"),
+        "{e}"
+    );
 }

@@ -115,10 +115,11 @@ impl Solid {
 
 /// Reconstruct a solid from `sections` with the options of `slice2solid reconstruct`:
 /// `method` ("delaunay" or "implicit"), `label` (only this label), `depth` (octree depth of the
-/// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `shared_samples`. Runs without the GIL.
+/// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `shared_samples`, `assembly`
+/// ("glue" or "complex"). Runs without the GIL.
 #[pyfunction]
 #[pyo3(signature = (sections, method = "delaunay", label = None, depth = 9, no_branching = false,
-    no_cutting = false, no_thicken = false, shared_samples = false))]
+    no_cutting = false, no_thicken = false, shared_samples = false, assembly = "glue"))]
 #[allow(clippy::too_many_arguments)]
 pub fn reconstruct(
     py: Python<'_>,
@@ -130,7 +131,19 @@ pub fn reconstruct(
     no_cutting: bool,
     no_thicken: bool,
     shared_samples: bool,
+    assembly: &str,
 ) -> PyResult<Solid> {
+    let assembly = match assembly {
+        "glue" => slice2solid::Assembly::Glue,
+        "complex" => slice2solid::Assembly::Complex,
+        other => {
+            return Err(crate::input_err(
+                py,
+                "assembly",
+                format!("unknown assembly \"{other}\" (expected \"glue\" or \"complex\")"),
+            ))
+        }
+    };
     let method = match method {
         "delaunay" => Method::Delaunay,
         "implicit" => Method::Implicit,
@@ -152,6 +165,7 @@ pub fn reconstruct(
             cutting: !no_cutting,
             thicken_flat_zones: !no_thicken,
             shared_samples,
+            assembly,
         },
         ..Default::default()
     };

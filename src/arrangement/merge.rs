@@ -398,6 +398,7 @@ mod tests {
             sections,
             n_labels: 1,
             warnings: Vec::new(),
+            label_names: Default::default(),
         }
     }
 
@@ -450,6 +451,7 @@ mod tests {
             sections,
             n_labels: 1,
             warnings: Vec::new(),
+            label_names: Default::default(),
         }
     }
 

@@ -2,7 +2,7 @@
 use crate::InfoArgs;
 use serde_json::json;
 use slice2solid::arrangement::Arrangement;
-use slice2solid::io::{read_sections_with, ReadOptions};
+use slice2solid::io::{read_sections_of_roi, ReadOptions};
 use slice2solid::Result;
 use std::collections::BTreeMap;
 use std::process::ExitCode;
@@ -10,11 +10,12 @@ use std::time::Instant;
 
 pub fn run(args: InfoArgs) -> Result<ExitCode> {
     let t0 = Instant::now();
-    let s = read_sections_with(
+    let s = read_sections_of_roi(
         &args.input,
         &ReadOptions {
             strict: args.strict,
         },
+        args.roi.as_deref(),
     )?;
     let read_ms = t0.elapsed().as_secs_f64() * 1e3;
 
@@ -68,6 +69,7 @@ pub fn run(args: InfoArgs) -> Result<ExitCode> {
             "planes": s.sections.len(),
             "empty_planes": empty,
             "n_labels": s.n_labels,
+            "label_names": s.label_names.iter().map(|(l, n)| (l.to_string(), n.clone())).collect::<BTreeMap<_, _>>(),
             "regions_per_label": labels.iter().map(|(l, n)| (l.to_string(), *n)).collect::<BTreeMap<_, _>>(),
             "vertices": s.vertex_count(),
             "contours": regions + holes,
@@ -103,6 +105,14 @@ pub fn run(args: InfoArgs) -> Result<ExitCode> {
             s.n_labels,
             per_label.join(", ")
         );
+        if !s.label_names.is_empty() {
+            let names: Vec<String> = s
+                .label_names
+                .iter()
+                .map(|(l, n)| format!("{l}: {n:?}"))
+                .collect();
+            println!("label names:    {}", names.join(", "));
+        }
         println!("vertices:       {}", s.vertex_count());
         println!(
             "contours:       {} ({} outer, {} holes)",

@@ -1,15 +1,16 @@
 use crate::ReconstructArgs;
-use slice2solid::io::{read_sections_with, write_surface, write_tets, ReadOptions};
+use slice2solid::io::{read_sections_of_roi, write_surface, write_tets, ReadOptions};
 use slice2solid::{Error, Options, Result};
 use std::io::IsTerminal;
 use std::process::ExitCode;
 
 pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
-    let sections = read_sections_with(
+    let sections = read_sections_of_roi(
         &args.input,
         &ReadOptions {
             strict: args.strict,
         },
+        args.roi.as_deref(),
     )?;
     let options = Options {
         method: match args.method {

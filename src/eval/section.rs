@@ -454,6 +454,7 @@ mod flat_face_tests {
             }],
             n_labels: 1,
             warnings: vec![],
+            label_names: Default::default(),
         }
     }
 
@@ -484,6 +485,7 @@ mod flat_face_tests {
             }],
             n_labels: 1,
             warnings: vec![],
+            label_names: Default::default(),
         };
         let cube = cuboid([0.0; 3], [1.0; 3]);
         let crossed = &section_agreement(&cube, &empty([0.0, 0.0, 1.0], -0.5))[0];

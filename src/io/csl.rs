@@ -457,6 +457,7 @@ pub fn parse_csl_with(text: &str, file_name: &str, options: &ReadOptions) -> Res
         sections,
         n_labels,
         warnings,
+        label_names: Default::default(),
     };
     validate::validate_with_options(sections, &loc, options)
 }

@@ -1,8 +1,10 @@
-//! Readers and writers: cross-sections (CSL, JSON) and meshes.
+//! Readers and writers: cross-sections (CSL, JSON, and DICOM RT Structure Sets to read) and meshes.
 pub mod csl;
 pub mod json;
+pub mod loose_contours;
 pub mod mesh;
 pub mod plain;
+pub mod rtstruct;
 pub mod vtk_xml;
 
 use crate::error::{Error, Result};
@@ -12,7 +14,8 @@ use std::path::Path;
 
 pub use crate::validate::ReadOptions;
 
-/// The section formats, chosen by file extension (case-insensitive).
+/// The section formats, chosen by file extension (case-insensitive); a file with another extension
+/// (clinical exports are often named by UID) is DICOM when it has the DICOM preamble and `DICM`.
 fn section_format(path: &Path) -> Result<&'static str> {
     let ext = path
         .extension()
@@ -21,22 +24,49 @@ fn section_format(path: &Path) -> Result<&'static str> {
     match ext.as_deref() {
         Some("csl") => Ok("csl"),
         Some("json") => Ok("json"),
+        Some("dcm") => Ok("dcm"),
+        _ if has_dicom_preamble(path) => Ok("dcm"),
         _ => Err(Error::input(
             path.display().to_string(),
-            "unknown cross-section format: expected a .csl or .json file",
+            "unknown cross-section format: expected a .csl, .json or .dcm (DICOM RT Structure Set) file",
         )),
     }
 }
 
-/// Read cross-sections, CSL or JSON by extension (`.csl`, `.json`), validated and repaired.
+fn has_dicom_preamble(path: &Path) -> bool {
+    use std::io::Read;
+    let mut head = [0u8; 132];
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_exact(&mut head))
+        .is_ok()
+        && &head[128..] == b"DICM"
+}
+
+/// Read cross-sections, CSL, JSON or RT Structure Set by extension (`.csl`, `.json`, `.dcm`),
+/// validated and repaired.
 pub fn read_sections(path: &Path) -> Result<Sections> {
     read_sections_with(path, &ReadOptions::default())
 }
 
 /// Read cross-sections with `options` (`strict`: refuse instead of repairing, see `ReadOptions`).
 pub fn read_sections_with(path: &Path, options: &ReadOptions) -> Result<Sections> {
-    match section_format(path)? {
-        "csl" => csl::read_csl_with(path, options),
+    read_sections_of_roi(path, options, None)
+}
+
+/// Read cross-sections with `options`; `roi`: only the ROI of this name, for an RT Structure Set
+/// (the other formats have no ROI names: naming one is an error; select a label instead).
+pub fn read_sections_of_roi(
+    path: &Path,
+    options: &ReadOptions,
+    roi: Option<&str>,
+) -> Result<Sections> {
+    match (section_format(path)?, roi) {
+        ("dcm", _) => rtstruct::read_rtstruct_with(path, options, roi),
+        (_, Some(name)) => Err(Error::input(
+            format!("{}: --roi {name:?}", path.display()),
+            "only DICOM RT Structure Sets have ROIs; select a label of this file with --label",
+        )),
+        ("csl", None) => csl::read_csl_with(path, options),
         _ => json::read_json_with(path, options),
     }
 }
@@ -45,7 +75,11 @@ pub fn read_sections_with(path: &Path, options: &ReadOptions) -> Result<Sections
 pub fn write_sections(path: &Path, sections: &Sections) -> Result<()> {
     match section_format(path)? {
         "csl" => csl::write_csl(path, sections),
-        _ => json::write_json(path, sections),
+        "json" => json::write_json(path, sections),
+        _ => Err(Error::Unavailable(format!(
+            "{}: writing DICOM RT Structure Sets (write .csl or .json)",
+            path.display()
+        ))),
     }
 }
 
