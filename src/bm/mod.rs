@@ -26,6 +26,11 @@
 //! samples of both sides of its faces, so that both triangulate each face alike, and a pair the
 //! other side's points took away is joined through them (`chains::route_pairs`).
 //!
+//! With `DelaunayOptions::assembly = Complex` the cells are not glued: the solid is the boundary
+//! of the kept tetrahedra of all cells as one complex (`assembly`), singular edges and pinched
+//! vertices filled with step-1 survivors inside the complex (`fill`); the cells triangulate with
+//! the kernel's tagged construction in both assemblies (`cell::cell_delaunay`).
+//!
 //! Known limits: on a face attached from both sides the
 //! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
 //! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
