@@ -186,8 +186,8 @@ mod tests {
             vertices: mesh.vertices.clone(),
             tets: vec![[0, 1, 2, 6]],
         };
-        assert_eq!(tet_labels(&tets, &s, None), vec![NONE]);
-        assert_eq!(tet_labels(&tets, &s, Some(3)), vec![3]);
+        assert_eq!(tet_labels(&tets, &s, None).unwrap(), vec![NONE]);
+        assert_eq!(tet_labels(&tets, &s, Some(3)).unwrap(), vec![3]);
         assert_eq!(
             tet_labels(&tets, &s.select_label(Some(2)).unwrap(), None).unwrap(),
             vec![2]

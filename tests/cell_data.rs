@@ -26,7 +26,7 @@ fn area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
 fn the_caps_of_the_figure_eight_are_its_end_sections() {
     let sections = read_sections(Path::new("data/eight_15.csl")).unwrap();
     let solid = reconstruct(&sections, &Options::default()).unwrap();
-    let data = surface_cell_data(&solid.surface, &sections, None);
+    let data = surface_cell_data(&solid.surface, &sections, None).unwrap();
     assert_eq!(data.plane.len(), solid.surface.triangles.len());
     let mut per_plane: BTreeMap<i32, f64> = BTreeMap::new();
     for (t, &p) in solid.surface.triangles.iter().zip(&data.plane) {
@@ -53,5 +53,8 @@ fn the_caps_of_the_figure_eight_are_its_end_sections() {
     // One label in the input: every triangle and tetrahedron has it.
     assert!(data.label.iter().all(|&l| l == 1));
     let tets = solid.tets.as_ref().unwrap();
-    assert!(tet_labels(tets, &sections, None).iter().all(|&l| l == 1));
+    assert!(tet_labels(tets, &sections, None)
+        .unwrap()
+        .iter()
+        .all(|&l| l == 1));
 }
