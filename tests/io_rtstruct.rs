@@ -221,9 +221,21 @@ fn overlapping_rois() -> RtStruct {
 }
 
 #[test]
-fn overlapping_rois_are_refused_together_and_read_one_at_a_time() {
+fn overlapping_rois_are_repaired_together_and_read_one_at_a_time() {
+    // all ROIs at once: labels that overlap in area follow the documented rule (the lower label
+    // keeps the overlap: the organ inside the body is cut from the organ, with a warning);
+    // --strict refuses; one ROI at a time reads each as it is
     let rt = overlapping_rois();
-    let e = error_text(rt.sections(None, &ReadOptions::default()));
+    let all = rt.sections(None, &ReadOptions::default()).unwrap();
+    assert!(
+        all.warnings.iter().any(|w| w
+            .contains("repaired overlapping components of different labels")
+            && w.contains("the lower label 1 keeps it")),
+        "{:?}",
+        all.warnings
+    );
+    assert!((all.sections[0].area() - 400.0).abs() < 1e-9);
+    let e = error_text(rt.sections(None, &ReadOptions { strict: true }));
     assert!(
         e.starts_with("mem.dcm: ROI \"Organ\" (number 2), contour 0: region lies inside the material of mem.dcm: ROI \"Body\" (number 1), contour 0")
             && e.contains("reconstruct one ROI with --roi NAME"),

@@ -158,10 +158,21 @@ pub fn local_gid(local: u32) -> u64 {
 /// line keeps each section's own (u,v), while its position is their midpoint (`reconcile`), up to
 /// the snap tolerance away; the tag rules decide for the points their (u,v) describe, the float
 /// predicates for the positions, and the two must be the same points up to rounding.
-pub fn pool_tags(arr: &Arrangement, pool: &VertexPool, g: u32) -> PointTags {
+///
+/// Only the planes of the cell's faces (`cell_planes`): a point on the common line of a fan of
+/// planes lies on all of them, and the kernel takes at most three. The two cells of a face see the
+/// same planes through it: a line of that face's plane with another plane meets the face only
+/// along an edge of it, and that other plane bounds both cells there.
+pub fn pool_tags(
+    arr: &Arrangement,
+    pool: &VertexPool,
+    g: u32,
+    cell_planes: &IdSet<PlaneId>,
+) -> PointTags {
     let p = pool.positions[g as usize];
     let planes: SmallVec<[(u32, [f64; 2]); 3]> = pool.tags[g as usize]
         .iter()
+        .filter(|t| cell_planes.contains(t))
         .map(|&t| (t, arr.planes[t as usize].plane.to_2d(p)))
         .collect();
     PointTags::new(g as u64, &planes)
@@ -269,7 +280,15 @@ impl CellInput {
             slot.loops = loops;
         }
         let points = global.iter().map(|&g| pool.positions[g as usize]).collect();
-        let tags = global.iter().map(|&g| pool_tags(arr, pool, g)).collect();
+        let cell_planes: IdSet<PlaneId> = arr.cells[cell as usize]
+            .faces
+            .iter()
+            .map(|cf| arr.faces[cf.face as usize].plane)
+            .collect();
+        let tags = global
+            .iter()
+            .map(|&g| pool_tags(arr, pool, g, &cell_planes))
+            .collect();
         Some(CellInput {
             cell,
             global,

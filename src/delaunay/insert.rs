@@ -225,7 +225,9 @@ impl Delaunay {
     /// in a tetrahedron that does not conflict (the float side of a facet disagrees with the tags,
     /// at ulp distances from a face plane), a breadth-first search from there finds one: the
     /// conflict region is non-empty (the tets on the plane's triangle or line segment containing
-    /// `q`, or the float location, conflict) and is usually a few steps away.
+    /// `q`, or the float location, conflict) and is usually a few steps away. When nothing
+    /// conflicts (the tag rules contradict the float geometry) the triangulation is marked
+    /// inconsistent and `Err(qv)` returned: the point is refused.
     fn locate_tagged(&mut self, qv: u32, q: P) -> Result<u32, u32> {
         // An exact duplicate first, by the plain walk (it ends in a tetrahedron with the vertex
         // at q, as in the untagged kernel); the tagged walk may end away from it, and a duplicate
@@ -267,19 +269,39 @@ impl Delaunay {
                 queue.push(n);
             }
         }
-        unreachable!("no tetrahedron conflicts with a new point")
+        // the tag rules put q in conflict with nothing: inconsistent with the float geometry (as a
+        // non-star cavity is); refuse the point rather than panic (`Delaunay::consistent` fails)
+        self.inconsistent = true;
+        Err(qv)
     }
 
     /// Tagged: whether every new finite tetrahedron would be positive; if not, the conflict rules
     /// were inconsistent across a cavity facet (an exact cosphericity across planes) and the
     /// triangulation records it (`Delaunay::consistent` then fails).
-    fn cavity_is_star(&mut self, boundary: &[BoundaryFacet]) -> bool {
+    /// A new infinite tetrahedron is checked through a point strictly inside the hull (the centroid
+    /// of a finite tetrahedron outside the cavity): with it in the infinite vertex's place, the
+    /// tetrahedron must be negative (the kernel's convention: the infinite vertex stands beyond its
+    /// hull facet), i.e. its new hull facet has the solid on its inner side.
+    fn cavity_is_star(&mut self, boundary: &[BoundaryFacet], outside: &[u32]) -> bool {
+        let inner = outside
+            .iter()
+            .map(|&t| self.tds.tets[t as usize].v)
+            .find(|v| !v.contains(&INFINITE))
+            .map(|v| {
+                let p = v.map(|w| self.pts[w as usize]);
+                std::array::from_fn(|k| 0.25 * (p[0][k] + p[1][k] + p[2][k] + p[3][k]))
+            });
         for b in boundary {
-            if b.v.contains(&INFINITE) {
-                continue;
-            }
-            let p = b.v.map(|w| self.pts[w as usize]);
-            if pred::orient(p[0], p[1], p[2], p[3]) <= 0.0 {
+            let (p, sign) = match b.v.iter().position(|&w| w == INFINITE) {
+                None => (b.v.map(|w| self.pts[w as usize]), 1.0),
+                Some(k) => {
+                    let Some(c) = inner else { continue };
+                    let p =
+                        std::array::from_fn(|m| if m == k { c } else { self.pts[b.v[m] as usize] });
+                    (p, -1.0)
+                }
+            };
+            if sign * pred::orient(p[0], p[1], p[2], p[3]) <= 0.0 {
                 self.inconsistent = true;
                 return false;
             }
@@ -430,7 +452,7 @@ impl Delaunay {
                 });
             }
         }
-        if TAGGED && !self.cavity_is_star(&boundary) {
+        if TAGGED && !self.cavity_is_star(&boundary, &outside) {
             // leave the triangulation as it was (valid, without `v`): a non-star cavity would
             // break the structure; the caller learns of it from `Delaunay::consistent`
             for &c in &cavity {
