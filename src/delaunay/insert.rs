@@ -216,8 +216,13 @@ impl Delaunay {
     #[inline]
     pub(super) fn conflict_tagged(&self, t: u32, qv: u32, q: P) -> bool {
         let v = tet(&self.tds.tets, t).v;
-        tags::conflict(self.tags_of(v), (&self.tags[qv as usize], q))
-            .unwrap_or_else(|| self.conflict(t, q))
+        match tags::conflict(self.tags_of(v), (&self.tags[qv as usize], q)) {
+            Some(c) => {
+                self.rule_decided.set(true);
+                c
+            }
+            None => self.conflict(t, q),
+        }
     }
 
     /// A tetrahedron in conflict with internal vertex `qv` at `q` (tagged), or `Err(w)` when vertex
@@ -292,16 +297,19 @@ impl Delaunay {
                 std::array::from_fn(|k| 0.25 * (p[0][k] + p[1][k] + p[2][k] + p[3][k]))
             });
         for b in boundary {
-            let (p, sign) = match b.v.iter().position(|&w| w == INFINITE) {
-                None => (b.v.map(|w| self.pts[w as usize]), 1.0),
+            // a new hull facet may be flat (collinear on a hull plane, allowed by the
+            // perturbation): only the wrong side is an error there; a finite tet must be positive
+            let (p, bad) = match b.v.iter().position(|&w| w == INFINITE) {
+                None => (b.v.map(|w| self.pts[w as usize]), 0.0),
                 Some(k) => {
                     let Some(c) = inner else { continue };
                     let p =
                         std::array::from_fn(|m| if m == k { c } else { self.pts[b.v[m] as usize] });
-                    (p, -1.0)
+                    (p, f64::NAN)
                 }
             };
-            if sign * pred::orient(p[0], p[1], p[2], p[3]) <= 0.0 {
+            let o = pred::orient(p[0], p[1], p[2], p[3]);
+            if (bad == 0.0 && o <= 0.0) || (bad.is_nan() && o > 0.0 && self.rule_decided.get()) {
                 self.inconsistent = true;
                 return false;
             }
@@ -373,6 +381,9 @@ impl Delaunay {
     #[inline(always)]
     fn insert_vertex_with<const TAGGED: bool>(&mut self, v: u32) -> u32 {
         let q = self.pts[v as usize];
+        if TAGGED {
+            self.rule_decided.set(false);
+        }
         let t0 = if TAGGED {
             match self.locate_tagged(v, q) {
                 Ok(t) => t,

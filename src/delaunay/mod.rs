@@ -147,6 +147,9 @@ pub struct Delaunay {
     /// A tagged insertion met a cavity that is not star-shaped (an exact cosphericity across
     /// planes the tag rules cannot decide, see `tags`): the triangulation is not to be trusted.
     inconsistent: bool,
+    /// A tag rule decided a conflict during the current tagged insertion (then its new hull facets
+    /// are checked too: without a rule the cavity is the exact one).
+    rule_decided: std::cell::Cell<bool>,
     /// Visit stamps of the tagged locate's fallback search (by tetrahedron slot).
     stamp: Vec<u32>,
     stamp_gen: u32,
@@ -348,6 +351,7 @@ impl Delaunay {
             tagged: false,
             tags: Vec::new(),
             inconsistent: false,
+            rule_decided: std::cell::Cell::new(false),
             stamp: Vec::new(),
             stamp_gen: 0,
             lo: [f64::INFINITY; 3],
