@@ -4,14 +4,23 @@ use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, IntoPyArray, PyArray2, PyArrayLike1, PyArrayLike2};
 use pyo3::prelude::*;
 
-/// `obj` as rows of `K` float64 numbers.
-pub fn rows_f64<const K: usize>(obj: &Bound<'_, PyAny>, location: &str) -> PyResult<Vec<[f64; K]>> {
+/// `obj` as rows of `K` values of type `T` (converted as numpy would); `rows_name` and `what` name
+/// the expected array in the error: "an (n, 3) array of numbers".
+fn rows<T, const K: usize>(
+    obj: &Bound<'_, PyAny>,
+    location: &str,
+    rows_name: &str,
+    what: &str,
+) -> PyResult<Vec<[T; K]>>
+where
+    T: numpy::Element + Copy + for<'a, 'py> FromPyObject<'a, 'py>,
+{
     let py = obj.py();
-    let a: PyArrayLike2<f64, AllowTypeChange> = obj.extract().map_err(|e| {
+    let a: PyArrayLike2<T, AllowTypeChange> = obj.extract().map_err(|e| {
         crate::input_err(
             py,
             location,
-            format!("expected an (n, {K}) array of numbers ({e})"),
+            format!("expected an ({rows_name}, {K}) array of {what} ({e})"),
         )
     })?;
     let a = a.as_array();
@@ -20,7 +29,7 @@ pub fn rows_f64<const K: usize>(obj: &Bound<'_, PyAny>, location: &str) -> PyRes
             py,
             location,
             format!(
-                "expected an (n, {K}) array of numbers, got shape {:?}",
+                "expected an ({rows_name}, {K}) array of {what}, got shape {:?}",
                 a.shape()
             ),
         ));
@@ -29,6 +38,11 @@ pub fn rows_f64<const K: usize>(obj: &Bound<'_, PyAny>, location: &str) -> PyRes
         .into_iter()
         .map(|r| std::array::from_fn(|k| r[k]))
         .collect())
+}
+
+/// `obj` as rows of `K` float64 numbers.
+pub fn rows_f64<const K: usize>(obj: &Bound<'_, PyAny>, location: &str) -> PyResult<Vec<[f64; K]>> {
+    rows(obj, location, "n", "numbers")
 }
 
 /// `obj` as `K` float64 numbers.
@@ -55,26 +69,9 @@ pub fn index_rows<const K: usize>(
     location: &str,
 ) -> PyResult<Vec<[u32; K]>> {
     let py = obj.py();
-    let a: PyArrayLike2<i64, AllowTypeChange> = obj.extract().map_err(|e| {
-        crate::input_err(
-            py,
-            location,
-            format!("expected an (m, {K}) array of integers ({e})"),
-        )
-    })?;
-    let a = a.as_array();
-    if a.ncols() != K {
-        return Err(crate::input_err(
-            py,
-            location,
-            format!(
-                "expected an (m, {K}) array of integers, got shape {:?}",
-                a.shape()
-            ),
-        ));
-    }
-    let mut out = Vec::with_capacity(a.nrows());
-    for (i, r) in a.rows().into_iter().enumerate() {
+    let a: Vec<[i64; K]> = rows(obj, location, "m", "integers")?;
+    let mut out = Vec::with_capacity(a.len());
+    for (i, r) in a.iter().enumerate() {
         if let Some(&bad) = r.iter().find(|&&v| v < 0 || v as u64 >= n_vertices as u64) {
             return Err(crate::input_err(
                 py,

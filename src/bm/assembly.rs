@@ -35,7 +35,10 @@ pub struct Assembled {
 }
 
 /// Global ids per cell: pool ids, and fresh ids (appended to `positions`) for cell-local vertices.
-fn global_maps(results: &[Option<CellResult>], positions: &mut Vec<[f64; 3]>) -> Vec<Vec<u32>> {
+pub(super) fn global_maps(
+    results: &[Option<CellResult>],
+    positions: &mut Vec<[f64; 3]>,
+) -> Vec<Vec<u32>> {
     results
         .iter()
         .map(|r| match r.as_ref().and_then(|r| r.input.as_ref()) {
@@ -158,48 +161,8 @@ fn count_faces(
 
 /// (edges with more than two triangles, vertices whose triangles form more than one fan).
 pub fn singularities(tris: &[[u32; 3]]) -> (u64, u64) {
-    let mut edge_count: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-    for t in tris {
-        for i in 0..3 {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            *edge_count.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let singular_edges = edge_count.values().filter(|&&n| n > 2).count() as u64;
-    // per vertex, union the triangles around it that share an edge through it
-    let mut around: FxHashMap<u32, Vec<usize>> = FxHashMap::default();
-    for (i, t) in tris.iter().enumerate() {
-        for &v in t {
-            around.entry(v).or_default().push(i);
-        }
-    }
-    let mut singular_vertices = 0;
-    for (&v, ts) in &around {
-        let mut parent: Vec<usize> = (0..ts.len()).collect();
-        fn find(p: &mut [usize], mut x: usize) -> usize {
-            while p[x] != x {
-                p[x] = p[p[x]];
-                x = p[x];
-            }
-            x
-        }
-        let mut by_edge: FxHashMap<u32, usize> = FxHashMap::default();
-        for (k, &ti) in ts.iter().enumerate() {
-            for &w in tris[ti].iter().filter(|&&w| w != v) {
-                if let Some(&j) = by_edge.get(&w) {
-                    let (a, b) = (find(&mut parent, j), find(&mut parent, k));
-                    parent[a] = b;
-                } else {
-                    by_edge.insert(w, k);
-                }
-            }
-        }
-        let fans = (0..ts.len()).filter(|&k| find(&mut parent, k) == k).count();
-        if fans > 1 {
-            singular_vertices += 1;
-        }
-    }
-    (singular_edges, singular_vertices)
+    let (edges, vertices) = super::fill::singular_simplices(tris);
+    (edges.len() as u64, vertices.len() as u64)
 }
 
 /// The surface with only the vertices it uses, in increasing global id.

@@ -58,7 +58,7 @@ pub fn fill_singularities(
 }
 
 /// The boundary's singular edges (more than two triangles) and pinched vertices (several fans).
-fn singular_simplices(tris: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<u32>) {
+pub(super) fn singular_simplices(tris: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<u32>) {
     let mut edge_count: FxHashMap<(u32, u32), u32> = FxHashMap::default();
     for t in tris {
         for i in 0..3 {

@@ -111,6 +111,36 @@ pub(super) enum Kind {
     Face(u32),
 }
 
+/// The cell-local vertices (diagram samples) on a face: (global id, unit direction into their
+/// cell, face).
+fn cell_local_samples(
+    results: &[Option<CellResult>],
+    maps: &[Vec<u32>],
+) -> Vec<(u32, [f64; 3], u32)> {
+    let mut samples = Vec::new();
+    for (c, r) in results.iter().enumerate() {
+        let Some(inp) = r.as_ref().and_then(|r| r.input.as_ref()) else {
+            continue;
+        };
+        for (l, &gid) in inp.global.iter().enumerate() {
+            if gid != u32::MAX {
+                continue;
+            }
+            if let Some(s) = (0..inp.slots.len()).find(|&s| inp.mask[l] >> s & 1 == 1) {
+                let slot = &inp.slots[s];
+                let n = slot.geom.normal;
+                let d = if slot.outward_is_plane_normal {
+                    -1.0
+                } else {
+                    1.0
+                };
+                samples.push((maps[c][l], [d * n[0], d * n[1], d * n[2]], slot.face));
+            }
+        }
+    }
+    samples
+}
+
 pub(super) fn tri_area(p: &[[f64; 3]], t: [u32; 3]) -> f64 {
     let (a, b, c) = (p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
     let u = crate::sections::sub(b, a);
@@ -131,38 +161,9 @@ pub fn glue(
     let mut laps = Laps::new();
     let mut positions = pool.positions.clone();
     // global id per cell-local vertex (branching samples get new ids)
+    let maps = super::assembly::global_maps(results, &mut positions);
     // branching samples: (global id, unit direction into their cell, face)
-    let mut samples: Vec<(u32, [f64; 3], u32)> = Vec::new();
-    let maps: Vec<Vec<u32>> = results
-        .iter()
-        .map(|r| match r.as_ref().and_then(|r| r.input.as_ref()) {
-            Some(inp) => inp
-                .global
-                .iter()
-                .enumerate()
-                .map(|(l, &gid)| {
-                    if gid == u32::MAX {
-                        positions.push(inp.points[l]);
-                        let id = (positions.len() - 1) as u32;
-                        if let Some(s) = (0..inp.slots.len()).find(|&s| inp.mask[l] >> s & 1 == 1) {
-                            let slot = &inp.slots[s];
-                            let n = slot.geom.normal;
-                            let d = if slot.outward_is_plane_normal {
-                                -1.0
-                            } else {
-                                1.0
-                            };
-                            samples.push((id, [d * n[0], d * n[1], d * n[2]], slot.face));
-                        }
-                        id
-                    } else {
-                        gid
-                    }
-                })
-                .collect(),
-            None => Vec::new(),
-        })
-        .collect();
+    let samples = cell_local_samples(results, &maps);
     let mut tris: Vec<[u32; 3]> = Vec::new();
     let mut kind: Vec<Kind> = Vec::new();
     let mut tets: Vec<[u32; 4]> = Vec::new();

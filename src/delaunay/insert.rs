@@ -283,33 +283,39 @@ impl Delaunay {
     /// Tagged: whether every new finite tetrahedron would be positive; if not, the conflict rules
     /// were inconsistent across a cavity facet (an exact cosphericity across planes) and the
     /// triangulation records it (`Delaunay::consistent` then fails).
-    /// A new infinite tetrahedron is checked through a point strictly inside the hull (the centroid
+    ///
+    /// When a tag rule decided part of the cavity, a new infinite tetrahedron is checked through a point strictly inside the hull (the centroid
     /// of a finite tetrahedron outside the cavity): with it in the infinite vertex's place, the
     /// tetrahedron must be negative (the kernel's convention: the infinite vertex stands beyond its
     /// hull facet), i.e. its new hull facet has the solid on its inner side.
     fn cavity_is_star(&mut self, boundary: &[BoundaryFacet], outside: &[u32]) -> bool {
-        let inner = outside
-            .iter()
-            .map(|&t| self.tds.tets[t as usize].v)
-            .find(|v| !v.contains(&INFINITE))
-            .map(|v| {
-                let p = v.map(|w| self.pts[w as usize]);
-                std::array::from_fn(|k| 0.25 * (p[0][k] + p[1][k] + p[2][k] + p[3][k]))
-            });
+        let inner: Option<P> = if self.rule_decided.get() {
+            outside
+                .iter()
+                .map(|&t| self.tds.tets[t as usize].v)
+                .find(|v| !v.contains(&INFINITE))
+                .map(|v| {
+                    let p = v.map(|w| self.pts[w as usize]);
+                    std::array::from_fn(|k| 0.25 * (p[0][k] + p[1][k] + p[2][k] + p[3][k]))
+                })
+        } else {
+            None
+        };
         for b in boundary {
             // a new hull facet may be flat (collinear on a hull plane, allowed by the
             // perturbation): only the wrong side is an error there; a finite tet must be positive
-            let (p, bad) = match b.v.iter().position(|&w| w == INFINITE) {
-                None => (b.v.map(|w| self.pts[w as usize]), 0.0),
+            let (p, infinite) = match b.v.iter().position(|&w| w == INFINITE) {
+                None => (b.v.map(|w| self.pts[w as usize]), false),
                 Some(k) => {
                     let Some(c) = inner else { continue };
                     let p =
                         std::array::from_fn(|m| if m == k { c } else { self.pts[b.v[m] as usize] });
-                    (p, f64::NAN)
+                    (p, true)
                 }
             };
             let o = pred::orient(p[0], p[1], p[2], p[3]);
-            if (bad == 0.0 && o <= 0.0) || (bad.is_nan() && o > 0.0 && self.rule_decided.get()) {
+            let wrong = if infinite { o > 0.0 } else { o <= 0.0 };
+            if wrong {
                 self.inconsistent = true;
                 return false;
             }
