@@ -9,6 +9,8 @@
 //! cycles, paper Fig. 12a), counted here; resolving them inside K is the next step of
 //! `docs/design/conforming-complex.md`. This replaces `glue` when `Assembly::Complex` is chosen.
 use super::cell::CellResult;
+use super::slab::{FaceTri, Planes, Side};
+use crate::arrangement::Arrangement;
 use crate::arrangement::VertexPool;
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::mesh::{TetMesh, TriMesh};
@@ -32,7 +34,13 @@ pub struct Assembled {
     pub singular_edges_found: u64,
     pub singular_vertices_found: u64,
     pub tets_filled: u64,
+    /// Flat zones given slabs of tetrahedra (`slab`).
+    pub slabs: super::slab::SlabStats,
 }
+
+/// Thickness of a flat zone's slab, relative to the bounding-box diagonal (less where the apex
+/// of its tetrahedron is nearer: half its height).
+pub const SLAB_THICKNESS: f64 = 1e-3;
 
 /// Global ids per cell: pool ids, and fresh ids (appended to `positions`) for cell-local vertices.
 pub(super) fn global_maps(
@@ -68,8 +76,14 @@ fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
     t
 }
 
-/// Assemble K from the cells' kept tetrahedra (positively oriented, `robust::orient3d > 0`).
-pub fn assemble(pool: &VertexPool, results: &[Option<CellResult>]) -> Assembled {
+/// Assemble K from the cells' kept tetrahedra (positively oriented, `robust::orient3d > 0`); with
+/// `slabs`, flat zones get slabs of tetrahedra.
+pub fn assemble(
+    arr: &Arrangement,
+    pool: &VertexPool,
+    results: &[Option<CellResult>],
+    slabs: bool,
+) -> Assembled {
     let mut positions = pool.positions.clone();
     let maps = global_maps(results, &mut positions);
     let mut out = Assembled::default();
@@ -81,7 +95,19 @@ pub fn assemble(pool: &VertexPool, results: &[Option<CellResult>]) -> Assembled 
         tets.extend(r.kept.iter().map(|t| t.map(|v| m[v as usize])));
         fillable.extend(r.fillable.iter().map(|t| t.map(|v| m[v as usize])));
     }
-    count_faces(results, &maps, &positions, &mut out);
+    let faces = face_sides(arr, results, &maps, &mut positions);
+    count_faces(&faces, &positions, &mut out);
+    if slabs && out.flat_triangles > 0 {
+        let mut planes = global_planes(pool, results, &maps, positions.len());
+        let thickness = SLAB_THICKNESS * diagonal(&pool.positions);
+        let k = super::slab::Refinable {
+            positions: &mut positions,
+            planes: &mut planes,
+            kept: &mut tets,
+            fillable: &mut fillable,
+        };
+        out.slabs = super::slab::thicken(k, &faces, thickness);
+    }
     let (edges, vertices) = singularities(&boundary_of(&tets));
     out.singular_edges_found = edges;
     out.singular_vertices_found = vertices;
@@ -97,6 +123,103 @@ pub fn assemble(pool: &VertexPool, results: &[Option<CellResult>]) -> Assembled 
         tets: tets.iter().map(|t| [t[0], t[1], t[3], t[2]]).collect(),
     };
     out
+}
+
+/// Per face with a section, per cell on it: its section triangles in global ids. A cell without
+/// volume gets one more vertex (appended to `positions`), inside it, as the apex of its triangles.
+fn face_sides(
+    arr: &Arrangement,
+    results: &[Option<CellResult>],
+    maps: &[Vec<u32>],
+    positions: &mut Vec<[f64; 3]>,
+) -> Vec<Vec<Side>> {
+    let mut sides: FxHashMap<u32, Vec<Side>> = FxHashMap::default();
+    for (c, r) in results.iter().enumerate() {
+        let Some(r) = r else { continue };
+        let m = &maps[c];
+        let virtual_apex = match (r.flat_only, r.input.as_ref()) {
+            (true, Some(inp)) => {
+                positions.push(cell_interior_point(arr, inp.cell));
+                Some((positions.len() - 1) as u32)
+            }
+            _ => None,
+        };
+        let g = |v: u32| match (v, virtual_apex) {
+            (u32::MAX, Some(a)) => a,
+            (u32::MAX, None) => v,
+            _ => m[v as usize],
+        };
+        for fs in &r.faces {
+            let tris = fs
+                .triangles
+                .iter()
+                .zip(&fs.apexes)
+                .map(|(&(t, attached), &apex)| FaceTri {
+                    tri: t.map(g),
+                    attached,
+                    apex: g(apex),
+                })
+                .collect();
+            sides.entry(fs.face).or_default().push(Side {
+                tris,
+                has_volume: !r.flat_only,
+            });
+        }
+    }
+    let mut faces: Vec<(u32, Vec<Side>)> = sides.into_iter().collect();
+    faces.sort_unstable_by_key(|f| f.0);
+    faces.into_iter().map(|f| f.1).collect()
+}
+
+/// The mean of a cell's polygon vertices: strictly inside the convex cell.
+fn cell_interior_point(arr: &Arrangement, cell: u32) -> [f64; 3] {
+    let (mut sum, mut n) = ([0.0; 3], 0.0);
+    for cf in &arr.cells[cell as usize].faces {
+        for &v in &arr.faces[cf.face as usize].polygon {
+            let p = arr.pool.positions[v as usize];
+            for i in 0..3 {
+                sum[i] += p[i];
+            }
+            n += 1.0;
+        }
+    }
+    sum.map(|x| x / n)
+}
+
+/// The planes of every global vertex: a pool vertex's tags, a cell-local one's planes in its cell.
+fn global_planes(
+    pool: &VertexPool,
+    results: &[Option<CellResult>],
+    maps: &[Vec<u32>],
+    n: usize,
+) -> Vec<Planes> {
+    let mut planes: Vec<Planes> = vec![Planes::new(); n];
+    for (g, t) in pool.tags.iter().enumerate() {
+        planes[g] = t.iter().copied().collect();
+    }
+    for (c, r) in results.iter().enumerate() {
+        let Some(inp) = r.as_ref().and_then(|r| r.input.as_ref()) else {
+            continue;
+        };
+        for (l, &g) in inp.global.iter().enumerate() {
+            if g == u32::MAX {
+                planes[maps[c][l] as usize] = inp.tags[l].planes.iter().map(|p| p.0).collect();
+            }
+        }
+    }
+    planes
+}
+
+fn diagonal(points: &[[f64; 3]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in points {
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    let d: f64 = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum();
+    d.sqrt()
 }
 
 /// The triangles of `tets` with exactly one tetrahedron, oriented outward from it.
@@ -115,45 +238,35 @@ pub fn boundary_of(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
     out
 }
 
-/// Non-conforming faces and flat-zone triangles, from the cells' own face triangles.
-fn count_faces(
-    results: &[Option<CellResult>],
-    maps: &[Vec<u32>],
-    positions: &[[f64; 3]],
-    out: &mut Assembled,
-) {
-    // face → per side: (all triangle keys, attached keys)
-    type Side = (Vec<[u32; 3]>, FxHashSet<[u32; 3]>);
-    let mut sides: FxHashMap<u32, Vec<Side>> = FxHashMap::default();
-    for (c, r) in results.iter().enumerate() {
-        let Some(r) = r.as_ref().filter(|r| !r.flat_only) else {
-            continue;
-        };
-        for fs in &r.faces {
-            let m = &maps[c];
-            let mut all = Vec::with_capacity(fs.triangles.len());
-            let mut attached = FxHashSet::default();
-            for &(t, a) in &fs.triangles {
-                let k = sorted3(t.map(|v| m[v as usize]));
-                all.push(k);
-                if a {
-                    attached.insert(k);
-                }
-            }
-            all.sort_unstable();
-            sides.entry(fs.face).or_default().push((all, attached));
-        }
-    }
-    for list in sides.values() {
-        if list.len() == 2 && list[0].0 != list[1].0 {
+/// Non-conforming faces and flat-zone triangles, from the cells' own face triangles (cells
+/// without volume triangulate their faces in 2D and are not compared).
+fn count_faces(faces: &[Vec<Side>], positions: &[[f64; 3]], out: &mut Assembled) {
+    for sides in faces {
+        let with_volume: Vec<Vec<[u32; 3]>> = sides
+            .iter()
+            .filter(|s| s.has_volume)
+            .map(|s| {
+                let mut keys: Vec<[u32; 3]> = s.tris.iter().map(|t| sorted3(t.tri)).collect();
+                keys.sort_unstable();
+                keys
+            })
+            .collect();
+        if with_volume.len() == 2 && with_volume[0] != with_volume[1] {
             out.nonconforming_faces += 1;
         }
-        // a triangle of any side that no side attaches to (by key; sides that differ count
-        // what the first side has)
-        for k in &list[0].0 {
-            if list.iter().all(|s| !s.1.contains(k)) {
+        let sides = super::slab::considered(sides);
+        let attached: FxHashSet<[u32; 3]> = sides
+            .iter()
+            .flat_map(|s| &s.tris)
+            .filter(|t| t.attached)
+            .map(|t| sorted3(t.tri))
+            .collect();
+        // a triangle of the first side that no side attaches to (by key)
+        for t in sides.first().map_or(&[][..], |s| &s.tris[..]) {
+            let k = sorted3(t.tri);
+            if !attached.contains(&k) {
                 out.flat_triangles += 1;
-                out.flat_area += super::glue::tri_area(positions, *k);
+                out.flat_area += super::glue::tri_area(positions, k);
             }
         }
     }

@@ -40,6 +40,9 @@ pub struct FaceSide {
     /// Internal grounded triangles on the face that bound a non-flat tet of this cell, oriented
     /// outward from the cell (local ids), with whether a kept tet stands on them.
     pub triangles: Vec<([u32; 3], bool)>,
+    /// Per triangle, the fourth vertex of this cell's tet standing on it (`u32::MAX` in a cell
+    /// without volume): where a flat zone gets its slab (`slab`).
+    pub apexes: Vec<u32>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -564,15 +567,20 @@ fn run_cell_with(
     }
     let faces: Vec<FaceSide> = (0..n_slots)
         .map(|s| {
-            let mut triangles: Vec<([u32; 3], bool)> = top[s]
+            let mut with_apex: Vec<([u32; 3], bool, u32)> = top[s]
                 .values()
                 .filter(|(f, _)| !classifier.triangle_external(f[0], f[1], f[2]))
-                .map(|&(f, t)| (f, alive[t as usize]))
+                .map(|&(f, t)| {
+                    let tv = cx.tets[t as usize];
+                    let apex = tv.into_iter().find(|v| !f.contains(v)).unwrap_or(u32::MAX);
+                    (f, alive[t as usize], apex)
+                })
                 .collect();
-            triangles.sort_unstable();
+            with_apex.sort_unstable();
             FaceSide {
                 face: input.slots[s].face,
-                triangles,
+                triangles: with_apex.iter().map(|&(f, a, _)| (f, a)).collect(),
+                apexes: with_apex.iter().map(|w| w.2).collect(),
             }
         })
         .collect();
@@ -695,6 +703,7 @@ fn flat_cell_faces(input: &CellInput) -> Vec<FaceSide> {
             triangles.sort_unstable();
             FaceSide {
                 face: slot.face,
+                apexes: vec![u32::MAX; triangles.len()],
                 triangles,
             }
         })

@@ -51,6 +51,7 @@ pub mod fill;
 pub mod glue;
 pub mod prune;
 pub mod shared_samples;
+pub mod slab;
 pub mod thicken;
 pub mod untangle;
 
@@ -449,7 +450,9 @@ pub fn reconstruct(
     }
     match options.delaunay.assembly {
         crate::solid::Assembly::Glue => Ok(glue_cells(arr, &pool, &results, options, report)),
-        crate::solid::Assembly::Complex => Ok(assemble_cells(&pool, &results, report)),
+        crate::solid::Assembly::Complex => {
+            Ok(assemble_cells(arr, &pool, &results, options, report))
+        }
     }
 }
 
@@ -494,14 +497,24 @@ fn glue_cells(
 
 /// The solid as one complex (`assembly`): the surface is the boundary of the kept tetrahedra.
 fn assemble_cells(
+    arr: &Arrangement,
     pool: &crate::arrangement::VertexPool,
     results: &[Option<CellResult>],
+    options: &Options,
     report: &mut Report,
 ) -> Solid {
-    let k = report.time("assembly", || assembly::assemble(pool, results));
+    let slabs = options.delaunay.thicken_flat_zones;
+    let k = report.time("assembly", || assembly::assemble(arr, pool, results, slabs));
     report.count("nonconforming_faces", k.nonconforming_faces);
     report.count("flat_zone_triangles", k.flat_triangles);
     report.values.insert("flat_zone_area".into(), k.flat_area);
+    report.count("flat_zone_triangles_thickened", k.slabs.thickened);
+    report.count("flat_zone_triangles_left", k.slabs.left);
+    report.count("slab_tets", k.slabs.tets);
+    report.count("slab_points", k.slabs.points);
+    report
+        .values
+        .insert("slab_min_thickness".into(), k.slabs.min_thickness);
     report.count("singular_edges_found", k.singular_edges_found);
     report.count("singular_vertices_found", k.singular_vertices_found);
     report.count("tets_filled", k.tets_filled);
@@ -513,9 +526,14 @@ fn assemble_cells(
             k.nonconforming_faces
         ));
     }
-    if k.flat_triangles > 0 {
+    let left = if slabs {
+        k.slabs.left
+    } else {
+        k.flat_triangles
+    };
+    if left > 0 {
         report.warnings.push(format!(
-            "{} section triangles (area {:.6e}) have no kept tetrahedron on either side (flat zones): left out of the solid",
+            "{left} of {} flat-zone section triangles (area {:.6e} in all) have no kept tetrahedron on either side and no slab: left out of the solid",
             k.flat_triangles, k.flat_area
         ));
     }
