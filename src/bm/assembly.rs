@@ -9,7 +9,8 @@
 //! cycles, paper Fig. 12a), counted here; resolving them inside K is the next step of
 //! `docs/design/conforming-complex.md`. This replaces `glue` when `Assembly::Complex` is chosen.
 use super::cell::CellResult;
-use super::slab::{FaceTri, Planes, Side};
+use super::refine::{Planes, Triangulation};
+use super::slab::{FaceTri, Side};
 use crate::arrangement::Arrangement;
 use crate::arrangement::VertexPool;
 use crate::fxhash::{FxHashMap, FxHashSet};
@@ -36,6 +37,8 @@ pub struct Assembled {
     pub tets_filled: u64,
     /// Flat zones given slabs of tetrahedra (`slab`).
     pub slabs: super::slab::SlabStats,
+    /// Gaps at singularities grown into (`singular`).
+    pub grown: super::singular::SingularStats,
 }
 
 /// Thickness of a flat zone's slab, relative to the bounding-box diagonal (less where the apex
@@ -68,6 +71,11 @@ pub(super) fn global_maps(
         .collect()
 }
 
+/// Most rounds of growing into gaps at singularities, and how far from them (relative to the
+/// bounding-box diagonal; at most halfway along an edge).
+const GROW_ROUNDS: usize = 8;
+pub const SINGULAR_GROWTH: f64 = 1e-3;
+
 /// Most rounds of filling (each may expose new singularities at the filled tets).
 const FILL_ROUNDS: usize = 8;
 
@@ -89,29 +97,37 @@ pub fn assemble(
     let mut out = Assembled::default();
     let mut tets: Vec<[u32; 4]> = Vec::new();
     let mut fillable: Vec<[u32; 4]> = Vec::new();
+    let mut external: Vec<[u32; 4]> = Vec::new();
     for (c, r) in results.iter().enumerate() {
         let Some(r) = r else { continue };
         let m = &maps[c];
-        tets.extend(r.kept.iter().map(|t| t.map(|v| m[v as usize])));
-        fillable.extend(r.fillable.iter().map(|t| t.map(|v| m[v as usize])));
+        let global = |t: &[u32; 4]| t.map(|v| m[v as usize]);
+        tets.extend(r.kept.iter().map(global));
+        fillable.extend(r.fillable.iter().map(global));
+        external.extend(r.external.iter().map(global));
     }
     let faces = face_sides(arr, results, &maps, &mut positions);
     count_faces(&faces, &positions, &mut out);
+    let mut internal: FxHashSet<[u32; 3]> = faces
+        .iter()
+        .flatten()
+        .flat_map(|s| &s.tris)
+        .map(|t| sorted3(t.tri))
+        .collect();
+    let mut planes = global_planes(pool, results, &maps, positions.len());
+    let mut k = Triangulation {
+        positions: &mut positions,
+        planes: &mut planes,
+        kept: &mut tets,
+        fillable: &mut fillable,
+        external: &mut external,
+        internal: &mut internal,
+    };
+    let diag = diagonal(&pool.positions);
     if slabs && out.flat_triangles > 0 {
-        let mut planes = global_planes(pool, results, &maps, positions.len());
-        let thickness = SLAB_THICKNESS * diagonal(&pool.positions);
-        let k = super::slab::Refinable {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut tets,
-            fillable: &mut fillable,
-        };
-        out.slabs = super::slab::thicken(k, &faces, thickness);
+        out.slabs = super::slab::thicken(&mut k, &faces, SLAB_THICKNESS * diag);
     }
-    let (edges, vertices) = singularities(&boundary_of(&tets));
-    out.singular_edges_found = edges;
-    out.singular_vertices_found = vertices;
-    out.tets_filled = super::fill::fill_singularities(&mut tets, &fillable, FILL_ROUNDS);
+    resolve_singularities(&mut k, diag, &mut out);
     let boundary = boundary_of(&tets);
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;
@@ -123,6 +139,19 @@ pub fn assemble(
         tets: tets.iter().map(|t| [t[0], t[1], t[3], t[2]]).collect(),
     };
     out
+}
+
+/// Singular edges and pinched vertices of ∂K: filled with whole step-1 survivors where a gap of
+/// them closes one (`fill`), then grown into near them (`singular`).
+fn resolve_singularities(k: &mut Triangulation, diag: f64, out: &mut Assembled) {
+    let (edges, vertices) = singularities(&boundary_of(k.kept));
+    out.singular_edges_found = edges;
+    out.singular_vertices_found = vertices;
+    out.tets_filled = super::fill::fill_singularities(k.kept, k.fillable, FILL_ROUNDS);
+    let in_kept: FxHashSet<[u32; 4]> = k.kept.iter().map(|&t| super::refine::key4(t)).collect();
+    k.fillable
+        .retain(|t| !in_kept.contains(&super::refine::key4(*t)));
+    out.grown = super::singular::resolve(k, GROW_ROUNDS, SINGULAR_GROWTH * diag);
 }
 
 /// Per face with a section, per cell on it: its section triangles in global ids. A cell without

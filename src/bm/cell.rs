@@ -54,6 +54,9 @@ pub struct CellResult {
     /// The tets that survived step 1 (no external face) but are not kept: adding one keeps every
     /// section triangle's status outside the section, so singularities can be filled with them.
     pub fillable: Vec<[u32; 4]>,
+    /// The other tets (removed in step 1: a face outside its section). With `kept` and
+    /// `fillable`, the cell's whole triangulation, which the complex is refined in (`refine`).
+    pub external: Vec<[u32; 4]>,
     /// Boundary triangles of the kept tets that are not on a face, outward (local ids).
     pub nonplanar: Vec<[u32; 3]>,
     pub faces: Vec<FaceSide>,
@@ -544,9 +547,12 @@ fn run_cell_with(
     let mut kept = Vec::new();
     let mut nonplanar = Vec::new();
     let mut fillable = Vec::new();
+    let mut external = Vec::new();
     for (t, tv) in cx.tets.iter().enumerate() {
         if !alive[t] {
-            if !cl.external[t] {
+            if cl.external[t] {
+                external.push(*tv);
+            } else {
                 fillable.push(*tv);
             }
             continue;
@@ -613,6 +619,7 @@ fn run_cell_with(
         missing,
         kept,
         fillable,
+        external,
         nonplanar,
         faces,
         counts,

@@ -50,7 +50,9 @@ pub mod face_overlay;
 pub mod fill;
 pub mod glue;
 pub mod prune;
+pub mod refine;
 pub mod shared_samples;
+pub mod singular;
 pub mod slab;
 pub mod thicken;
 pub mod untangle;
@@ -518,6 +520,9 @@ fn assemble_cells(
     report.count("singular_edges_found", k.singular_edges_found);
     report.count("singular_vertices_found", k.singular_vertices_found);
     report.count("tets_filled", k.tets_filled);
+    report.count("singular_edge_gaps_grown", k.grown.edge_gaps);
+    report.count("singular_vertex_gaps_grown", k.grown.vertex_gaps);
+    report.count("singular_growth_tets", k.grown.tets);
     report.count("singular_edges", k.singular_edges);
     report.count("singular_vertices", k.singular_vertices);
     if k.nonconforming_faces > 0 {

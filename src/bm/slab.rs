@@ -17,12 +17,8 @@
 //! or outside it) and is not split: then no split point lies on a plane, every slab face other
 //! than Z has a split point, and no slab face lies on a plane: every section keeps R ∩ P = A.
 //! Where Z borders a line of the arrangement, its slab tapers to that line.
+use super::refine::{edge, grow, key3, key4, Growth, Planes, Triangulation};
 use crate::fxhash::{FxHashMap, FxHashSet};
-use smallvec::SmallVec;
-
-/// The planes a global vertex lies on (sorted plane ids).
-pub type Planes = SmallVec<[u32; 3]>;
-
 /// A section triangle as one cell has it: global ids, outward from the cell, whether a kept
 /// tetrahedron of the cell stands on it, and that cell's tetrahedron's fourth vertex (`u32::MAX`
 /// in a cell without volume).
@@ -41,15 +37,6 @@ pub struct Side {
     pub has_volume: bool,
 }
 
-/// The complex being refined: positions and planes per global vertex, the kept tetrahedra and
-/// those that may be added later without leaving a section (`CellResult::fillable`).
-pub struct Refinable<'a> {
-    pub positions: &'a mut Vec<[f64; 3]>,
-    pub planes: &'a mut Vec<Planes>,
-    pub kept: &'a mut Vec<[u32; 4]>,
-    pub fillable: &'a mut Vec<[u32; 4]>,
-}
-
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SlabStats {
     /// Flat-zone triangles that got a slab, and those left flat.
@@ -62,88 +49,34 @@ pub struct SlabStats {
     pub min_thickness: f64,
 }
 
-fn key3(mut t: [u32; 3]) -> [u32; 3] {
-    t.sort_unstable();
-    t
-}
-
-fn key4(mut t: [u32; 4]) -> [u32; 4] {
-    t.sort_unstable();
-    t
-}
-
-fn edge(a: u32, b: u32) -> (u32, u32) {
-    (a.min(b), a.max(b))
-}
-
 /// Give every flat zone of `faces` (per face, per side: its section triangles) a slab of
 /// `thickness` inside K.
-pub fn thicken(k: Refinable, faces: &[Vec<Side>], thickness: f64) -> SlabStats {
-    let mut stats = SlabStats {
-        min_thickness: f64::INFINITY,
-        ..Default::default()
-    };
+pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> SlabStats {
     let (parents, unsided) = parents_of_zones(faces);
-    stats.left += unsided;
-    let fillable_set: FxHashSet<[u32; 4]> = k.fillable.iter().map(|&t| key4(t)).collect();
-    let mut splits = split_points(k.positions, k.planes, &parents, thickness);
-    // a split point off the line of its edge by rounding could invert a thin neighbour: such
-    // edges are not split (each round drops at least one edge)
-    loop {
-        let all = k.kept.iter().chain(k.fillable.iter());
-        let bad = inverted_edges(
-            k.positions,
-            &splits,
-            all.chain(parents.iter().map(|p| &p.tet)),
-        );
-        if bad.is_empty() {
-            break;
-        }
-        splits.retain(|e, _| !bad.contains(e));
-    }
-    let mut new_ids: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-    for (&(a, b), &(p, h)) in &splits {
-        let id = k.positions.len() as u32;
-        k.positions.push(p);
-        k.planes.push(Planes::new());
-        new_ids.insert((a, b), id);
-        stats.min_thickness = stats.min_thickness.min(h);
-    }
-    stats.points = new_ids.len() as u64;
-    let parent_keys: FxHashSet<[u32; 4]> = parents.iter().map(|p| key4(p.tet)).collect();
-    let mut kept_out: Vec<[u32; 4]> = Vec::with_capacity(k.kept.len());
-    for t in k.kept.iter() {
-        kept_out.extend(split(*t, &new_ids));
-    }
-    let mut fillable_out: Vec<[u32; 4]> = Vec::new();
-    for t in k
-        .fillable
+    let points = split_points(t.positions, t.planes, &parents, thickness);
+    let min_thickness = points.values().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    let groups: Vec<Vec<Growth>> = parents
         .iter()
-        .filter(|t| !parent_keys.contains(&key4(**t)))
-    {
-        fillable_out.extend(split(*t, &new_ids));
+        .map(|p| {
+            vec![Growth {
+                tet: p.tet,
+                core: p.zone.into_iter().collect(),
+            }]
+        })
+        .collect();
+    let g = grow(
+        t,
+        &groups,
+        points.into_iter().map(|(e, p)| (e, p.0)).collect(),
+    );
+    let thickened = g.tets_per_group.iter().filter(|&&n| n > 0).count() as u64;
+    SlabStats {
+        thickened,
+        left: unsided + parents.len() as u64 - thickened,
+        tets: g.tets_per_group.iter().sum(),
+        points: g.points,
+        min_thickness: if g.points > 0 { min_thickness } else { 0.0 },
     }
-    for p in &parents {
-        let children = split(p.tet, &new_ids);
-        let slab = slab_of(p, &children);
-        stats.tets += slab.len() as u64;
-        if slab.is_empty() {
-            stats.left += 1;
-        } else {
-            stats.thickened += 1;
-        }
-        let slab_keys: FxHashSet<[u32; 4]> = slab.iter().map(|&t| key4(t)).collect();
-        if fillable_set.contains(&key4(p.tet)) {
-            fillable_out.extend(children.iter().filter(|t| !slab_keys.contains(&key4(**t))));
-        }
-        kept_out.extend(slab);
-    }
-    if stats.points == 0 {
-        stats.min_thickness = 0.0;
-    }
-    *k.kept = kept_out;
-    *k.fillable = fillable_out;
-    stats
 }
 
 /// A flat-zone triangle and the tetrahedron (positive: the triangle is outward from the cell)
@@ -325,141 +258,11 @@ fn split_points(
     out
 }
 
-/// Split edges of tetrahedra that some child of their refinement would make flat or inverted (a
-/// split point is off the line of its edge by rounding; a thin neighbour can flip): every split
-/// edge of such a tetrahedron.
-fn inverted_edges<'a>(
-    positions: &[[f64; 3]],
-    splits: &FxHashMap<(u32, u32), ([f64; 3], f64)>,
-    tets: impl Iterator<Item = &'a [u32; 4]>,
-) -> FxHashSet<(u32, u32)> {
-    let base = positions.len() as u32;
-    let list: Vec<((u32, u32), [f64; 3])> = splits.iter().map(|(&e, &(p, _))| (e, p)).collect();
-    let ids: FxHashMap<(u32, u32), u32> = list
-        .iter()
-        .enumerate()
-        .map(|(i, &(e, _))| (e, base + i as u32))
-        .collect();
-    let pos = |v: u32| {
-        if v < base {
-            positions[v as usize]
-        } else {
-            list[(v - base) as usize].1
-        }
-    };
-    let orient = |t: [u32; 4]| {
-        let c = |v: u32| {
-            let q = pos(v);
-            robust::Coord3D {
-                x: q[0],
-                y: q[1],
-                z: q[2],
-            }
-        };
-        robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
-    };
-    let mut bad = FxHashSet::default();
-    for t in tets {
-        let split_edges: Vec<(u32, u32)> = super::complex::TET_EDGES
-            .iter()
-            .map(|&(i, j)| edge(t[i], t[j]))
-            .filter(|e| ids.contains_key(e))
-            .collect();
-        if split_edges.is_empty() {
-            continue;
-        }
-        let whole = orient(*t);
-        let flips = |c: &[u32; 4]| {
-            let o = orient(*c);
-            o == 0.0 || (o > 0.0) != (whole > 0.0)
-        };
-        if whole == 0.0 || split(*t, &ids).iter().any(flips) {
-            bad.extend(split_edges);
-        }
-    }
-    bad
-}
-
-/// `s` refined by the split edges: split at its smallest split edge (each child takes the point
-/// for one end of it), then the children likewise. The same simplex is refined alike wherever it
-/// appears, so shared faces of split tetrahedra still match.
-pub fn split<const N: usize>(s: [u32; N], points: &FxHashMap<(u32, u32), u32>) -> Vec<[u32; N]> {
-    let mut out = Vec::new();
-    let mut stack = vec![s];
-    while let Some(s) = stack.pop() {
-        let mut smallest: Option<((u32, u32), usize, usize)> = None;
-        for i in 0..N {
-            for j in i + 1..N {
-                let e = edge(s[i], s[j]);
-                if points.contains_key(&e) && smallest.is_none_or(|(m, _, _)| e < m) {
-                    smallest = Some((e, i, j));
-                }
-            }
-        }
-        match smallest {
-            None => out.push(s),
-            Some((e, i, j)) => {
-                let p = points[&e];
-                let (mut a, mut b) = (s, s);
-                a[j] = p;
-                b[i] = p;
-                stack.push(b);
-                stack.push(a);
-            }
-        }
-    }
-    out
-}
-
-/// The children of parent `p` that form its slab: those without the apex, if one of them stands
-/// on the zone.
-fn slab_of(p: &Parent, children: &[[u32; 4]]) -> Vec<[u32; 4]> {
-    let below: Vec<[u32; 4]> = children
-        .iter()
-        .copied()
-        .filter(|c| !c.contains(&p.tet[3]))
-        .collect();
-    if below.iter().any(|c| p.zone.iter().all(|v| c.contains(v))) {
-        below
-    } else {
-        Vec::new()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::bm::assembly::{boundary_of, singularities};
-
-    fn ids(pairs: &[((u32, u32), u32)]) -> FxHashMap<(u32, u32), u32> {
-        pairs.iter().copied().collect()
-    }
-
-    #[test]
-    fn a_tet_split_along_its_three_apex_edges_is_a_prism_and_a_top() {
-        let t = [0, 1, 2, 3];
-        let c = split(t, &ids(&[((0, 3), 4), ((1, 3), 5), ((2, 3), 6)]));
-        assert_eq!(c.len(), 4);
-        assert_eq!(c.iter().filter(|c| c.contains(&3)).count(), 1);
-        // the children tile the tet: their boundary is the tet's, split on its three side faces
-        let b = boundary_of(&c);
-        assert_eq!(b.len(), 1 + 3 * 3);
-        assert_eq!(singularities(&b), (0, 0));
-    }
-
-    #[test]
-    fn two_tets_sharing_a_split_edge_stay_conforming() {
-        // (0,1,2,3) and (0,2,1,4) share (0,1,2); split (0,1) and (1,2)
-        let pts = ids(&[((0, 1), 5), ((1, 2), 6)]);
-        let mut all = split([0, 1, 2, 3], &pts);
-        all.extend(split([0, 2, 1, 4], &pts));
-        assert_eq!(all.len(), 6);
-        // the shared triangle is split alike from both sides: only the outer surface is open
-        let b = boundary_of(&all);
-        assert!(b.iter().all(|t| t.contains(&3) || t.contains(&4)));
-        assert_eq!(singularities(&b), (0, 0));
-        assert_eq!(b.len(), 10);
-    }
+    use crate::bm::refine::Triangulation;
 
     fn planes_share(f: &[u32; 3], g: u32, planes: &[Planes]) -> bool {
         f.iter().all(|&v| planes[v as usize].contains(&g))
@@ -471,6 +274,28 @@ mod tests {
 
     /// A unit tetrahedron standing on the flat triangle (0,1,2) of plane 0 (z = 0, outward -z),
     /// apex 3 at height 1.
+    /// Thicken with `fillable` the only tets besides K (empty), the zone (0,1,2) a section triangle.
+    fn run(
+        positions: &mut Vec<[f64; 3]>,
+        planes: &mut Vec<Planes>,
+        faces: &[Vec<Side>],
+        fillable: &mut Vec<[u32; 4]>,
+    ) -> (SlabStats, Vec<[u32; 4]>) {
+        let mut kept = Vec::new();
+        let mut external = Vec::new();
+        let mut internal: FxHashSet<[u32; 3]> = [[0, 1, 2]].into_iter().collect();
+        let mut t = Triangulation {
+            positions,
+            planes,
+            kept: &mut kept,
+            fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        let s = thicken(&mut t, faces, 0.01);
+        (s, kept)
+    }
+
     fn standing() -> (Vec<[f64; 3]>, Vec<Vec<Side>>) {
         let positions = vec![
             [0.0, 0.0, 0.0],
@@ -493,17 +318,8 @@ mod tests {
     fn a_flat_triangle_gets_a_slab_of_the_asked_thickness() {
         let (mut positions, faces) = standing();
         let mut pl = planes(&[&[0], &[0], &[0], &[]]);
-        let (mut kept, mut fillable) = (Vec::new(), vec![[0, 1, 2, 3]]);
-        let s = thicken(
-            Refinable {
-                positions: &mut positions,
-                planes: &mut pl,
-                kept: &mut kept,
-                fillable: &mut fillable,
-            },
-            &faces,
-            0.01,
-        );
+        let mut fillable = vec![[0, 1, 2, 3]];
+        let (s, kept) = run(&mut positions, &mut pl, &faces, &mut fillable);
         assert_eq!((s.thickened, s.left, s.tets, s.points), (1, 0, 3, 3));
         assert!((s.min_thickness - 0.01).abs() < 1e-12);
         // the slab is closed and the zone is its bottom; the top stays fillable
@@ -523,14 +339,7 @@ mod tests {
         let (mut positions, faces) = standing();
         positions[3] = [0.0, 0.2, 1.0];
         let mut pl = planes(&[&[0, 1], &[0, 1], &[0], &[1]]);
-        let (mut kept, mut fillable) = (Vec::new(), Vec::new());
-        let k = Refinable {
-            positions: &mut positions,
-            planes: &mut pl,
-            kept: &mut kept,
-            fillable: &mut fillable,
-        };
-        let s = thicken(k, &faces, 0.01);
+        let (s, kept) = run(&mut positions, &mut pl, &faces, &mut Vec::new());
         assert_eq!((s.thickened, s.left, s.tets, s.points), (1, 0, 1, 1));
         assert_eq!(key4(kept[0]), [0, 1, 2, 4]);
         for i in 0..4 {
@@ -545,14 +354,7 @@ mod tests {
         positions[3] = [0.0, 0.0, 1.0];
         // 3 on plane 1 with 0 and 1, and on plane 2 with 2 and 0
         let mut pl = planes(&[&[0, 1, 2], &[0, 1], &[0, 2], &[1, 2]]);
-        let (mut kept, mut fillable) = (Vec::new(), Vec::new());
-        let k = Refinable {
-            positions: &mut positions,
-            planes: &mut pl,
-            kept: &mut kept,
-            fillable: &mut fillable,
-        };
-        let s = thicken(k, &faces, 0.01);
+        let (s, kept) = run(&mut positions, &mut pl, &faces, &mut Vec::new());
         assert_eq!((s.thickened, s.left, s.tets), (0, 1, 0));
         assert!(kept.is_empty());
     }

@@ -1,0 +1,418 @@
+//! Growing the kept complex K into the tetrahedra beside it by refining them, never by moving a
+//! vertex: the one operation behind flat-zone slabs (`slab`) and the resolution of singular
+//! edges and vertices (`singular`).
+//!
+//! A *growth* asks for the part of an unkept tetrahedron T near a *core* simplex σ of T (a face,
+//! an edge or a vertex): every edge from a vertex of σ to a vertex of T outside σ is split at a
+//! point near σ, and the children of T without a vertex outside σ are kept. Splitting an edge
+//! splits every tetrahedron of the triangulation around it (kept, fillable and external alike),
+//! always at the smallest split edge of a simplex first (one global order), so every simplex is
+//! refined alike from all its sides and the triangulation stays conforming; the grown parts lie
+//! inside T, so nothing can cross. A split point lies on the planes of both ends of its edge
+//! (combinatorial plane membership), section triangles are refined with the tetrahedra, and a
+//! child is kept only if each of its faces that lies on a plane is inside that plane's section:
+//! the sections stay R ∩ P = A.
+use crate::fxhash::{FxHashMap, FxHashSet};
+use smallvec::SmallVec;
+
+/// The planes a global vertex lies on (plane ids).
+pub type Planes = SmallVec<[u32; 3]>;
+
+/// The union of the cells' triangulations in global ids, split into what K keeps, what survived
+/// step 1 (`CellResult::fillable`) and the rest, with the section triangles inside their sections.
+pub struct Triangulation<'a> {
+    pub positions: &'a mut Vec<[f64; 3]>,
+    pub planes: &'a mut Vec<Planes>,
+    pub kept: &'a mut Vec<[u32; 4]>,
+    pub fillable: &'a mut Vec<[u32; 4]>,
+    pub external: &'a mut Vec<[u32; 4]>,
+    /// Sorted keys of the section triangles inside their sections.
+    pub internal: &'a mut FxHashSet<[u32; 3]>,
+}
+
+/// The part of `tet` (positively oriented, unkept) near `core` (some of its vertices).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Growth {
+    pub tet: [u32; 4],
+    pub core: SmallVec<[u32; 3]>,
+}
+
+/// What one refinement did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Grown {
+    /// Per group of growths asked for: the tetrahedra it added to K (0: refused).
+    pub tets_per_group: Vec<u64>,
+    pub points: u64,
+}
+
+pub fn key3(mut t: [u32; 3]) -> [u32; 3] {
+    t.sort_unstable();
+    t
+}
+
+pub fn key4(mut t: [u32; 4]) -> [u32; 4] {
+    t.sort_unstable();
+    t
+}
+
+pub fn edge(a: u32, b: u32) -> (u32, u32) {
+    (a.min(b), a.max(b))
+}
+
+/// Split at `points` (per edge, where) and grow K by `groups` of growths, each group all or
+/// nothing: a group is refused when one of its growths would keep no child containing its core,
+/// or a child with a face on a plane outside the section. Edges whose points would flatten or
+/// invert a child of some tetrahedron are not split. Growth tetrahedra not in the triangulation
+/// (a cell without volume: the cone over its section) are added to it as external first.
+pub fn grow(
+    t: &mut Triangulation,
+    groups: &[Vec<Growth>],
+    mut points: FxHashMap<(u32, u32), [f64; 3]>,
+) -> Grown {
+    let known: FxHashSet<[u32; 4]> = t
+        .kept
+        .iter()
+        .chain(t.fillable.iter())
+        .chain(t.external.iter())
+        .map(|&x| key4(x))
+        .collect();
+    for g in groups.iter().flatten() {
+        if !known.contains(&key4(g.tet)) {
+            t.external.push(g.tet);
+        }
+    }
+    // each round drops at least one edge
+    loop {
+        let all = t
+            .kept
+            .iter()
+            .chain(t.fillable.iter())
+            .chain(t.external.iter());
+        let bad = inverted_edges(t.positions, &points, all);
+        if bad.is_empty() {
+            break;
+        }
+        points.retain(|e, _| !bad.contains(e));
+    }
+    let ids = insert_points(t, &points);
+    for list in [&mut *t.kept, &mut *t.fillable, &mut *t.external] {
+        *list = list.iter().flat_map(|&x| split(x, &ids)).collect();
+    }
+    *t.internal = t
+        .internal
+        .iter()
+        .flat_map(|&x| split(x, &ids))
+        .map(key3)
+        .collect();
+    let mut out = Grown {
+        points: ids.len() as u64,
+        ..Default::default()
+    };
+    let mut grown: FxHashSet<[u32; 4]> = FxHashSet::default();
+    for group in groups {
+        let children: Option<Vec<[u32; 4]>> = group
+            .iter()
+            .map(|g| kept_children(g, &ids, t.planes, t.internal))
+            .collect::<Option<Vec<_>>>()
+            .map(|c| c.concat());
+        let added = children.map_or(0, |c| {
+            c.into_iter().filter(|x| grown.insert(key4(*x))).count()
+        });
+        out.tets_per_group.push(added as u64);
+    }
+    let moved = |x: &[u32; 4]| grown.contains(&key4(*x));
+    let mut taken: Vec<[u32; 4]> = t.fillable.iter().copied().filter(moved).collect();
+    taken.extend(t.external.iter().copied().filter(moved));
+    t.fillable.retain(|x| !moved(x));
+    t.external.retain(|x| !moved(x));
+    t.kept.extend(taken);
+    out
+}
+
+/// The split points as new global vertices, each on the planes of both ends of its edge.
+fn insert_points(
+    t: &mut Triangulation,
+    points: &FxHashMap<(u32, u32), [f64; 3]>,
+) -> FxHashMap<(u32, u32), u32> {
+    let mut list: Vec<(&(u32, u32), &[f64; 3])> = points.iter().collect();
+    list.sort_unstable_by_key(|(e, _)| **e);
+    let mut ids = FxHashMap::default();
+    for (&(a, b), &p) in list {
+        let common: Planes = t.planes[a as usize]
+            .iter()
+            .copied()
+            .filter(|g| t.planes[b as usize].contains(g))
+            .collect();
+        ids.insert((a, b), t.positions.len() as u32);
+        t.positions.push(p);
+        t.planes.push(common);
+    }
+    ids
+}
+
+/// The children of `g.tet` without a vertex outside the core, or `None` if none of them contains
+/// the core or one of them has a face on a plane outside the section.
+fn kept_children(
+    g: &Growth,
+    ids: &FxHashMap<(u32, u32), u32>,
+    planes: &[Planes],
+    internal: &FxHashSet<[u32; 3]>,
+) -> Option<Vec<[u32; 4]>> {
+    let outer: SmallVec<[u32; 3]> = g
+        .tet
+        .iter()
+        .copied()
+        .filter(|v| !g.core.contains(v))
+        .collect();
+    let near: Vec<[u32; 4]> = split(g.tet, ids)
+        .into_iter()
+        .filter(|c| !c.iter().any(|v| outer.contains(v)))
+        .collect();
+    let on_core = near.iter().any(|c| g.core.iter().all(|v| c.contains(v)));
+    let in_sections = near.iter().all(|c| faces_in_sections(c, planes, internal));
+    (on_core && in_sections).then_some(near)
+}
+
+/// Each face of `tet` that lies on a plane (its three vertices share it) is a section triangle.
+pub fn faces_in_sections(
+    tet: &[u32; 4],
+    planes: &[Planes],
+    internal: &FxHashSet<[u32; 3]>,
+) -> bool {
+    (0..4).all(|i| {
+        let f = super::complex::outward_face(tet, i);
+        let on_plane = planes[f[0] as usize]
+            .iter()
+            .any(|p| f[1..].iter().all(|&v| planes[v as usize].contains(p)));
+        !on_plane || internal.contains(&key3(f))
+    })
+}
+
+/// Split edges of tetrahedra that some child of their refinement would make flat or inverted (a
+/// split point is off the line of its edge by rounding; a thin neighbour can flip): every split
+/// edge of such a tetrahedron.
+fn inverted_edges<'a>(
+    positions: &[[f64; 3]],
+    points: &FxHashMap<(u32, u32), [f64; 3]>,
+    tets: impl Iterator<Item = &'a [u32; 4]>,
+) -> FxHashSet<(u32, u32)> {
+    let base = positions.len() as u32;
+    let list: Vec<((u32, u32), [f64; 3])> = points.iter().map(|(&e, &p)| (e, p)).collect();
+    let ids: FxHashMap<(u32, u32), u32> = list
+        .iter()
+        .enumerate()
+        .map(|(i, &(e, _))| (e, base + i as u32))
+        .collect();
+    let pos = |v: u32| {
+        if v < base {
+            positions[v as usize]
+        } else {
+            list[(v - base) as usize].1
+        }
+    };
+    let orient = |t: [u32; 4]| {
+        let c = |v: u32| {
+            let q = pos(v);
+            robust::Coord3D {
+                x: q[0],
+                y: q[1],
+                z: q[2],
+            }
+        };
+        robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
+    };
+    let mut bad = FxHashSet::default();
+    for t in tets {
+        let split_edges: Vec<(u32, u32)> = super::complex::TET_EDGES
+            .iter()
+            .map(|&(i, j)| edge(t[i], t[j]))
+            .filter(|e| ids.contains_key(e))
+            .collect();
+        if split_edges.is_empty() {
+            continue;
+        }
+        let whole = orient(*t);
+        let flips = |c: &[u32; 4]| {
+            let o = orient(*c);
+            o == 0.0 || (o > 0.0) != (whole > 0.0)
+        };
+        if whole == 0.0 || split(*t, &ids).iter().any(flips) {
+            bad.extend(split_edges);
+        }
+    }
+    bad
+}
+
+/// `s` refined by the split edges: split at its smallest split edge (each child takes the point
+/// for one end of it), then the children likewise. The same simplex is refined alike wherever it
+/// appears, so shared faces of split tetrahedra still match.
+pub fn split<const N: usize>(s: [u32; N], points: &FxHashMap<(u32, u32), u32>) -> Vec<[u32; N]> {
+    let mut out = Vec::new();
+    let mut stack = vec![s];
+    while let Some(s) = stack.pop() {
+        let mut smallest: Option<((u32, u32), usize, usize)> = None;
+        for i in 0..N {
+            for j in i + 1..N {
+                let e = edge(s[i], s[j]);
+                if points.contains_key(&e) && smallest.is_none_or(|(m, _, _)| e < m) {
+                    smallest = Some((e, i, j));
+                }
+            }
+        }
+        match smallest {
+            None => out.push(s),
+            Some((e, i, j)) => {
+                let p = points[&e];
+                let (mut a, mut b) = (s, s);
+                a[j] = p;
+                b[i] = p;
+                stack.push(b);
+                stack.push(a);
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bm::assembly::{boundary_of, singularities};
+
+    fn ids(pairs: &[((u32, u32), u32)]) -> FxHashMap<(u32, u32), u32> {
+        pairs.iter().copied().collect()
+    }
+
+    #[test]
+    fn a_tet_split_along_its_three_apex_edges_is_a_prism_and_a_top() {
+        let c = split([0, 1, 2, 3], &ids(&[((0, 3), 4), ((1, 3), 5), ((2, 3), 6)]));
+        assert_eq!(c.len(), 4);
+        assert_eq!(c.iter().filter(|c| c.contains(&3)).count(), 1);
+        // the children tile the tet: its boundary, split on its three side faces
+        let b = boundary_of(&c);
+        assert_eq!(b.len(), 1 + 3 * 3);
+        assert_eq!(singularities(&b), (0, 0));
+    }
+
+    #[test]
+    fn two_tets_sharing_a_split_edge_stay_conforming() {
+        // (0,1,2,3) and (0,2,1,4) share (0,1,2); split (0,1) and (1,2)
+        let pts = ids(&[((0, 1), 5), ((1, 2), 6)]);
+        let mut all = split([0, 1, 2, 3], &pts);
+        all.extend(split([0, 2, 1, 4], &pts));
+        assert_eq!(all.len(), 6);
+        // the shared triangle is split alike from both sides: only the outer surface is open
+        let b = boundary_of(&all);
+        assert!(b.iter().all(|t| t.contains(&3) || t.contains(&4)));
+        assert_eq!(singularities(&b), (0, 0));
+        assert_eq!(b.len(), 10);
+    }
+
+    /// Two unit-ish tets around the edge (0,1) with a third between them: (0,1,2,3) kept,
+    /// (0,1,3,4) unkept, (0,1,4,5) kept; the edge (0,1) alone is on plane 0.
+    fn fan() -> (Vec<[f64; 3]>, Vec<Planes>) {
+        let positions = vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 0.5],
+            [0.5, 1.0, 0.5],
+            [-0.5, 1.0, 0.5],
+            [-1.0, 0.0, 0.5],
+        ];
+        let planes = vec![
+            [0].into_iter().collect(),
+            [0].into_iter().collect(),
+            Planes::new(),
+            Planes::new(),
+            Planes::new(),
+            Planes::new(),
+        ];
+        (positions, planes)
+    }
+
+    fn orient(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
+        let c = |v: u32| robust::Coord3D {
+            x: p[v as usize][0],
+            y: p[v as usize][1],
+            z: p[v as usize][2],
+        };
+        robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
+    }
+
+    fn positive(p: &[[f64; 3]], t: [u32; 4]) -> [u32; 4] {
+        if orient(p, t) > 0.0 {
+            t
+        } else {
+            [t[0], t[1], t[3], t[2]]
+        }
+    }
+
+    #[test]
+    fn growing_into_a_gap_at_an_edge_joins_its_two_sectors() {
+        let (mut positions, mut planes) = fan();
+        let [a, b, c] = [[0, 1, 2, 3], [0, 1, 3, 4], [0, 1, 4, 5]].map(|t| positive(&positions, t));
+        let mut kept = vec![a, c];
+        assert_eq!(singularities(&boundary_of(&kept)).0, 1);
+        let (mut fillable, mut external) = (vec![b], Vec::new());
+        let mut internal = FxHashSet::default();
+        let mut t = Triangulation {
+            positions: &mut positions,
+            planes: &mut planes,
+            kept: &mut kept,
+            fillable: &mut fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        let mut points = FxHashMap::default();
+        for (v, x) in [(0, 3), (0, 4), (1, 3), (1, 4)] {
+            let (p, q) = (t.positions[v as usize], t.positions[x as usize]);
+            points.insert(edge(v, x), [0, 1, 2].map(|i| p[i] + 0.1 * (q[i] - p[i])));
+        }
+        let growth = Growth {
+            tet: b,
+            core: [0, 1].into_iter().collect(),
+        };
+        let g = grow(&mut t, &[vec![growth]], points);
+        assert_eq!(g.points, 4);
+        assert!(g.tets_per_group[0] > 0);
+        let bnd = boundary_of(&kept);
+        assert_eq!(singularities(&bnd), (0, 0));
+        assert!(kept.iter().all(|&k| orient(&positions, k) > 0.0));
+        // the rest of the gap stays unkept
+        assert!(!fillable.is_empty());
+    }
+
+    #[test]
+    fn no_growth_puts_a_face_on_a_plane_outside_its_section() {
+        // the same gap, but its face (0,1,3) lies on plane 0 and is not a section triangle
+        let (mut positions, mut planes) = fan();
+        planes[3] = [0].into_iter().collect();
+        let [a, b, c] = [[0, 1, 2, 3], [0, 1, 3, 4], [0, 1, 4, 5]].map(|t| positive(&positions, t));
+        let (mut kept, mut fillable, mut external) = (vec![a, c], vec![b], Vec::new());
+        let mut internal = FxHashSet::default();
+        let mut t = Triangulation {
+            positions: &mut positions,
+            planes: &mut planes,
+            kept: &mut kept,
+            fillable: &mut fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        let mut points = FxHashMap::default();
+        for (v, x) in [(0, 3), (0, 4), (1, 3), (1, 4)] {
+            let (p, q) = (t.positions[v as usize], t.positions[x as usize]);
+            points.insert(edge(v, x), [0, 1, 2].map(|i| p[i] + 0.1 * (q[i] - p[i])));
+        }
+        let growth = Growth {
+            tet: b,
+            core: [0, 1].into_iter().collect(),
+        };
+        let g = grow(&mut t, &[vec![growth]], points);
+        assert_eq!(g.tets_per_group, vec![0]);
+        assert_eq!(
+            kept.len(),
+            6,
+            "the two kept tets are split in three each, none added"
+        );
+    }
+}

@@ -1,0 +1,415 @@
+//! Singular edges and pinched vertices of ∂K resolved inside the complex by growing K into the
+//! gaps beside them (`refine`), never by moving a vertex (design note §3; paper Fig. 12a, where
+//! the branching diagrams of the two cells of a face cross).
+//!
+//! Around a singular edge e the tetrahedra alternate between kept sectors and gaps; the part near
+//! e of every gap but the largest is kept (a thin wedge along e), so one kept sector is left.
+//! Around a pinched vertex v, on the sphere of directions from v, either the kept tetrahedra
+//! form several components (two cones touching at v: the shortest strip of gap tetrahedra
+//! between two of them is kept near v) or one component with several holes (the two void wedges
+//! of crossing diagrams: the part near v of every gap but the largest is kept). The rounds repeat
+//! on the new boundary up to a bound; what stays singular is counted by the caller.
+use super::refine::{edge, grow, key3, Growth, Planes, Triangulation};
+use crate::fxhash::{FxHashMap, FxHashSet};
+use smallvec::SmallVec;
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SingularStats {
+    /// Gaps grown into at edges and at vertices, and the tetrahedra and points that added.
+    pub edge_gaps: u64,
+    pub vertex_gaps: u64,
+    pub tets: u64,
+    pub points: u64,
+}
+
+/// Grow K at its singular edges and vertices, up to `rounds` rounds, with split points at
+/// `distance` from the singular simplex (or halfway along shorter edges).
+pub fn resolve(t: &mut Triangulation, rounds: usize, distance: f64) -> SingularStats {
+    let mut stats = SingularStats::default();
+    for _ in 0..rounds {
+        let boundary = super::assembly::boundary_of(t.kept);
+        let (edges, vertices) = super::fill::singular_simplices(&boundary);
+        if edges.is_empty() && vertices.is_empty() {
+            break;
+        }
+        let edge_groups = edge_gaps(t, &edges);
+        let vertex_groups = vertex_gaps(t, &vertices);
+        let n_edge = edge_groups.len();
+        let groups: Vec<Vec<Growth>> = edge_groups.into_iter().chain(vertex_groups).collect();
+        let points = split_points(t.positions, &groups, distance);
+        let g = grow(t, &groups, points);
+        let added: u64 = g.tets_per_group.iter().sum();
+        if added == 0 {
+            break;
+        }
+        for (i, &n) in g.tets_per_group.iter().enumerate() {
+            if n > 0 {
+                if i < n_edge {
+                    stats.edge_gaps += 1;
+                } else {
+                    stats.vertex_gaps += 1;
+                }
+            }
+        }
+        stats.tets += added;
+        stats.points += g.points;
+    }
+    stats
+}
+
+/// Per growth, the edges from its core to its other vertices, split at `distance` from the core
+/// vertex (at most halfway); an edge asked for twice keeps its first point.
+fn split_points(
+    positions: &[[f64; 3]],
+    groups: &[Vec<Growth>],
+    distance: f64,
+) -> FxHashMap<(u32, u32), [f64; 3]> {
+    let mut out = FxHashMap::default();
+    for g in groups.iter().flatten() {
+        for &c in &g.core {
+            for &x in g.tet.iter().filter(|x| !g.core.contains(x)) {
+                let (p, q) = (positions[c as usize], positions[x as usize]);
+                let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                if len > 0.0 {
+                    let s = (distance / len).min(0.5);
+                    out.entry(edge(c, x)).or_insert([
+                        p[0] + s * d[0],
+                        p[1] + s * d[1],
+                        p[2] + s * d[2],
+                    ]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The tetrahedra of the triangulation around each wanted simplex (`key` gives the simplices of
+/// a tetrahedron to look up), each with whether K keeps it.
+fn around<K: std::hash::Hash + Eq + Copy>(
+    t: &Triangulation,
+    wanted: &FxHashSet<K>,
+    keys: impl Fn(&[u32; 4]) -> SmallVec<[K; 6]>,
+) -> FxHashMap<K, Vec<([u32; 4], bool)>> {
+    let mut map: FxHashMap<K, Vec<([u32; 4], bool)>> = FxHashMap::default();
+    let lists = [
+        (&*t.kept, true),
+        (&*t.fillable, false),
+        (&*t.external, false),
+    ];
+    for (list, kept) in lists {
+        for tet in list {
+            for k in keys(tet) {
+                if wanted.contains(&k) {
+                    map.entry(k).or_default().push((*tet, kept));
+                }
+            }
+        }
+    }
+    map
+}
+
+/// Whether the part of `tet` near `core` may be kept: every face of `tet` through a core vertex
+/// that lies on a plane is inside that plane's section.
+fn may_grow(
+    tet: &[u32; 4],
+    core: &[u32],
+    planes: &[Planes],
+    internal: &FxHashSet<[u32; 3]>,
+) -> bool {
+    (0..4).all(|i| {
+        let f = super::complex::outward_face(tet, i);
+        let through_core = f.iter().any(|v| core.contains(v));
+        let on_plane = planes[f[0] as usize]
+            .iter()
+            .any(|p| f[1..].iter().all(|&v| planes[v as usize].contains(p)));
+        !through_core || !on_plane || internal.contains(&key3(f))
+    })
+}
+
+/// Components of `items` (tetrahedra around one vertex or edge) adjacent through a shared face
+/// (which then contains that vertex or edge).
+fn components_through(items: &[[u32; 4]]) -> Vec<Vec<usize>> {
+    let mut by_face: FxHashMap<[u32; 3], Vec<usize>> = FxHashMap::default();
+    for (i, t) in items.iter().enumerate() {
+        for j in 0..4 {
+            let f = super::complex::outward_face(t, j);
+            by_face.entry(key3(f)).or_default().push(i);
+        }
+    }
+    let mut seen = vec![false; items.len()];
+    let mut out = Vec::new();
+    for s in 0..items.len() {
+        if seen[s] {
+            continue;
+        }
+        seen[s] = true;
+        let (mut stack, mut comp) = (vec![s], Vec::new());
+        while let Some(i) = stack.pop() {
+            comp.push(i);
+            for j in 0..4 {
+                let f = key3(super::complex::outward_face(&items[i], j));
+                for &n in &by_face[&f] {
+                    if !seen[n] {
+                        seen[n] = true;
+                        stack.push(n);
+                    }
+                }
+            }
+        }
+        comp.sort_unstable();
+        out.push(comp);
+    }
+    out
+}
+
+/// The gaps to grow into, per singular edge: all but the largest of those that may grow (all of
+/// them if the largest may not).
+fn edge_gaps(t: &Triangulation, edges: &[(u32, u32)]) -> Vec<Vec<Growth>> {
+    let wanted: FxHashSet<(u32, u32)> = edges.iter().copied().collect();
+    let ring = around(t, &wanted, |tet| {
+        super::complex::TET_EDGES
+            .iter()
+            .map(|&(i, j)| edge(tet[i], tet[j]))
+            .collect()
+    });
+    let mut out = Vec::new();
+    for e in edges {
+        let Some(ring) = ring.get(e) else { continue };
+        let core: SmallVec<[u32; 3]> = [e.0, e.1].into_iter().collect();
+        let gaps: Vec<[u32; 4]> = ring.iter().filter(|r| !r.1).map(|r| r.0).collect();
+        out.extend(all_but_largest(t, &gaps, &core));
+    }
+    out
+}
+
+/// Every gap component but the largest, of those whose tetrahedra may all grow at `core`.
+fn all_but_largest(
+    t: &Triangulation,
+    gaps: &[[u32; 4]],
+    core: &SmallVec<[u32; 3]>,
+) -> Vec<Vec<Growth>> {
+    let mut comps: Vec<(bool, Vec<[u32; 4]>)> = components_through(gaps)
+        .into_iter()
+        .map(|c| {
+            let tets: Vec<[u32; 4]> = c.iter().map(|&i| gaps[i]).collect();
+            let ok = tets.iter().all(|x| may_grow(x, core, t.planes, t.internal));
+            (ok, tets)
+        })
+        .collect();
+    if comps.len() < 2 {
+        return Vec::new();
+    }
+    // the largest gap that may not grow stays; else the largest
+    comps.sort_by_key(|(ok, c)| (!*ok, std::cmp::Reverse(c.len())));
+    let stay = comps.iter().position(|(ok, _)| !ok).unwrap_or(0);
+    comps
+        .into_iter()
+        .enumerate()
+        .filter(|&(i, (ok, _))| i != stay && ok)
+        .map(|(_, (_, c))| {
+            c.into_iter()
+                .map(|tet| Growth {
+                    tet,
+                    core: core.clone(),
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The gaps to grow into, per pinched vertex: a strip joining two kept components, or all holes
+/// of one kept component but the largest.
+fn vertex_gaps(t: &Triangulation, vertices: &[u32]) -> Vec<Vec<Growth>> {
+    let wanted: FxHashSet<u32> = vertices.iter().copied().collect();
+    let star = around(t, &wanted, |tet| tet.iter().copied().collect());
+    let mut out = Vec::new();
+    for v in vertices {
+        let Some(star) = star.get(v) else { continue };
+        let core: SmallVec<[u32; 3]> = [*v].into_iter().collect();
+        let kept: Vec<[u32; 4]> = star.iter().filter(|r| r.1).map(|r| r.0).collect();
+        let gaps: Vec<[u32; 4]> = star.iter().filter(|r| !r.1).map(|r| r.0).collect();
+        let kept_comps = components_through(&kept);
+        if kept_comps.len() >= 2 {
+            if let Some(strip) = shortest_strip(t, &kept, &kept_comps, &gaps, *v) {
+                out.push(
+                    strip
+                        .into_iter()
+                        .map(|tet| Growth {
+                            tet,
+                            core: core.clone(),
+                        })
+                        .collect(),
+                );
+            }
+        } else {
+            out.extend(all_but_largest(t, &gaps, &core));
+        }
+    }
+    out
+}
+
+/// The shortest chain of gap tetrahedra around `v` (adjacent through faces through v) from one
+/// kept component to another, each of which may grow at v.
+fn shortest_strip(
+    t: &Triangulation,
+    kept: &[[u32; 4]],
+    kept_comps: &[Vec<usize>],
+    gaps: &[[u32; 4]],
+    v: u32,
+) -> Option<Vec<[u32; 4]>> {
+    let faces_through = |tet: &[u32; 4]| -> SmallVec<[[u32; 3]; 3]> {
+        (0..4)
+            .map(|i| key3(super::complex::outward_face(tet, i)))
+            .filter(|f| f.contains(&v))
+            .collect()
+    };
+    let mut comp_of_face: FxHashMap<[u32; 3], usize> = FxHashMap::default();
+    for (ci, comp) in kept_comps.iter().enumerate() {
+        for &i in comp {
+            for f in faces_through(&kept[i]) {
+                comp_of_face.insert(f, ci);
+            }
+        }
+    }
+    let usable: Vec<usize> = (0..gaps.len())
+        .filter(|&i| may_grow(&gaps[i], &[v], t.planes, t.internal))
+        .collect();
+    let mut gap_of_face: FxHashMap<[u32; 3], Vec<usize>> = FxHashMap::default();
+    for &i in &usable {
+        for f in faces_through(&gaps[i]) {
+            gap_of_face.entry(f).or_default().push(i);
+        }
+    }
+    let touches = |i: usize| -> SmallVec<[usize; 3]> {
+        faces_through(&gaps[i])
+            .iter()
+            .filter_map(|f| comp_of_face.get(f).copied())
+            .collect()
+    };
+    // breadth-first from the gap tets touching the first kept component, to one touching another
+    let mut from: FxHashMap<usize, usize> = FxHashMap::default();
+    let mut queue = std::collections::VecDeque::new();
+    for &i in &usable {
+        if touches(i).contains(&0) {
+            from.insert(i, i);
+            queue.push_back(i);
+        }
+    }
+    while let Some(i) = queue.pop_front() {
+        if touches(i).iter().any(|&c| c != 0) {
+            let mut chain = vec![gaps[i]];
+            let mut j = i;
+            while from[&j] != j {
+                j = from[&j];
+                chain.push(gaps[j]);
+            }
+            return Some(chain);
+        }
+        for f in faces_through(&gaps[i]) {
+            for &n in gap_of_face.get(&f).into_iter().flatten() {
+                if let std::collections::hash_map::Entry::Vacant(e) = from.entry(n) {
+                    e.insert(i);
+                    queue.push_back(n);
+                }
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bm::assembly::{boundary_of, singularities};
+
+    fn orient(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
+        let c = |v: u32| robust::Coord3D {
+            x: p[v as usize][0],
+            y: p[v as usize][1],
+            z: p[v as usize][2],
+        };
+        robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
+    }
+
+    fn positive(p: &[[f64; 3]], t: [u32; 4]) -> [u32; 4] {
+        if orient(p, t) > 0.0 {
+            t
+        } else {
+            [t[0], t[1], t[3], t[2]]
+        }
+    }
+
+    /// Eight tetrahedra around the vertex 0 (the octants of an octahedron with apexes ±x, ±y,
+    /// ±z), `kept` of them in K.
+    fn octahedron(kept_octants: &[usize]) -> (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<[u32; 4]>) {
+        let positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ];
+        let mut kept = Vec::new();
+        let mut rest = Vec::new();
+        let mut i = 0;
+        for x in [1, 2] {
+            for y in [3, 4] {
+                for z in [5, 6] {
+                    let t = positive(&positions, [0, x, y, z]);
+                    if kept_octants.contains(&i) {
+                        kept.push(t);
+                    } else {
+                        rest.push(t);
+                    }
+                    i += 1;
+                }
+            }
+        }
+        (positions, kept, rest)
+    }
+
+    fn resolve_octants(kept_octants: &[usize]) -> (SingularStats, Vec<[u32; 4]>, Vec<[f64; 3]>) {
+        let (mut positions, mut kept, mut fillable) = octahedron(kept_octants);
+        let mut planes = vec![Planes::new(); positions.len()];
+        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
+        let mut t = Triangulation {
+            positions: &mut positions,
+            planes: &mut planes,
+            kept: &mut kept,
+            fillable: &mut fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        let s = resolve(&mut t, 4, 0.1);
+        (s, kept, positions)
+    }
+
+    #[test]
+    fn two_octants_touching_at_the_centre_are_joined() {
+        // octants 0 (+x+y+z) and 7 (-x-y-z) meet only at the vertex 0
+        let (s, kept, positions) = resolve_octants(&[0, 7]);
+        assert!(s.vertex_gaps >= 1, "{s:?}");
+        assert_eq!(singularities(&boundary_of(&kept)), (0, 0));
+        assert!(kept.iter().all(|&k| orient(&positions, k) > 0.0));
+    }
+
+    #[test]
+    fn two_octants_sharing_an_edge_are_joined_along_it() {
+        // octants 0 (+x+y+z) and 3 (+x-y-z) share only the edge (0, +x)
+        let (s, kept, positions) = resolve_octants(&[0, 3]);
+        assert!(s.edge_gaps >= 1, "{s:?}");
+        assert_eq!(singularities(&boundary_of(&kept)), (0, 0));
+        assert!(kept.iter().all(|&k| orient(&positions, k) > 0.0));
+    }
+
+    #[test]
+    fn a_clean_boundary_is_left_alone() {
+        let (s, kept, _) = resolve_octants(&[0, 1]);
+        assert_eq!(s, SingularStats::default());
+        assert_eq!(kept.len(), 2);
+    }
+}
