@@ -74,7 +74,8 @@ fn interface_length(interface: &TriMesh, plane: &Plane) -> f64 {
 /// (the same two 3D points), and how many vertices they share.
 fn shared_edges(s: &slice2solid::Section) -> HashMap<(i32, i32), (f64, usize)> {
     let key = |p: [f64; 3]| p.map(f64::to_bits);
-    let mut owner: HashMap<([u64; 3], [u64; 3]), (HashSet<i32>, f64)> = HashMap::new();
+    type Edge = ([u64; 3], [u64; 3]);
+    let mut owner: HashMap<Edge, (HashSet<i32>, f64)> = HashMap::new();
     let mut vertex_labels: HashMap<[u64; 3], HashSet<i32>> = HashMap::new();
     for r in &s.regions {
         for c in std::iter::once(&r.outer).chain(&r.holes) {

@@ -143,6 +143,9 @@ fn relocate(e: Error, name: &str) -> Error {
     }
 }
 
+/// One label's material in a plane: its pieces, each an outer loop then its holes.
+type LabelLoops = (i32, Vec<Vec<Vec<[f64; 2]>>>);
+
 struct Tolerances {
     /// Distance within which vertices are shared and inserted into edges.
     shared: f64,
@@ -155,7 +158,7 @@ struct Tolerances {
 /// One plane: `sliced[k]` the regions of mesh k (priority order, labels set) → the partition's
 /// regions, all labels together.
 fn partition_plane(plane: &Plane, sliced: Vec<Vec<Region>>, tol: &Tolerances) -> Vec<Region> {
-    let mut labels: Vec<(i32, Vec<Vec<Vec<[f64; 2]>>>)> = Vec::with_capacity(sliced.len());
+    let mut labels: Vec<LabelLoops> = Vec::with_capacity(sliced.len());
     for k in 0..sliced.len() {
         let Some(label) = sliced[k].first().map(|r| r.label) else {
             continue;
@@ -257,7 +260,7 @@ fn cell(p: [f64; 2], size: f64) -> (i64, i64) {
 /// Every vertex within `tol` of a vertex met before it (labels in priority order, each label's
 /// contours in order) takes that earlier vertex's coordinates (the nearest, if several): vertices
 /// closer than `tol` become one, the earliest.
-fn snap_to_earlier_labels(labels: &mut [(i32, Vec<Vec<Vec<[f64; 2]>>>)], tol: f64) {
+fn snap_to_earlier_labels(labels: &mut [LabelLoops], tol: f64) {
     if tol <= 0.0 {
         return;
     }
@@ -287,7 +290,7 @@ fn snap_to_earlier_labels(labels: &mut [(i32, Vec<Vec<Vec<[f64; 2]>>>)], tol: f6
 
 /// Insert into every contour edge the vertices of other labels within `tol` of it (strictly between
 /// its ends, in order along it).
-fn insert_into_edges(labels: &mut [(i32, Vec<Vec<Vec<[f64; 2]>>>)], tol: f64) {
+fn insert_into_edges(labels: &mut [LabelLoops], tol: f64) {
     if labels.len() < 2 || tol <= 0.0 {
         return;
     }
