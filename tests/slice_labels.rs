@@ -336,3 +336,47 @@ fn reference_mesh_with_a_ball_carved_out() {
     assert!(r > 0.02 * diagonal(&mesh), "ball radius {r}");
     run_all(&carved("eight_15", &mesh, c, r), [1, 5, 8]);
 }
+
+/// The other plane placements (axes, sweep, tilt) place their planes for the union of the meshes
+/// too: areas and interfaces as exact, on the partitions whose outlines meet non-conformingly or
+/// cross (the planes where labels touch pinned per mode).
+#[test]
+fn other_modes_on_different_grids_and_overlapping_boxes() {
+    for (case, want) in [
+        (touching_boxes(false), [6, 8, 8]),
+        (overlapping_boxes(), [6, 3, 3]),
+        (stacked_cylinder(), [6, 8, 6]),
+    ] {
+        let mut touching = Vec::new();
+        for (mode, n) in [
+            (SliceMode::Axes, 9),
+            (SliceMode::Sweep, 8),
+            (SliceMode::Tilt, 8),
+        ] {
+            touching.push(run(&case, mode, n, 7).contact_planes);
+        }
+        eprintln!("{}: {touching:?}", case.name);
+        assert_eq!(touching, want, "{}: planes where labels touch", case.name);
+    }
+}
+
+/// `check_partition` on the truth's domains of the carved figure eight: both closed, disjoint, the
+/// ball's surface the interface.
+#[test]
+fn carved_reference_domains_are_a_partition() {
+    let mesh = read_trimesh(&shared_reference("eight_15")).unwrap();
+    let (c, r) = ball_inside(&mesh);
+    let case = carved("eight_15", &mesh, c, r);
+    let domains: Vec<(i32, String, TriMesh)> = case
+        .domains
+        .iter()
+        .map(|(l, m)| (*l, format!("label {l}"), m.clone()))
+        .collect();
+    let report = slice2solid::eval::partition::check_partition(&domains, None).unwrap();
+    assert!(report.valid, "{report:#?}");
+    let p = &report.pairs[0];
+    assert_eq!(p.interface_triangles, 1280);
+    let ball_area = slice2solid::eval::check::check_mesh(&case.domains[1].1, None).area;
+    assert!((p.interface_area - ball_area).abs() < 1e-12 * ball_area);
+    assert_eq!(report.domains[0].check.components, 2);
+}
