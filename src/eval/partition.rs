@@ -446,3 +446,32 @@ mod tests {
         assert_eq!(l.locate(s.vertices[7]), Location::OnBoundary);
     }
 }
+
+#[cfg(test)]
+mod pair_tests {
+    use super::*;
+    use crate::slice::synthetic::{nested_spheres, touching_boxes};
+
+    #[test]
+    fn conforming_interfaces_are_interfaces_and_others_cross() {
+        let c = touching_boxes(true);
+        let p = check_pair(&c.domains[0].1, &c.domains[1].1);
+        assert!(p.disjoint && p.crossings == 0, "{p:?}");
+        assert_eq!(p.interface_triangles, 16);
+        // Different grids on the face: coplanar overlapping triangles that are not the same.
+        let c = touching_boxes(false);
+        let p = check_pair(&c.domains[0].1, &c.domains[1].1);
+        assert!(!p.disjoint && p.crossings > 0, "{p:?}");
+        assert_eq!(p.vertices_inside, [0, 0]);
+        // The core with itself: every triangle coincident in the same orientation.
+        let s = nested_spheres();
+        let p = check_pair(&s.domains[0].1, &s.domains[0].1);
+        assert_eq!(p.coincident_same_orientation, 320);
+        assert!(!p.disjoint);
+        // The core against the whole ball (not the shell): core vertices strictly inside.
+        let ball = &s.meshes[1].mesh;
+        let p = check_pair(&s.domains[0].1, ball);
+        assert_eq!(p.vertices_inside, [162, 0]);
+        assert!(!p.disjoint && p.crossings == 0);
+    }
+}
