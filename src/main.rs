@@ -66,7 +66,7 @@ enum Command {
     CompareMethods(CompareMethodsArgs),
     /// 3D Delaunay triangulation of a point file (our kernel, or TetGen as oracle)
     Delaunay(DelaunayArgs),
-    /// Cut a closed triangle mesh with planes and write the cross-sections as CSL
+    /// Cut closed triangle meshes (one per label) with planes and write the cross-sections as CSL
     Slice(SliceArgs),
     /// Draw a surface (shaded, with the input contours over it) as a PNG picture
     Render(RenderArgs),
@@ -130,7 +130,14 @@ pub struct ReconstructArgs {
 #[derive(clap::Args)]
 pub struct CheckArgs {
     /// A triangle surface (.obj, .ply, .stl, .off) or a tetrahedral mesh (.vtk, .mesh)
-    pub mesh: PathBuf,
+    #[arg(required_unless_present = "partition", conflicts_with = "partition")]
+    pub mesh: Option<PathBuf>,
+    /// Check labelled domains as one partition: each `SURFACE` or `SURFACE:LABEL` (without `:LABEL`,
+    /// the N of a name `*.labelN.*`, else the position 1, 2, ...): every domain a closed oriented
+    /// manifold, every two disjoint except shared interface triangles; with --sections, each
+    /// label's sections against its domain
+    #[arg(long, num_args = 1.., conflicts_with = "surface")]
+    pub partition: Vec<String>,
     /// Compare the surface's sections with these input sections (CSL or JSON; surfaces only)
     #[arg(long)]
     pub sections: Option<PathBuf>,
@@ -185,7 +192,11 @@ pub struct DelaunayArgs {
 
 #[derive(clap::Args)]
 pub struct SliceArgs {
-    pub mesh: PathBuf,
+    /// Closed meshes, each `MESH` or `MESH:LABEL`. One mesh without a label is label 1; several make
+    /// labelled sections partitioning every plane (a mesh without `:LABEL` takes its position, 1, 2, …):
+    /// where meshes overlap, the one listed first keeps the overlap
+    #[arg(required = true, num_args = 1..)]
+    pub meshes: Vec<String>,
     #[arg(short, long)]
     pub output: PathBuf,
     #[arg(long, default_value_t = 10)]

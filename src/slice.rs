@@ -20,6 +20,9 @@
 //! The result passes through the shared validator (`crate::validate`). A plane exactly through a
 //! saddle vertex makes contours that touch there, which the validator may reject; [`make_planes`] keeps
 //! its planes clear of vertices so this only happens with planes the caller chooses.
+//!
+//! Several meshes with a label each: [`slice_partition`] (module `partition`: priority by order,
+//! touching outlines of different labels share their vertices).
 use crate::error::{Error, Result};
 use crate::geom::predicates::{orient2d, orient3d};
 use crate::mesh::TriMesh;
@@ -28,6 +31,10 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
+
+mod partition;
+pub mod synthetic;
+pub use partition::{slice_partition, union_mesh, LabelledMesh, SHARED_VERTEX_RELATIVE_TOLERANCE};
 
 /// How [`make_planes`] places the cutting planes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -26,6 +26,7 @@ pub mod planes;
 mod repair;
 pub use labels::{one_material, LABEL_OVERLAP_RELATIVE_AREA};
 pub use repair::NUDGE_RELATIVE;
+pub(crate) use repair::{material_of, pieces_of};
 
 /// A vertex may lie this far from its plane, relative to the diagonal of the model's bounding box.
 /// Measured on the shared CSL files: at most 4.9e-5 (Horsers, coordinates printed with 2 decimals,

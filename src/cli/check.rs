@@ -9,19 +9,26 @@ use slice2solid::{Error, Result};
 use std::process::ExitCode;
 
 pub fn run(args: CheckArgs) -> Result<ExitCode> {
-    if super::check_tets::is_tet_mesh(&args.mesh) {
-        return super::check_tets::run(args);
+    if !args.partition.is_empty() {
+        return super::check_partition::run(&args);
+    }
+    let mesh_path = args
+        .mesh
+        .clone()
+        .ok_or_else(|| Error::input("check", "a MESH or --partition is needed"))?;
+    if super::check_tets::is_tet_mesh(&mesh_path) {
+        return super::check_tets::run(args, &mesh_path);
     }
     if let Some(s) = &args.surface {
         return Err(Error::input(
             s.display().to_string(),
             format!(
                 "--surface compares a tetrahedral mesh's boundary with a surface, but {} is not a tetrahedral mesh (.vtk or .mesh)",
-                args.mesh.display()
+                mesh_path.display()
             ),
         ));
     }
-    let mesh = read_trimesh(&args.mesh)?;
+    let mesh = read_trimesh(&mesh_path)?;
     let sections = match &args.sections {
         Some(p) => Some(read_sections(p)?),
         None => None,
@@ -30,7 +37,7 @@ pub fn run(args: CheckArgs) -> Result<ExitCode> {
     if args.json {
         super::print_json(&report)?;
     } else {
-        print_table(&args.mesh.display().to_string(), &report);
+        print_table(&mesh_path.display().to_string(), &report);
     }
     Ok(if report.is_closed_manifold() {
         ExitCode::SUCCESS

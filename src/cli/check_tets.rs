@@ -14,15 +14,15 @@ pub fn is_tet_mesh(path: &Path) -> bool {
     ext.eq_ignore_ascii_case("vtk") || ext.eq_ignore_ascii_case("mesh")
 }
 
-pub fn run(args: CheckArgs) -> Result<ExitCode> {
+pub fn run(args: CheckArgs, mesh: &Path) -> Result<ExitCode> {
     if args.sections.is_some() {
         return Err(Error::input(
-            args.mesh.display().to_string(),
+            mesh.display().to_string(),
             "--sections applies to a triangle surface, not to a tetrahedral mesh: check the surface \
              (e.g. the reconstruction's -o file) with --sections, and the tetrahedra with --surface",
         ));
     }
-    let tets = read_tetmesh(&args.mesh)?;
+    let tets = read_tetmesh(mesh)?;
     let surface = match &args.surface {
         Some(p) => Some(read_trimesh(p)?),
         None => None,
@@ -31,7 +31,7 @@ pub fn run(args: CheckArgs) -> Result<ExitCode> {
     if args.json {
         super::print_json(&report)?;
     } else {
-        print_table(&args.mesh.display().to_string(), &report);
+        print_table(&mesh.display().to_string(), &report);
     }
     Ok(if report.valid {
         ExitCode::SUCCESS

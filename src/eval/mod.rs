@@ -10,6 +10,7 @@
 pub mod check;
 pub mod compare;
 pub mod near_coplanar;
+pub mod partition;
 pub mod section;
 pub mod shapes;
 pub mod tets;

@@ -171,3 +171,90 @@ pub fn merged(a: &TriMesh, b: &TriMesh) -> TriMesh {
     );
     m
 }
+
+/// The same surface with every triangle reversed (a cavity, when merged into an enclosing mesh).
+pub fn inverted(mesh: &TriMesh) -> TriMesh {
+    TriMesh {
+        vertices: mesh.vertices.clone(),
+        triangles: mesh.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect(),
+    }
+}
+
+/// Axis-aligned box `[lo, hi]` whose faces are `m[k]`-by-`m[k']` grids of quads (the box cut into
+/// `m[0]` × `m[1]` × `m[2]` cells), each quad split along the diagonal from its lowest grid corner,
+/// outward oriented. Two boxes meeting on a face with the same grid there share its triangles
+/// (reversed); with different grids they meet non-conformingly.
+pub fn grid_box(lo: [f64; 3], hi: [f64; 3], m: [usize; 3]) -> TriMesh {
+    let mut mesh = TriMesh::default();
+    let mut ids: HashMap<[usize; 3], u32> = HashMap::new();
+    let mut vid = |g: [usize; 3], mesh: &mut TriMesh| -> u32 {
+        *ids.entry(g).or_insert_with(|| {
+            mesh.vertices.push(std::array::from_fn(|k| {
+                if g[k] == m[k] {
+                    hi[k]
+                } else {
+                    lo[k] + (hi[k] - lo[k]) * g[k] as f64 / m[k] as f64
+                }
+            }));
+            (mesh.vertices.len() - 1) as u32
+        })
+    };
+    for axis in 0..3 {
+        let (a1, a2) = ((axis + 1) % 3, (axis + 2) % 3);
+        for side in [0, m[axis]] {
+            for i in 0..m[a1] {
+                for j in 0..m[a2] {
+                    let g = |di: usize, dj: usize| {
+                        let mut g = [0; 3];
+                        g[axis] = side;
+                        g[a1] = i + di;
+                        g[a2] = j + dj;
+                        g
+                    };
+                    let q = [g(0, 0), g(1, 0), g(1, 1), g(0, 1)].map(|g| vid(g, &mut mesh));
+                    // (a1, a2, axis) is right-handed: counter-clockwise in (a1, a2) faces +axis.
+                    if side == m[axis] {
+                        mesh.triangles.push([q[0], q[1], q[2]]);
+                        mesh.triangles.push([q[0], q[2], q[3]]);
+                    } else {
+                        mesh.triangles.push([q[0], q[2], q[1]]);
+                        mesh.triangles.push([q[0], q[3], q[2]]);
+                    }
+                }
+            }
+        }
+    }
+    mesh
+}
+
+/// A prism over the regular `n`-gon of radius `r` about the z axis through `(cx, cy)`, from `z0` to
+/// `z1`, outward oriented: `n` side quads (two triangles each) and two caps fanned from their centre.
+/// Two such prisms meeting at a cap (the same `n`, `r`, centre) share its triangles, reversed.
+pub fn cylinder(center: [f64; 2], r: f64, z0: f64, z1: f64, n: usize) -> TriMesh {
+    let ring = |z: f64| -> Vec<[f64; 3]> {
+        (0..n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                [center[0] + r * a.cos(), center[1] + r * a.sin(), z]
+            })
+            .collect()
+    };
+    let mut vertices = ring(z0);
+    vertices.extend(ring(z1));
+    vertices.push([center[0], center[1], z0]);
+    vertices.push([center[0], center[1], z1]);
+    let (c0, c1) = ((2 * n) as u32, (2 * n + 1) as u32);
+    let mut triangles = Vec::with_capacity(4 * n);
+    for i in 0..n {
+        let (a, b) = (i as u32, ((i + 1) % n) as u32);
+        let (a1, b1) = (a + n as u32, b + n as u32);
+        triangles.push([a, b, b1]);
+        triangles.push([a, b1, a1]);
+        triangles.push([c0, b, a]);
+        triangles.push([c1, a1, b1]);
+    }
+    TriMesh {
+        vertices,
+        triangles,
+    }
+}

@@ -138,7 +138,7 @@ fn resolve(region: &Region, nudge: f64) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
 
 /// i_overlay's shapes as pieces (outer counter-clockwise, then holes clockwise), without repeated
 /// vertices, vertices shared by two contours moved apart. None if nothing has area.
-pub(super) fn pieces_of(
+pub(crate) fn pieces_of(
     shapes: Vec<Vec<Vec<[f64; 2]>>>,
     nudge: f64,
 ) -> Option<Vec<Vec<Vec<[f64; 2]>>>> {
@@ -315,7 +315,7 @@ pub(super) fn repair_label_conflicts(
 
 /// Append the contours of `region` to `out` as material for the booleans: the outer contour
 /// counter-clockwise, the holes clockwise (so `FillRule::Positive` counts outer +1, holes -1).
-pub(super) fn material_of(region: &Region, out: &mut Vec<Vec<[f64; 2]>>) {
+pub(crate) fn material_of(region: &Region, out: &mut Vec<Vec<[f64; 2]>>) {
     for (k, c) in std::iter::once(&region.outer)
         .chain(&region.holes)
         .enumerate()
