@@ -179,16 +179,34 @@ fn edge_gaps(t: &Triangulation, edges: &[(u32, u32)]) -> Vec<Vec<Growth>> {
         let Some(ring) = ring.get(e) else { continue };
         let core: SmallVec<[u32; 3]> = [e.0, e.1].into_iter().collect();
         let gaps: Vec<[u32; 4]> = ring.iter().filter(|r| !r.1).map(|r| r.0).collect();
-        out.extend(all_but_largest(t, &gaps, &core));
+        out.extend(all_but_largest(t, &gaps, &core, is_open(ring, &core)));
     }
     out
 }
 
-/// Every gap component but the largest, of those whose tetrahedra may all grow at `core`.
+/// Whether the tetrahedra around `core` leave a face through it with one tetrahedron: the
+/// triangulation ends there (a plane with no cell with volume beyond it), and the space beyond is
+/// one more gap, which cannot be grown into.
+fn is_open(around: &[([u32; 4], bool)], core: &[u32]) -> bool {
+    let mut count: FxHashMap<[u32; 3], u32> = FxHashMap::default();
+    for (tet, _) in around {
+        for i in 0..4 {
+            let f = key3(super::complex::outward_face(tet, i));
+            if core.iter().all(|v| f.contains(v)) {
+                *count.entry(f).or_default() += 1;
+            }
+        }
+    }
+    count.values().any(|&n| n == 1)
+}
+
+/// Every gap component but the largest (every one if the space around is `open`: the space
+/// beyond stays), of those whose tetrahedra may all grow at `core`.
 fn all_but_largest(
     t: &Triangulation,
     gaps: &[[u32; 4]],
     core: &SmallVec<[u32; 3]>,
+    open: bool,
 ) -> Vec<Vec<Growth>> {
     let mut comps: Vec<(bool, Vec<[u32; 4]>)> = components_through(gaps)
         .into_iter()
@@ -198,21 +216,30 @@ fn all_but_largest(
             (ok, tets)
         })
         .collect();
-    if comps.len() < 2 {
+    if comps.len() + usize::from(open) < 2 {
         return Vec::new();
     }
-    // the largest gap that may not grow stays; else the largest
+    // the largest gap that may not grow stays; else the largest (none if open)
     comps.sort_by_key(|(ok, c)| (!*ok, std::cmp::Reverse(c.len())));
-    let stay = comps.iter().position(|(ok, _)| !ok).unwrap_or(0);
+    let stay = comps
+        .iter()
+        .position(|(ok, _)| !ok)
+        .unwrap_or(if open { usize::MAX } else { 0 });
     comps
         .into_iter()
         .enumerate()
         .filter(|&(i, (ok, _))| i != stay && ok)
         .map(|(_, (_, c))| {
+            // a gap of whole tetrahedra that may all be kept is kept whole (no new points)
+            let whole = core.len() == 2 && c.iter().all(|x| may_grow(x, x, t.planes, t.internal));
             c.into_iter()
                 .map(|tet| Growth {
                     tet,
-                    core: core.clone(),
+                    core: if whole {
+                        tet.into_iter().collect()
+                    } else {
+                        core.clone()
+                    },
                 })
                 .collect()
         })
@@ -244,7 +271,7 @@ fn vertex_gaps(t: &Triangulation, vertices: &[u32]) -> Vec<Vec<Growth>> {
                 );
             }
         } else {
-            out.extend(all_but_largest(t, &gaps, &core));
+            out.extend(all_but_largest(t, &gaps, &core, is_open(star, &core)));
         }
     }
     out
@@ -343,7 +370,9 @@ mod tests {
 
     /// Eight tetrahedra around the vertex 0 (the octants of an octahedron with apexes ±x, ±y,
     /// ±z), `kept` of them in K.
-    fn octahedron(kept_octants: &[usize]) -> (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<[u32; 4]>) {
+    type Split = (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<[u32; 4]>);
+
+    fn octahedron(kept_octants: &[usize]) -> Split {
         let positions = vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
@@ -404,6 +433,38 @@ mod tests {
         assert!(s.edge_gaps >= 1, "{s:?}");
         assert_eq!(singularities(&boundary_of(&kept)), (0, 0));
         assert!(kept.iter().all(|&k| orient(&positions, k) > 0.0));
+    }
+
+    #[test]
+    fn an_open_ring_at_a_last_plane_is_closed_by_its_one_gap() {
+        // three tets above z = 0 around the edge (0,1) on it, nothing below (a last plane):
+        // the outer two kept, the middle one a gap; the space below is the other gap
+        let mut positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.3, 0.7, 0.7],
+            [0.3, -0.7, 0.7],
+        ];
+        let [a, b, c] = [[0, 1, 2, 4], [0, 1, 4, 5], [0, 1, 5, 3]].map(|t| positive(&positions, t));
+        let (mut kept, mut fillable) = (vec![a, c], vec![b]);
+        assert_eq!(singularities(&boundary_of(&kept)).0, 1);
+        let mut planes = vec![Planes::new(); positions.len()];
+        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
+        let mut t = Triangulation {
+            positions: &mut positions,
+            planes: &mut planes,
+            kept: &mut kept,
+            fillable: &mut fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        let s = resolve(&mut t, 4, 0.1);
+        assert_eq!(s.edge_gaps, 1, "{s:?}");
+        // the gap may be kept whole: no new points
+        assert_eq!((s.tets, s.points), (1, 0));
+        assert_eq!(singularities(&boundary_of(&kept)), (0, 0));
     }
 
     #[test]
