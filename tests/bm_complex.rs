@@ -121,16 +121,17 @@ fn the_solid_is_the_boundary_of_one_conforming_complex() {
 
 /// A fan of planes through one line (a rotational probe): every point on the common line lies on
 /// all planes, and mixed tuples near the line are decided inconsistently by the tag rules and the
-/// float predicates. Regression (both panicked or segfaulted in the kernel): the tagged kernel
-/// refuses an insertion whose cavity has an inverted new hull facet, and one that conflicts with
-/// nothing, instead of corrupting its structure; the cells are then triangulated untagged. Listed
+/// float predicates. Regression (each panicked or segfaulted in the kernel): the tagged kernel
+/// refuses an insertion whose cavity has an inverted new hull facet, one that conflicts with
+/// nothing, and one whose cavity swallows every tetrahedron (11 planes; 8 did not show it),
+/// instead of corrupting its structure; the cells are then triangulated untagged. Listed
 /// expectation, pinned: every wedge cell falls back today, and the complex is far from clean.
 #[test]
 fn a_fan_of_planes_runs_through_the_tagged_kernel() {
     use slice2solid::io::mesh::read_trimesh;
     use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
     let m = read_trimesh(&common::shared_reference("eight_15")).unwrap();
-    let sections = slice_mesh(&m, &make_planes(&m, 8, 0, SliceMode::Fan)).unwrap();
+    let sections = slice_mesh(&m, &make_planes(&m, 11, 0, SliceMode::Fan)).unwrap();
     let solid = slice2solid::reconstruct(&sections, &options()).unwrap();
     let count = |k: &str| solid.report.counts[k];
     eprintln!(
@@ -139,8 +140,8 @@ fn a_fan_of_planes_runs_through_the_tagged_kernel() {
         count("nonconforming_faces"),
         count("singular_edges")
     );
-    assert_eq!(count("cells_untagged"), 16);
-    assert!(count("nonconforming_faces") <= 16);
+    assert_eq!(count("cells_untagged"), 22);
+    assert!(count("nonconforming_faces") <= 22);
     let t = check_tets(solid.tets.as_ref().unwrap(), None);
     assert_eq!((t.inverted, t.flat), (0, 0));
 }

@@ -469,9 +469,11 @@ impl Delaunay {
                 });
             }
         }
-        if TAGGED && !self.cavity_is_star(&boundary, &outside) {
-            // leave the triangulation as it was (valid, without `v`): a non-star cavity would
-            // break the structure; the caller learns of it from `Delaunay::consistent`
+        if TAGGED && (boundary.is_empty() || !self.cavity_is_star(&boundary, &outside)) {
+            // leave the triangulation as it was (valid, without `v`): a non-star cavity, or one
+            // that swallowed everything (tag rules contradicting the float predicates on a fan's
+            // common line), would break the structure; the caller learns of it from
+            // `Delaunay::consistent`
             for &c in &cavity {
                 tet_mut(&mut self.tds.tets, c).n[0] &= ID_MASK;
             }
