@@ -107,6 +107,7 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
             .cut(h, keep)
             .map_err(|e| Error::Geometry(format!("arrangement: {e}")))?;
     }
+    builder.complete_signs();
 
     // Shared faces: identical (plane, vertex set) from both sides.
     let mut faces: Vec<Face> = Vec::new();

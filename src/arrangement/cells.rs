@@ -27,7 +27,8 @@ pub(crate) struct BFace {
 #[derive(Clone, Debug)]
 pub(crate) struct BCell {
     pub faces: Vec<BFace>,
-    /// Side of the cell with respect to every plane (-1, +1; 0 while the plane is not yet processed).
+    /// Side of the cell with respect to the planes that split it (and the walls): -1, +1; 0 for
+    /// the others until `complete_signs` fills them in at the end.
     pub sign: Vec<i8>,
     /// Box of the rounded vertex positions.
     pub lo: [f64; 3],
@@ -50,6 +51,8 @@ pub(crate) struct CellBuilder {
     side_val: Vec<i8>,
     side_stamp: Vec<u32>,
     stamp: u32,
+    /// The planes cut so far are the input planes `0..cut_count` (cut in order).
+    cut_count: u32,
 }
 
 /// Whether a cut keeps a new cell (`cut` drops it otherwise).
@@ -121,6 +124,7 @@ impl CellBuilder {
             side_val: Vec::new(),
             side_stamp: Vec::new(),
             stamp: 0,
+            cut_count: 0,
         };
         // corner index bits: x (0 lo, 1 hi), y, z.
         let mut corner = [0u32; 8];
@@ -303,11 +307,10 @@ impl CellBuilder {
         let old = std::mem::take(&mut self.cells);
         let mut out = Vec::with_capacity(old.len() + old.len() / 4);
         for cell in old {
-            let whole = self.box_side(&cell, h);
-            if whole != 0 {
-                let mut c = cell;
-                c.sign[h as usize] = whole;
-                out.push(c);
+            // A cell wholly on one side keeps sign 0 for h until `complete_signs`: no write here
+            // (one per cell and cut was most of the construction's memory traffic).
+            if self.box_side(&cell, h) != 0 {
+                out.push(cell);
                 continue;
             }
             let (mut any_pos, mut any_neg) = (false, false);
@@ -321,9 +324,7 @@ impl CellBuilder {
                 }
             }
             if !(any_pos && any_neg) {
-                let mut c = cell;
-                c.sign[h as usize] = if any_pos { 1 } else { -1 };
-                out.push(c);
+                out.push(cell);
                 continue;
             }
             for part in self.split(cell, h, nv)? {
@@ -333,7 +334,40 @@ impl CellBuilder {
             }
         }
         self.cells = out;
+        self.cut_count = self.cut_count.max(h + 1);
         Ok(())
+    }
+
+    /// Whether input plane `i` has been cut (planes are cut in the order of their ids).
+    pub fn is_cut(&self, i: u32) -> bool {
+        i < self.cut_count
+    }
+
+    /// Fill in every cell's side of every plane it was not split by (after the last cut): from
+    /// its box where that decides, else exactly from a vertex of the cell off the plane.
+    pub fn complete_signs(&mut self) {
+        let cells = std::mem::take(&mut self.cells);
+        let mut done = Vec::with_capacity(cells.len());
+        for mut c in cells {
+            for h in 0..self.cut_count {
+                if c.sign[h as usize] != 0 {
+                    continue;
+                }
+                let mut s = self.box_side(&c, h);
+                if s == 0 {
+                    let off = c
+                        .faces
+                        .iter()
+                        .flat_map(|f| f.poly.iter())
+                        .find(|&&v| !self.tags[v as usize].contains(&h));
+                    s = off.map_or(0, |&v| self.side(v, h));
+                }
+                debug_assert!(s != 0, "a cell lies on one side of every plane");
+                c.sign[h as usize] = s;
+            }
+            done.push(c);
+        }
+        self.cells = done;
     }
 
     /// The two parts of `cell` on the positive and negative side of `h` (the sides of its vertices

@@ -99,24 +99,17 @@ impl SectionReach {
             |r| {
                 if !hit.get() {
                     let r = &self.regions[r as usize];
-                    hit.set(self.region_may_touch(b, cell, &verts, r, grow));
+                    hit.set(self.region_may_touch(b, &verts, r, grow));
                 }
             },
         );
         hit.get()
     }
 
-    fn region_may_touch(
-        &self,
-        b: &CellBuilder,
-        cell: &BCell,
-        verts: &[u32],
-        r: &RegionBox,
-        grow: f64,
-    ) -> bool {
+    fn region_may_touch(&self, b: &CellBuilder, verts: &[u32], r: &RegionBox, grow: f64) -> bool {
         let i = r.plane;
         let plane = &self.planes[i as usize];
-        let cut = cell.sign[i as usize] != 0;
+        let cut = b.is_cut(i);
         let on_plane: Vec<u32> = if cut {
             // Exact: the closure meets P_i exactly in its vertices tagged i.
             verts
