@@ -13,6 +13,10 @@
 //! * `Face::positive_cell` is the cell on the side the plane normal points to.
 //!
 //! How it is built (see the submodules):
+//! * `reach` (with `CellScope::Sections`, the default): a cell of the construction whose closure no
+//!   section region can meet is not cut further and not kept; `empty_cells` drops the cells that
+//!   end without a piece. The cells built are exactly the cells of the full arrangement that carry
+//!   pieces, so the work grows with what the sections touch, not with the k³ cells of k planes.
 //! * `cells`: the box (bbox of the sections padded by `margin × diagonal`, six walls with normals
 //!   pointing out) is cut by every input plane in turn. Each vertex is the intersection of three
 //!   planes; its side of another plane is the exact sign of a 4×4 determinant of plane equations
@@ -41,9 +45,11 @@
 //!   lines beyond the tolerance are listed in `warnings`.
 mod build;
 mod cells;
+mod empty_cells;
 pub(crate) mod exact;
 mod merge;
 mod pieces;
+mod reach;
 mod reconcile;
 
 use crate::error::Result;
@@ -83,7 +89,8 @@ pub struct SectionPiece {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Face {
     pub plane: PlaneId,
-    /// Cell on the side the plane normal points to; `None` outside the box.
+    /// Cell on the side the plane normal points to; `None` outside the box (or, with
+    /// `CellScope::Sections`, in a part of the box not built).
     pub positive_cell: Option<CellId>,
     pub negative_cell: Option<CellId>,
     /// Convex polygon, counter-clockwise seen from the plane normal, in pool vertex ids.
@@ -117,6 +124,23 @@ pub struct ArrangementOptions {
     /// vertices of their triples and the sliver faces and cells between them are merged away.
     #[serde(default = "default_merge_tolerance")]
     pub merge_tolerance: f64,
+    /// Which cells are built (see `CellScope`).
+    #[serde(default)]
+    pub scope: CellScope,
+}
+
+/// Which cells of the arrangement are built.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CellScope {
+    /// Every cell of the box: the cells tile it (the implicit method interpolates in all of them).
+    All,
+    /// Only the cells with a section piece on a face, each with its faces, vertices and pieces
+    /// exactly as in `All`. No other cell is built: the construction does not cut further the cells
+    /// no section reaches (`reach`), and the cells that end without a piece are dropped
+    /// (`empty_cells`). A face whose other side was not built has `None` there, as a wall face.
+    #[default]
+    Sections,
 }
 
 fn default_merge_tolerance() -> f64 {
@@ -129,6 +153,7 @@ impl Default for ArrangementOptions {
             margin: 0.1,
             snap_tolerance: 1e-3,
             merge_tolerance: default_merge_tolerance(),
+            scope: CellScope::default(),
         }
     }
 }
@@ -141,6 +166,9 @@ pub struct Arrangement {
     pub faces: Vec<Face>,
     pub cells: Vec<Cell>,
     pub bbox: ([f64; 3], [f64; 3]),
+    /// Which cells were built: with `CellScope::Sections` the cells do not tile the box.
+    #[serde(default)]
+    pub scope: CellScope,
     /// Largest disagreement found between two sections along their planes' common line.
     pub max_disagreement: f64,
     pub warnings: Vec<String>,

@@ -15,6 +15,7 @@ pub mod fxhash;
 pub mod geom;
 pub mod implicit;
 pub mod io;
+pub mod memory;
 pub mod mesh;
 pub mod pipeline;
 pub mod render;

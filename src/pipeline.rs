@@ -1,6 +1,6 @@
 //! The library's front door: `reconstruct(&Sections, &Options) -> Solid`, whichever method: select the
 //! label, build the arrangement, dispatch to an engine, measure the surface's topology.
-use crate::arrangement::Arrangement;
+use crate::arrangement::{Arrangement, CellScope};
 use crate::error::{Error, Result};
 use crate::sections::Sections;
 use crate::solid::{Method, Options, Report, Solid, SurfaceTopology};
@@ -39,8 +39,14 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
         .filter(|(l, _)| reconstructed.contains_key(l))
         .map(|(l, n)| (*l, n.clone()))
         .collect();
+    // The implicit method interpolates in every cell of the box; the Delaunay method needs only
+    // the cells with a section on a face.
+    let mut arrangement_options = options.arrangement.clone();
+    if options.method == Method::Implicit {
+        arrangement_options.scope = CellScope::All;
+    }
     let arrangement = report.time("arrangement", || {
-        Arrangement::build(&selected, &options.arrangement)
+        Arrangement::build(&selected, &arrangement_options)
     })?;
     report.count("cells", arrangement.cells.len() as u64);
     report.count("faces", arrangement.faces.len() as u64);
@@ -52,6 +58,7 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
         }
     };
     report.total_seconds = start.elapsed().as_secs_f64();
+    report.peak_memory = crate::memory::peak_resident();
     let topo = crate::eval::topology::analyze(&solid.surface);
     report.surface = Some(SurfaceTopology {
         triangles: solid.surface.triangles.len(),

@@ -106,6 +106,10 @@ pub struct Report {
     #[serde(skip_serializing_if = "BTreeMap::is_empty")]
     pub label_names: BTreeMap<i32, String>,
     pub total_seconds: f64,
+    /// Peak resident memory of the process when the reconstruction ended (`memory`: Linux
+    /// `VmHWM`, else `getrusage` `ru_maxrss`; absent where the platform does not tell).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_memory: Option<crate::memory::PeakMemory>,
     /// Topology of the output surface (combinatorial; self-intersections are left to `check`).
     pub surface: Option<SurfaceTopology>,
 }

@@ -1,5 +1,13 @@
 //! Arrangement invariants on synthetic sections (balls and boxes cut by planes).
-use slice2solid::arrangement::{Arrangement, ArrangementOptions};
+mod arrangement_support;
+use slice2solid::arrangement::{Arrangement, ArrangementOptions, CellScope};
+
+fn all_cells() -> ArrangementOptions {
+    ArrangementOptions {
+        scope: CellScope::All,
+        ..Default::default()
+    }
+}
 use slice2solid::sections::{Contour, Plane, Region, Section, Sections};
 
 /// Sections of the ball of radius `r` centred at the origin by the given planes (n-gon contours).
@@ -39,6 +47,11 @@ fn ball_sections(planes: &[([f64; 3], f64)], r: f64, n: usize) -> Sections {
 }
 
 fn check_invariants(arr: &Arrangement, sections: &Sections) {
+    assert_eq!(
+        arr.scope,
+        CellScope::All,
+        "the invariants of the full arrangement"
+    );
     let (lo, hi) = arr.bbox;
     let box_vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
     let sum: f64 = arr.cells.iter().map(|c| c.volume).sum();
@@ -130,8 +143,12 @@ fn three_axis_planes_make_eight_cells() {
         1.0,
         64,
     );
-    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    let arr = Arrangement::build(&s, &all_cells()).unwrap();
     assert_eq!(arr.cells.len(), 8);
+    assert_eq!(
+        arrangement_support::check_scopes_agree(&s, &Default::default()),
+        (8, 8)
+    );
     assert_eq!(arr.n_input, 3);
     assert_eq!(arr.planes.len(), 9);
     check_invariants(&arr, &s);
@@ -172,7 +189,9 @@ fn tilted_planes_ball() {
         ([-0.2, 0.5, 0.9], -0.4),
     ];
     let s = ball_sections(&planes, 1.0, 200);
-    let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+    let arr = Arrangement::build(&s, &all_cells()).unwrap();
     check_invariants(&arr, &s);
+    let (all, sparse) = arrangement_support::check_scopes_agree(&s, &Default::default());
+    assert!(sparse < all, "{sparse} of {all} cells");
     assert!(arr.max_disagreement < 0.01, "{}", arr.max_disagreement);
 }

@@ -1,7 +1,7 @@
 //! The arrangement builds on every shared CSL file, with exact volume and area bookkeeping.
 mod arrangement_support;
 mod common;
-use slice2solid::arrangement::{Arrangement, ArrangementOptions};
+use slice2solid::arrangement::{Arrangement, ArrangementOptions, CellScope};
 use std::time::Instant;
 
 #[test]
@@ -9,8 +9,15 @@ fn every_shared_csl_file() {
     for path in common::shared_csl_files() {
         let s = slice2solid::io::read_sections(&path).unwrap();
         let t = Instant::now();
-        let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
+        let all = ArrangementOptions {
+            scope: CellScope::All,
+            ..Default::default()
+        };
+        let arr = Arrangement::build(&s, &all).unwrap();
         let dt = t.elapsed();
+        let (n_all, n_sparse) = arrangement_support::check_scopes_agree(&s, &Default::default());
+        assert_eq!(n_all, arr.cells.len());
+        assert_eq!(n_sparse, arr.cells_with_sections());
         let (lo, hi) = arr.bbox;
         let box_vol = (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]);
         let sum: f64 = arr.cells.iter().map(|c| c.volume).sum();

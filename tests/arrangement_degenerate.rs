@@ -90,6 +90,7 @@ fn planes_through_a_common_line() {
     let s = ball_sections(&planes, 1.0, 96);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);
+    arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
     // 5 planes through one line: 10 wedges, each cut by x = 0.3.
     assert_eq!(arr.cells.len(), 20);
     // The two arrangement vertices on the common line carry all five tags.
@@ -114,6 +115,7 @@ fn four_planes_through_one_point() {
     let s = ball_sections(&planes, 1.0, 128);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);
+    arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
     let centre: Vec<_> = arr
         .pool
         .tags
@@ -135,6 +137,7 @@ fn nearly_parallel_planes() {
     let s = ball_sections(&planes, 1.0, 64);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);
+    arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
 }
 
 #[test]
@@ -208,6 +211,7 @@ fn contours_through_lines_and_vertices() {
     };
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);
+    arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
     // The three synthetic sections disagree along their lines on purpose; nothing else is reported.
     assert!(
         arr.warnings.iter().all(|w| w.starts_with("sections")),
@@ -235,6 +239,7 @@ proptest! {
         prop_assume!(s.sections.iter().any(|x| !x.regions.is_empty()));
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
         arrangement_support::check_arrangement(&arr, &s);
+        arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
     }
 }
 
@@ -287,6 +292,7 @@ fn close_crossings_are_snapped_to_one_shared_vertex() {
     let s = two_squares(1e-5);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);
+    arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
     assert!(
         (arr.max_disagreement - 1e-5).abs() < 1e-12,
         "{}",
@@ -315,6 +321,7 @@ fn far_crossings_are_kept_and_shared_along_the_line() {
     let s = two_squares(0.1);
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);
+    arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
     assert!(
         (arr.max_disagreement - 0.1).abs() < 1e-12,
         "{}",
@@ -369,6 +376,7 @@ fn contours_crossing_diagonally_through_an_arrangement_vertex() {
     };
     let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
     arrangement_support::check_arrangement(&arr, &s);
+    arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
     assert!(
         arr.warnings.iter().all(|w| w.starts_with("sections")),
         "{:?}",
@@ -423,6 +431,7 @@ proptest! {
         prop_assume!(s.sections.iter().any(|x| !x.regions.is_empty()));
         let arr = Arrangement::build(&s, &ArrangementOptions::default()).unwrap();
         arrangement_support::check_arrangement(&arr, &s);
+        arrangement_support::check_scopes_agree(&s, &ArrangementOptions::default());
         let other: Vec<_> = arr.warnings.iter().filter(|w| !w.starts_with("sections")).collect();
         prop_assert!(other.is_empty(), "{:?}", other);
     }

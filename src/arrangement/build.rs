@@ -2,12 +2,17 @@
 use super::cells::CellBuilder;
 use super::exact::same_plane;
 use super::{
-    ArrPlane, Arrangement, ArrangementOptions, Cell, CellFace, Face, PlaneTags, VertexPool,
+    ArrPlane, Arrangement, ArrangementOptions, Cell, CellFace, CellScope, Face, PlaneTags,
+    VertexPool,
 };
 use crate::error::{Error, Result};
 use crate::fxhash::FxHashMap as HashMap;
 use crate::sections::{Plane, Sections};
 use smallvec::SmallVec;
+
+/// Margin of the culling test (`reach`), relative to the diagonal: far above the rounding of the
+/// positions it compares, far below any feature.
+const REACH_MARGIN: f64 = 1e-9;
 
 fn eq_of(p: &Plane) -> [f64; 4] {
     [p.normal[0], p.normal[1], p.normal[2], p.offset]
@@ -90,11 +95,19 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
     let eq: Vec<[f64; 4]> = planes.iter().map(|p| eq_of(&p.plane)).collect();
     let wall_ids: [u32; 6] = std::array::from_fn(|k| (n_input + k) as u32);
     let mut builder = CellBuilder::new_box(eq, wall_ids);
+    let reach = super::reach::SectionReach::new(sections, REACH_MARGIN * diag);
+    let keep_all = |_: &CellBuilder, _: &super::cells::BCell| true;
+    let keep_reached = |b: &CellBuilder, c: &super::cells::BCell| reach.may_touch(b, c);
+    let keep: super::cells::Keep = match options.scope {
+        CellScope::All => &keep_all,
+        CellScope::Sections => &keep_reached,
+    };
     for h in 0..n_input as u32 {
         builder
-            .cut(h)
+            .cut(h, keep)
             .map_err(|e| Error::Geometry(format!("arrangement: {e}")))?;
     }
+    builder.complete_signs();
 
     // Shared faces: identical (plane, vertex set) from both sides.
     let mut faces: Vec<Face> = Vec::new();
@@ -187,12 +200,18 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
         faces,
         cells,
         bbox: (blo, bhi),
+        scope: options.scope,
         max_disagreement: 0.0,
         warnings: Vec::new(),
     };
+    // The vertices of the cells not built (`CellScope::Sections`) go.
+    super::empty_cells::drop_unused_vertices(&mut arr);
     // Vertices that only rounding keeps apart (planes nearly through one point): one vertex.
     super::merge::merge_close_vertices(&mut arr, &mut cell_sign, options.merge_tolerance * diag);
     super::pieces::build_pieces(&mut arr, sections, &cell_sign, diag, options)?;
+    if options.scope == CellScope::Sections {
+        super::empty_cells::drop_cells_without_pieces(&mut arr);
+    }
     Ok(arr)
 }
 

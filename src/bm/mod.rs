@@ -565,6 +565,7 @@ fn empty_arrangement() -> Arrangement {
         faces: Vec::new(),
         cells: Vec::new(),
         bbox: ([0.0; 3], [1.0; 3]),
+        scope: crate::arrangement::CellScope::Sections,
         max_disagreement: 0.0,
         warnings: Vec::new(),
     }

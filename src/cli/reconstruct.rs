@@ -56,8 +56,14 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
         let text = serde_json::to_string_pretty(&solid.report).expect("report serialises");
         std::fs::write(path, text).map_err(|e| Error::io(path, e))?;
     }
+    let memory = solid.report.peak_memory.map_or(String::new(), |m| {
+        format!(
+            ", peak memory {:.1} MiB",
+            m.bytes as f64 / (1u64 << 20) as f64
+        )
+    });
     eprintln!(
-        "{}: {} triangles in {:.3} s",
+        "{}: {} triangles in {:.3} s{memory}",
         args.output.display(),
         solid.surface.triangles.len(),
         solid.report.total_seconds

@@ -242,6 +242,7 @@ pub fn horizontal_slabs(lo: [f64; 3], hi: [f64; 3], levels: &[Level]) -> Arrange
         faces: b.faces,
         cells,
         bbox: (lo, hi),
+        scope: crate::arrangement::CellScope::All,
         max_disagreement: 0.0,
         warnings: Vec::new(),
     }

@@ -70,7 +70,14 @@ pub struct Indicator {
 }
 
 impl Indicator {
+    /// The indicator of an arrangement of all cells (`CellScope::All`: it locates points in the
+    /// cells that tile the box).
     pub fn new(arr: &Arrangement) -> Result<Indicator> {
+        if arr.scope != crate::arrangement::CellScope::All {
+            return Err(Error::Geometry(
+                "the implicit method needs the arrangement of all cells (CellScope::All)".into(),
+            ));
+        }
         let pool = &arr.pool;
         let uv_of = |v: u32, plane_id: u32| -> Result<[f64; 2]> {
             let v = v as usize;

@@ -37,6 +37,7 @@ pub fn parallel_case(layers: &[(f64, Vec<Poly>)]) -> (Sections, Arrangement) {
         faces: Vec::new(),
         cells: Vec::new(),
         bbox: ([-10.0; 3], [10.0; 3]),
+        scope: slice2solid::arrangement::CellScope::Sections,
         max_disagreement: 0.0,
         warnings: Vec::new(),
     };
