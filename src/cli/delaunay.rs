@@ -7,10 +7,13 @@ use std::time::Instant;
 
 pub fn run(args: DelaunayArgs) -> Result<ExitCode> {
     let points = xyz::read_xyz(&args.points)?;
+    let mut deferred = None;
     let (tets, vertices, seconds, kernel_bytes) = match args.oracle {
         None => {
             let start = Instant::now();
-            let dt = Delaunay::try_new(&points)?;
+            let threads = args.threads.unwrap_or_else(rayon::current_num_threads);
+            let dt = Delaunay::try_new_with_threads(&points, threads)?;
+            deferred = Some(dt.parallel_deferred());
             let seconds = start.elapsed().as_secs_f64();
             let tets: Vec<[u32; 4]> = dt.tets().map(|t| dt.tet_vertices(t)).collect();
             let vertices = dt.num_vertices() - dt.duplicates().len();
@@ -41,6 +44,9 @@ pub fn run(args: DelaunayArgs) -> Result<ExitCode> {
         });
         if let Some(k) = kernel_bytes {
             j["kernel_bytes"] = k.into();
+        }
+        if let Some(d) = deferred {
+            j["deferred"] = d.into();
         }
         println!("{j}");
     } else {
