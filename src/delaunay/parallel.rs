@@ -4,7 +4,8 @@
 //! tetrahedra it owns: every record it reads (walk, conflict test, neighbour of the cavity whose
 //! adjacency it rewrites) is acquired first by a compare-and-swap on its owner byte. When a record is
 //! owned by another thread, the insertion is undone before anything was written (only scratch marks),
-//! its records released, and the point is deferred to a sequential tail after the round.
+//! the thread's records released, and the point is deferred to a sequential tail after the round.
+//! Records are kept between insertions and released every `HOLD` insertions.
 //!
 //! The result is the Delaunay triangulation of the points under the symbolic perturbation, which
 //! depends on the coordinates only (lexicographic order), never on insertion order: it is unique,
@@ -17,6 +18,11 @@ use std::sync::atomic::{AtomicU8, AtomicUsize, Ordering};
 
 /// Rounds with fewer points than this are inserted sequentially.
 pub(super) const MIN_ROUND: usize = 8192;
+
+/// A thread keeps the records it acquired for this many insertions (most of what the next
+/// insertions touch is then its own already: one compare-and-swap per record and period, not per
+/// visit), then releases them all.
+const HOLD: usize = 64;
 
 /// Fresh slots are handed to the threads in blocks of this many.
 const BLOCK: usize = 2048;
@@ -171,7 +177,6 @@ impl Worker {
             if !self.acquire(s, n) {
                 return Err(Abort::Busy);
             }
-            self.release_one(s, t);
             t = n;
         }
         let mut prev = NONE;
@@ -192,7 +197,6 @@ impl Worker {
                     if !self.acquire(s, n) {
                         return Err(Abort::Busy);
                     }
-                    self.release_one(s, t);
                     prev = t;
                     t = n;
                     if s.rec(n).is_infinite() {
@@ -218,23 +222,12 @@ impl Worker {
                 m if m <= n => self.newt[m - 1],
                 _ => old(k),
             };
-            if self.acquire(s, t) {
-                if !s.rec(t).is_dead() {
-                    self.hint = t;
-                    return Ok(t);
-                }
-                self.release_one(s, t);
+            if self.acquire(s, t) && !s.rec(t).is_dead() {
+                self.hint = t;
+                return Ok(t);
             }
         }
         Err(Abort::Busy)
-    }
-
-    /// Releases `t` when it is the most recently acquired record (the walk's previous cell).
-    fn release_one(&mut self, s: &Shared, t: u32) {
-        if let Some(k) = self.held.iter().rposition(|&h| h == t) {
-            self.held.swap_remove(k);
-            s.owner[t as usize].store(0, Ordering::Release);
-        }
     }
 
     /// Conflict of owned record `t` with `q`; an infinite one needs its finite neighbour, acquired.
@@ -285,10 +278,7 @@ impl Worker {
             self.grow(s, t0, v, q).map(|_| None)
         });
         match r {
-            Ok(Some(w)) => {
-                self.release_all(s);
-                Ok(w)
-            }
+            Ok(Some(w)) => Ok(w),
             Ok(None) => {
                 self.star(s)?;
                 Ok(v)
@@ -388,7 +378,6 @@ impl Worker {
             s.rec_mut(n).n[1] &= ID_MASK;
         }
         self.hint = *self.newt.last().unwrap();
-        self.release_all(s);
         Ok(())
     }
 
@@ -430,16 +419,20 @@ impl Worker {
     /// Inserts a chunk of internal vertices, deferring those that meet another thread.
     fn run(&mut self, s: &Shared, chunk: &[u32]) {
         for (k, &v) in chunk.iter().enumerate() {
+            if k % HOLD == 0 {
+                self.release_all(s);
+            }
             match self.insert(s, v) {
                 Ok(w) if w != v => self.dropped.push((v, w)),
                 Ok(_) => {}
                 Err(Abort::Busy) => self.deferred.push(v),
                 Err(Abort::Full) => {
                     self.deferred.extend_from_slice(&chunk[k..]);
-                    return;
+                    break;
                 }
             }
         }
+        self.release_all(s);
     }
 }
 
