@@ -37,7 +37,11 @@ fn same_for_all_thread_counts(pts: &[[f64; 3]]) {
     for threads in [2, 4] {
         let par = Delaunay::try_new_with_threads(pts, threads).unwrap();
         par.is_valid().unwrap();
-        assert_eq!(par.num_finite_tets(), seq.num_finite_tets(), "{threads} threads");
+        assert_eq!(
+            par.num_finite_tets(),
+            seq.num_finite_tets(),
+            "{threads} threads"
+        );
         assert_eq!(tets(&par), want, "{threads} threads");
         assert_eq!(par.duplicates(), seq.duplicates(), "{threads} threads");
     }

@@ -169,12 +169,15 @@ impl Delaunay {
 
     /// Like [`Delaunay::new`], but rejects non-finite coordinates with `Error::Input`.
     pub fn try_new(points: &[[f64; 3]]) -> crate::Result<Delaunay> {
-        Self::try_new_with_threads(points, rayon::current_num_threads())
+        Self::try_new_with_threads(points, 1)
     }
 
-    /// [`Delaunay::try_new`] with at most `threads` threads (rounds of the insertion order with
-    /// many points are inserted in parallel, see `parallel`). The triangulation is the same for
-    /// every thread count (tetrahedron slots differ); 1 is the sequential kernel.
+    /// [`Delaunay::try_new`] with at most `threads` threads: rounds of the insertion order with
+    /// many points (8192 or more) are inserted in parallel (see `parallel`; rayon tasks, so it
+    /// nests in a rayon pool). The triangulation is the same for every thread count, but the
+    /// tetrahedron slots (the order of [`Delaunay::tets`]) depend on the threads' timing when
+    /// `threads > 1`: [`Delaunay::try_new`] stays sequential so that the engines' results are
+    /// reproducible run to run.
     pub fn try_new_with_threads(points: &[[f64; 3]], threads: usize) -> crate::Result<Delaunay> {
         check_finite(points)?;
         Ok(Self::build(points, None, threads.clamp(1, 64)))
