@@ -53,6 +53,7 @@
 //! circles in uv as the plane's circles. [`Delaunay::plane_hull_triangles`] gives the restriction.
 //!
 //! Layout: `tds` (flat records and free list), `insert` (walk, conflict region, starring),
+//! `parallel` (the multi-threaded bulk build of [`Delaunay::try_new_with_threads`], untagged only),
 //! `pred` (filtered exact predicates and the perturbation), `sort` (BRIO + Hilbert), `validate`
 //! (`is_valid`), `tags` (plane tags and their rules), `plane2d` (reference 2D Delaunay), `xyz`
 //! (point files), `gen` (test point sets), `tetgen` (oracle, feature `tetgen`).
