@@ -1,5 +1,6 @@
 //! Kernel throughput: uniform points and points on 40 random planes, 10^4 and 10^5 points
-//! (10^6 with `S2S_BENCH_1M=1`); and the tagged kernel against the untagged one on a cell with four
+//! (10^6 with `S2S_BENCH_1M=1`); 1 and 2 threads on 2·10^5 uniform points and on 400 parallel
+//! circles of 250 points (`benches/kernel_vs_cgal.sh` compares the CLI with CGAL side by side); and the tagged kernel against the untagged one on a cell with four
 //! oblique faces (`gen::tagged_tetrahedron`: 4 × ~2500 face points + 10^4 interior points).
 //!
 //! Also writes point files for comparisons with other tools:
@@ -31,6 +32,22 @@ fn bench(c: &mut Criterion) {
             let pts = points(kind, n);
             g.bench_with_input(BenchmarkId::new(kind, n), &pts, |b, pts| {
                 b.iter(|| Delaunay::new(pts).num_finite_tets())
+            });
+        }
+    }
+    // the parallel bulk build against the sequential one (same triangulation)
+    for (kind, pts) in [
+        ("uniform", gen::uniform(200_000, 1)),
+        ("circles_stack", gen::circles(400, 250)),
+    ] {
+        for threads in [1, 2] {
+            let id = BenchmarkId::new(format!("{kind}_threads{threads}"), pts.len());
+            g.bench_with_input(id, &pts, |b, pts| {
+                b.iter(|| {
+                    Delaunay::try_new_with_threads(pts, threads)
+                        .unwrap()
+                        .num_finite_tets()
+                })
             });
         }
     }

@@ -188,6 +188,10 @@ pub struct DelaunayArgs {
     pub json: bool,
     #[arg(long, value_enum)]
     pub oracle: Option<Oracle>,
+    /// Threads of our kernel (default: the number of cores; 1 is the sequential kernel). The
+    /// tetrahedra are the same for every count
+    #[arg(long)]
+    pub threads: Option<usize>,
 }
 
 #[derive(clap::Args)]

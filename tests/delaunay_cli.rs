@@ -99,3 +99,24 @@ fn delaunay_cli_oracle_switch() {
         assert!(String::from_utf8_lossy(&out.stderr).contains("not available"));
     }
 }
+
+#[test]
+fn delaunay_cli_tets_file_is_the_same_for_every_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    let pts_path = dir.path().join("p.xyz");
+    // large enough for parallel rounds; exactly coplanar circles and a duplicate
+    let mut pts = gen::circles(100, 200);
+    pts.push(pts[17]);
+    xyz::write_xyz(&pts_path, &pts).unwrap();
+    let files: Vec<String> = ["1", "2", "3"]
+        .iter()
+        .map(|t| {
+            let path = dir.path().join(format!("t{t}.txt"));
+            let (j, tets) = run_delaunay(&pts_path, &path, &["--threads", t]);
+            assert_eq!(j["tets"].as_u64().unwrap() as usize, tets.len());
+            std::fs::read_to_string(&path).unwrap()
+        })
+        .collect();
+    assert_eq!(files[0], files[1]);
+    assert_eq!(files[0], files[2]);
+}

@@ -7,10 +7,13 @@ use std::time::Instant;
 
 pub fn run(args: DelaunayArgs) -> Result<ExitCode> {
     let points = xyz::read_xyz(&args.points)?;
+    let mut deferred = None;
     let (tets, vertices, seconds, kernel_bytes) = match args.oracle {
         None => {
             let start = Instant::now();
-            let dt = Delaunay::try_new(&points)?;
+            let threads = args.threads.unwrap_or_else(rayon::current_num_threads);
+            let dt = Delaunay::try_new_with_threads(&points, threads)?;
+            deferred = Some(dt.parallel_deferred());
             let seconds = start.elapsed().as_secs_f64();
             let tets: Vec<[u32; 4]> = dt.tets().map(|t| dt.tet_vertices(t)).collect();
             let vertices = dt.num_vertices() - dt.duplicates().len();
@@ -24,6 +27,10 @@ pub fn run(args: DelaunayArgs) -> Result<ExitCode> {
         }
     };
     if let Some(path) = &args.tets {
+        // canonical order (each tetrahedron from its smallest vertex, orientation kept; sorted):
+        // the same file for every thread count
+        let mut tets: Vec<[u32; 4]> = tets.iter().map(|&t| canonical_tet(t)).collect();
+        tets.sort_unstable();
         let mut s = String::with_capacity(tets.len() * 32);
         for t in &tets {
             let _ = writeln!(s, "{} {} {} {}", t[0], t[1], t[2], t[3]);
@@ -41,6 +48,9 @@ pub fn run(args: DelaunayArgs) -> Result<ExitCode> {
         });
         if let Some(k) = kernel_bytes {
             j["kernel_bytes"] = k.into();
+        }
+        if let Some(d) = deferred {
+            j["deferred"] = d.into();
         }
         println!("{j}");
     } else {
@@ -76,4 +86,24 @@ fn peak_rss_bytes() -> Option<usize> {
     let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kb: usize = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kb * 1024)
+}
+
+/// `t` as its even permutation with the smallest vertex first (the orientation is kept).
+fn canonical_tet(t: [u32; 4]) -> [u32; 4] {
+    let k = (0..4).min_by_key(|&k| t[k]).unwrap();
+    // an even permutation putting position k first
+    let p: [usize; 4] = match k {
+        0 => [0, 1, 2, 3],
+        1 => [1, 0, 3, 2],
+        2 => [2, 3, 0, 1],
+        _ => [3, 2, 1, 0],
+    };
+    let u = p.map(|i| t[i]);
+    // then rotate the last three (even) so that the smallest of them comes second
+    let r = (1..4).min_by_key(|&k| u[k]).unwrap();
+    match r {
+        1 => u,
+        2 => [u[0], u[2], u[3], u[1]],
+        _ => [u[0], u[3], u[1], u[2]],
+    }
 }

@@ -44,7 +44,7 @@ fn tet_mut(tets: &mut [Tet], t: u32) -> &mut Tet {
 
 /// Position of neighbour `t` in `tt`, ignoring the scratch marks.
 #[inline(always)]
-fn index_of_neighbor(tt: &Tet, t: u32) -> usize {
+pub(super) fn index_of_neighbor_masked(tt: &Tet, t: u32) -> usize {
     let n = tt.n.map(|n| n & ID_MASK);
     if n[0] == t {
         0
@@ -62,10 +62,10 @@ fn index_of_neighbor(tt: &Tet, t: u32) -> usize {
 /// new vertex at position `i`), and the outside neighbour `nb`, whose facet `j` it is.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct BoundaryFacet {
-    v: [u32; 4],
-    nb: u32,
-    i: u8,
-    j: u8,
+    pub(super) v: [u32; 4],
+    pub(super) nb: u32,
+    pub(super) i: u8,
+    pub(super) j: u8,
 }
 
 /// Coordinates of finite internal vertex `v` (< pts.len() by construction).
@@ -77,7 +77,7 @@ fn pt(pts: &[P], v: u32) -> P {
 }
 
 #[inline]
-fn xorshift(mut x: u32) -> u32 {
+pub(super) fn xorshift(mut x: u32) -> u32 {
     x ^= x << 13;
     x ^= x >> 17;
     x ^= x << 5;
@@ -348,7 +348,7 @@ impl Delaunay {
             }
         }
         let n = &self.tds.tets[(tt.n[k] & ID_MASK) as usize];
-        let d = self.pts[n.v[index_of_neighbor(n, t)] as usize];
+        let d = self.pts[n.v[index_of_neighbor_masked(n, t)] as usize];
         pred::conflict_infinite(pts, k, d, q, &self.bounds)
     }
 
@@ -465,7 +465,7 @@ impl Delaunay {
                     v: vs,
                     nb: n,
                     i: i as u8,
-                    j: index_of_neighbor(nt, c) as u8,
+                    j: index_of_neighbor_masked(nt, c) as u8,
                 });
             }
         }

@@ -53,6 +53,7 @@
 //! circles in uv as the plane's circles. [`Delaunay::plane_hull_triangles`] gives the restriction.
 //!
 //! Layout: `tds` (flat records and free list), `insert` (walk, conflict region, starring),
+//! `parallel` (the multi-threaded bulk build of [`Delaunay::try_new_with_threads`], untagged only),
 //! `pred` (filtered exact predicates and the perturbation), `sort` (BRIO + Hilbert), `validate`
 //! (`is_valid`), `tags` (plane tags and their rules), `plane2d` (reference 2D Delaunay), `xyz`
 //! (point files), `gen` (test point sets), `tetgen` (oracle, feature `tetgen`).
@@ -69,6 +70,7 @@
 //! two SSE2 lanes.
 pub mod gen;
 mod insert;
+mod parallel;
 pub mod plane2d;
 #[allow(clippy::needless_range_loop)]
 pub mod pred;
@@ -153,6 +155,8 @@ pub struct Delaunay {
     /// Visit stamps of the tagged locate's fallback search (by tetrahedron slot).
     stamp: Vec<u32>,
     stamp_gen: u32,
+    /// Points the parallel bulk build deferred to a sequential tail.
+    parallel_deferred: usize,
 }
 
 impl Delaunay {
@@ -166,8 +170,23 @@ impl Delaunay {
 
     /// Like [`Delaunay::new`], but rejects non-finite coordinates with `Error::Input`.
     pub fn try_new(points: &[[f64; 3]]) -> crate::Result<Delaunay> {
+        Self::try_new_with_threads(points, 1)
+    }
+
+    /// [`Delaunay::try_new`] with at most `threads` threads: rounds of the insertion order with
+    /// many points (8192 or more) are inserted in parallel (see `parallel`; rayon tasks, so it
+    /// nests in a rayon pool). The triangulation is the same for every thread count, but the
+    /// tetrahedron slots (the order of [`Delaunay::tets`]) depend on the threads' timing when
+    /// `threads > 1`: [`Delaunay::try_new`] stays sequential so that the engines' results are
+    /// reproducible run to run.
+    pub fn try_new_with_threads(points: &[[f64; 3]], threads: usize) -> crate::Result<Delaunay> {
         check_finite(points)?;
-        Ok(Self::build(points, None))
+        Ok(Self::build(points, None, threads.clamp(1, 64)))
+    }
+
+    /// Points the parallel build deferred to its sequential tails (they met another thread).
+    pub fn parallel_deferred(&self) -> usize {
+        self.parallel_deferred
     }
 
     /// Triangulates `points` lying on input planes given by `tags` (one per point, same order;
@@ -194,7 +213,7 @@ impl Delaunay {
                     .map_err(|e| crate::Error::input(format!("tags of point {i}"), e))
             })
             .collect::<crate::Result<Vec<_>>>()?;
-        let dt = Self::build(points, Some(&tags));
+        let dt = Self::build(points, Some(&tags), 1);
         dt.consistent()?;
         Ok(dt)
     }
@@ -213,7 +232,7 @@ impl Delaunay {
     }
 
     /// The bulk build of [`Delaunay::try_new`] / [`Delaunay::try_new_tagged`] on checked input.
-    fn build(points: &[[f64; 3]], tags: Option<&[PointTags]>) -> Delaunay {
+    fn build(points: &[[f64; 3]], tags: Option<&[PointTags]>, threads: usize) -> Delaunay {
         let mut dt = Delaunay::empty();
         let order = sort::brio_order(points);
         dt.pts = order.iter().map(|&k| norm(points[k as usize])).collect();
@@ -236,16 +255,29 @@ impl Delaunay {
         // Exact duplicates are found by the insertion itself (the located tetrahedron has a vertex
         // at the same position) and merged afterwards: no hash table over all points.
         let mut dropped: Vec<(u32, u32)> = Vec::new();
-        for k in 0..dt.pts.len() as u32 {
-            let w = if dt.dim < 3 {
-                dt.add_pending(k)
-            } else {
-                dt.insert_vertex(k)
-            };
-            if w != k {
-                dropped.push((k, w));
+        let rounds = sort::brio_rounds(dt.pts.len());
+        for r in rounds.windows(2) {
+            let (a, b) = (r[0] as u32, r[1] as u32);
+            if threads > 1
+                && tags.is_none()
+                && dt.dim == 3
+                && (b - a) as usize >= parallel::MIN_ROUND
+            {
+                dropped.extend(dt.insert_round_parallel(a..b, threads));
+                continue;
+            }
+            for k in a..b {
+                let w = if dt.dim < 3 {
+                    dt.add_pending(k)
+                } else {
+                    dt.insert_vertex(k)
+                };
+                if w != k {
+                    dropped.push((k, w));
+                }
             }
         }
+        dropped.sort_unstable();
         dt.int = vec![NONE; points.len()];
         if !dropped.is_empty() {
             dt.merge_duplicates(&dropped);
@@ -354,6 +386,7 @@ impl Delaunay {
             rule_decided: std::cell::Cell::new(false),
             stamp: Vec::new(),
             stamp_gen: 0,
+            parallel_deferred: 0,
             lo: [f64::INFINITY; 3],
             hi: [f64::NEG_INFINITY; 3],
             bounds: pred::Bounds::NONE,

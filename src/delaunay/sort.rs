@@ -67,6 +67,20 @@ pub fn hilbert_keys(pts: &[[f64; 3]], bits: u32) -> Vec<u64> {
         .collect()
 }
 
+/// Boundaries of the BRIO rounds of `n` points: 0, …, n/64, n/8, n (from the end: n/8, n/64, ...
+/// until a first round of at most 1000 points).
+pub fn brio_rounds(n: usize) -> Vec<usize> {
+    let mut cuts = vec![n];
+    let mut m = n;
+    while m > 1000 {
+        m /= 8;
+        cuts.push(m);
+    }
+    cuts.push(0);
+    cuts.reverse();
+    cuts
+}
+
 /// BRIO order of all point indices: a random permutation cut into rounds growing by a factor 8 (the
 /// last round holds 7/8 of the points, as CGAL's multiscale sort does), each round sorted along the
 /// Hilbert curve. Deterministic.
@@ -83,15 +97,7 @@ pub fn brio_order(pts: &[[f64; 3]]) -> Vec<u32> {
     let mut idx: Vec<u32> = (0..n as u32).collect();
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x5EED);
     idx.shuffle(&mut rng);
-    // round boundaries from the end: n/8, n/64, ... until a first round of at most 1000 points
-    let mut cuts = vec![n];
-    let mut m = n;
-    while m > 1000 {
-        m /= 8;
-        cuts.push(m);
-    }
-    cuts.push(0);
-    cuts.reverse();
+    let cuts = brio_rounds(n);
     let mut words: Vec<u64> = Vec::with_capacity(n);
     let low = (1u64 << idx_bits) - 1;
     for w in cuts.windows(2) {
