@@ -114,6 +114,10 @@ pub struct ReconstructArgs {
     /// Delaunay method: leave flat zones out of the solid instead of thickening them (warned)
     #[arg(long)]
     pub no_thicken: bool,
+    /// Delaunay method, --assembly complex: keep the raw Boissonnat–Memari topology (by default,
+    /// voids between the planes that no section witnesses are filled)
+    #[arg(long)]
+    pub keep_topology: bool,
     /// Delaunay method (experimental): both cells of a face insert the diagram samples of both
     /// sides, so that they triangulate the face alike
     #[arg(long)]

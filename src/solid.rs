@@ -47,6 +47,9 @@ pub struct DelaunayOptions {
     pub shared_samples: bool,
     /// How the cells' kept tetrahedra become one solid.
     pub assembly: Assembly,
+    /// Keep the raw Boissonnat–Memari topology: with `Assembly::Complex`, voids between the planes
+    /// that no section witnesses are otherwise taken into the solid (`bm::voids`).
+    pub keep_topology: bool,
 }
 
 /// How the cells become one solid (`docs/design/conforming-complex.md`).
@@ -71,6 +74,7 @@ impl Default for DelaunayOptions {
             thicken_flat_zones: true,
             shared_samples: false,
             assembly: Assembly::Glue,
+            keep_topology: false,
         }
     }
 }

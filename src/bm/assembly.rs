@@ -39,6 +39,8 @@ pub struct Assembled {
     pub slabs: super::slab::SlabStats,
     /// Gaps at singularities grown into (`singular`).
     pub grown: super::singular::SingularStats,
+    /// Enclosed voids that no section witnesses, taken into K (`voids`).
+    pub voids: super::voids::VoidStats,
 }
 
 /// Thickness of a flat zone's slab, relative to the bounding-box diagonal (less where the apex
@@ -85,12 +87,14 @@ fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
 }
 
 /// Assemble K from the cells' kept tetrahedra (positively oriented, `robust::orient3d > 0`); with
-/// `slabs`, flat zones get slabs of tetrahedra.
+/// `slabs`, flat zones get slabs of tetrahedra; with `fill_voids`, enclosed voids that no section
+/// witnesses are filled (before singularities are resolved, and again after growth).
 pub fn assemble(
     arr: &Arrangement,
     pool: &VertexPool,
     results: &[Option<CellResult>],
     slabs: bool,
+    fill_voids: bool,
 ) -> Assembled {
     let mut positions = pool.positions.clone();
     let maps = global_maps(results, &mut positions);
@@ -127,7 +131,15 @@ pub fn assemble(
     if slabs && out.flat_triangles > 0 {
         out.slabs = super::slab::thicken(&mut k, &faces, SLAB_THICKNESS * diag);
     }
+    if fill_voids {
+        out.voids = super::voids::fill(&mut k);
+    }
     resolve_singularities(&mut k, diag, &mut out);
+    if fill_voids {
+        let again = super::voids::fill(&mut k);
+        out.voids.voids_filled += again.voids_filled;
+        out.voids.tets_filled += again.tets_filled;
+    }
     let boundary = boundary_of(&tets);
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;

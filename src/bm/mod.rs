@@ -56,6 +56,7 @@ pub mod singular;
 pub mod slab;
 pub mod thicken;
 pub mod untangle;
+pub mod voids;
 
 use crate::arrangement::Arrangement;
 use crate::error::Result;
@@ -506,7 +507,10 @@ fn assemble_cells(
     report: &mut Report,
 ) -> Solid {
     let slabs = options.delaunay.thicken_flat_zones;
-    let k = report.time("assembly", || assembly::assemble(arr, pool, results, slabs));
+    let fill_voids = !options.delaunay.keep_topology;
+    let k = report.time("assembly", || {
+        assembly::assemble(arr, pool, results, slabs, fill_voids)
+    });
     report.count("nonconforming_faces", k.nonconforming_faces);
     report.count("flat_zone_triangles", k.flat_triangles);
     report.values.insert("flat_zone_area".into(), k.flat_area);
@@ -523,6 +527,8 @@ fn assemble_cells(
     report.count("singular_edge_gaps_grown", k.grown.edge_gaps);
     report.count("singular_vertex_gaps_grown", k.grown.vertex_gaps);
     report.count("singular_growth_tets", k.grown.tets);
+    report.count("voids_filled", k.voids.voids_filled);
+    report.count("void_tets_filled", k.voids.tets_filled);
     report.count("singular_edges", k.singular_edges);
     report.count("singular_vertices", k.singular_vertices);
     if k.nonconforming_faces > 0 {

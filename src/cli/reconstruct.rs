@@ -24,6 +24,7 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
             branching: !args.no_branching,
             cutting: !args.no_cutting,
             thicken_flat_zones: !args.no_thicken,
+            keep_topology: args.keep_topology,
             shared_samples: args.shared_samples,
             assembly: match args.assembly {
                 crate::Assembly::Glue => slice2solid::Assembly::Glue,
