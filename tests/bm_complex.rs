@@ -134,7 +134,7 @@ fn the_solid_is_the_boundary_of_one_conforming_complex() {
 }
 
 /// Voids between the planes that no section witnesses are filled by default; `keep_topology`
-/// keeps the raw result, where hand's boundary has 19 such bubbles (negative volume) besides the
+/// keeps the raw result, where hand's boundary has 12 such bubbles (negative volume) besides the
 /// solid, and the solid is otherwise the same (same sections, same genus of the main component).
 #[test]
 fn unwitnessed_voids_are_filled_unless_the_raw_topology_is_kept() {
@@ -147,8 +147,8 @@ fn unwitnessed_voids_are_filled_unless_the_raw_topology_is_kept() {
         check_mesh(&filled.surface, Some(&sections)),
         check_mesh(&raw.surface, Some(&sections)),
     );
-    assert_eq!((f.components, r.components), (1, 20));
-    assert_eq!(filled.report.counts["voids_filled"], 19);
+    assert_eq!((f.components, r.components), (1, 13));
+    assert_eq!(filled.report.counts["voids_filled"], 12);
     assert_eq!(raw.report.counts["voids_filled"], 0);
     let voids: Vec<f64> = r
         .component_details
@@ -156,7 +156,7 @@ fn unwitnessed_voids_are_filled_unless_the_raw_topology_is_kept() {
         .map(|c| c.volume)
         .filter(|&v| v < 0.0)
         .collect();
-    assert_eq!(voids.len(), 19);
+    assert_eq!(voids.len(), 12);
     let gap = f.volume - (r.volume - voids.iter().sum::<f64>());
     assert!(gap.abs() < 1e-12, "{gap}");
     let main = |c: &slice2solid::eval::check::CheckReport| {

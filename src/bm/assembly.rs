@@ -39,6 +39,8 @@ pub struct Assembled {
     pub slabs: super::slab::SlabStats,
     /// Gaps at singularities grown into (`singular`).
     pub grown: super::singular::SingularStats,
+    /// Whole tetrahedra toggled to lower the number of singularities (`manifold`).
+    pub toggled: super::manifold::ToggleStats,
     /// Enclosed voids that no section witnesses, taken into K (`voids`).
     pub voids: super::voids::VoidStats,
 }
@@ -134,7 +136,8 @@ pub fn assemble(
     if fill_voids {
         out.voids = super::voids::fill(&mut k);
     }
-    resolve_singularities(&mut k, diag, &mut out);
+    let nonconforming = nonconforming_vertices(&faces);
+    resolve_singularities(&mut k, &nonconforming, diag, &mut out);
     if fill_voids {
         let again = super::voids::fill(&mut k);
         out.voids.voids_filled += again.voids_filled;
@@ -155,7 +158,12 @@ pub fn assemble(
 
 /// Singular edges and pinched vertices of ∂K: filled with whole step-1 survivors where a gap of
 /// them closes one (`fill`), then grown into near them (`singular`).
-fn resolve_singularities(k: &mut Triangulation, diag: f64, out: &mut Assembled) {
+fn resolve_singularities(
+    k: &mut Triangulation,
+    nonconforming: &FxHashSet<u32>,
+    diag: f64,
+    out: &mut Assembled,
+) {
     let (edges, vertices) = singularities(&boundary_of(k.kept));
     out.singular_edges_found = edges;
     out.singular_vertices_found = vertices;
@@ -163,7 +171,12 @@ fn resolve_singularities(k: &mut Triangulation, diag: f64, out: &mut Assembled) 
     let in_kept: FxHashSet<[u32; 4]> = k.kept.iter().map(|&t| super::refine::key4(t)).collect();
     k.fillable
         .retain(|t| !in_kept.contains(&super::refine::key4(*t)));
+    let max_toggles = 4 * k.kept.len() + 1000;
+    out.toggled = super::manifold::resolve(k, nonconforming, max_toggles);
     out.grown = super::singular::resolve(k, GROW_ROUNDS, SINGULAR_GROWTH * diag);
+    let again = super::manifold::resolve(k, nonconforming, max_toggles);
+    out.toggled.added += again.added;
+    out.toggled.removed += again.removed;
 }
 
 /// Per face with a section, per cell on it: its section triangles in global ids. A cell without
@@ -279,6 +292,24 @@ pub fn boundary_of(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
     out
 }
 
+/// The vertices of the faces whose two cells triangulate them differently.
+fn nonconforming_vertices(faces: &[Vec<Side>]) -> FxHashSet<u32> {
+    let mut out = FxHashSet::default();
+    for sides in faces {
+        let with_volume: Vec<&Side> = sides.iter().filter(|s| s.has_volume).collect();
+        if with_volume.len() == 2 && sorted_keys(with_volume[0]) != sorted_keys(with_volume[1]) {
+            out.extend(with_volume.iter().flat_map(|s| &s.tris).flat_map(|t| t.tri));
+        }
+    }
+    out
+}
+
+fn sorted_keys(side: &Side) -> Vec<[u32; 3]> {
+    let mut keys: Vec<[u32; 3]> = side.tris.iter().map(|t| sorted3(t.tri)).collect();
+    keys.sort_unstable();
+    keys
+}
+
 /// Non-conforming faces and flat-zone triangles, from the cells' own face triangles (cells
 /// without volume triangulate their faces in 2D and are not compared).
 fn count_faces(faces: &[Vec<Side>], positions: &[[f64; 3]], out: &mut Assembled) {
@@ -286,11 +317,7 @@ fn count_faces(faces: &[Vec<Side>], positions: &[[f64; 3]], out: &mut Assembled)
         let with_volume: Vec<Vec<[u32; 3]>> = sides
             .iter()
             .filter(|s| s.has_volume)
-            .map(|s| {
-                let mut keys: Vec<[u32; 3]> = s.tris.iter().map(|t| sorted3(t.tri)).collect();
-                keys.sort_unstable();
-                keys
-            })
+            .map(sorted_keys)
             .collect();
         if with_volume.len() == 2 && with_volume[0] != with_volume[1] {
             out.nonconforming_faces += 1;

@@ -49,6 +49,7 @@ pub mod cutting;
 pub mod face_overlay;
 pub mod fill;
 pub mod glue;
+pub mod manifold;
 pub mod prune;
 pub mod refine;
 pub mod shared_samples;
@@ -527,6 +528,12 @@ fn assemble_cells(
     report.count("singular_edge_gaps_grown", k.grown.edge_gaps);
     report.count("singular_vertex_gaps_grown", k.grown.vertex_gaps);
     report.count("singular_growth_tets", k.grown.tets);
+    for (round, &(e, v)) in k.grown.per_round.iter().enumerate() {
+        report.count(&format!("singular_round.{round}.edges"), e);
+        report.count(&format!("singular_round.{round}.vertices"), v);
+    }
+    report.count("singular_toggles_added", k.toggled.added);
+    report.count("singular_toggles_removed", k.toggled.removed);
     report.count("voids_filled", k.voids.voids_filled);
     report.count("void_tets_filled", k.voids.tets_filled);
     report.count("singular_edges", k.singular_edges);

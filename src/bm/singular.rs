@@ -20,41 +20,112 @@ pub struct SingularStats {
     pub vertex_gaps: u64,
     pub tets: u64,
     pub points: u64,
+    /// Singular edges and pinched vertices at the start of each round.
+    pub per_round: Vec<(u64, u64)>,
 }
 
 /// Grow K at its singular edges and vertices, up to `rounds` rounds, with split points at
-/// `distance` from the singular simplex (or halfway along shorter edges).
+/// `distance` from the singular simplex (or halfway along shorter edges). A round can expose more
+/// singularities than it resolves (at the split points, where a growth was refused); the state
+/// with the fewest is kept, so growing never leaves ∂K worse than it found it.
 pub fn resolve(t: &mut Triangulation, rounds: usize, distance: f64) -> SingularStats {
     let mut stats = SingularStats::default();
-    for _ in 0..rounds {
+    // (count, the state then — unless it is the last one —, the stats then)
+    let mut best: Option<(u64, Option<Snapshot>, SingularStats)> = None;
+    let mut best_is_current = false;
+    for round in 0..=rounds {
         let boundary = super::assembly::boundary_of(t.kept);
         let (edges, vertices) = super::fill::singular_simplices(&boundary);
-        if edges.is_empty() && vertices.is_empty() {
+        stats
+            .per_round
+            .push((edges.len() as u64, vertices.len() as u64));
+        let count = (edges.len() + vertices.len()) as u64;
+        let last = count == 0 || round == rounds;
+        best_is_current = best.as_ref().is_none_or(|b| count < b.0);
+        if best_is_current {
+            let snapshot = (!last).then(|| Snapshot::of(t));
+            best = Some((count, snapshot, stats.clone()));
+        }
+        if last {
             break;
         }
-        let edge_groups = edge_gaps(t, &edges);
-        let vertex_groups = vertex_gaps(t, &vertices);
-        let n_edge = edge_groups.len();
-        let groups: Vec<Vec<Growth>> = edge_groups.into_iter().chain(vertex_groups).collect();
-        let points = split_points(t.positions, &groups, distance);
-        let g = grow(t, &groups, points);
-        let added: u64 = g.tets_per_group.iter().sum();
-        if added == 0 {
+        if !grow_round(t, &edges, &vertices, distance, &mut stats) {
+            best_is_current = false;
             break;
         }
-        for (i, &n) in g.tets_per_group.iter().enumerate() {
-            if n > 0 {
-                if i < n_edge {
-                    stats.edge_gaps += 1;
-                } else {
-                    stats.vertex_gaps += 1;
-                }
-            }
+    }
+    if !best_is_current {
+        if let Some((_, Some(snapshot), at_best)) = best {
+            snapshot.restore(t);
+            stats = SingularStats {
+                per_round: stats.per_round,
+                ..at_best
+            };
         }
-        stats.tets += added;
-        stats.points += g.points;
     }
     stats
+}
+
+/// One round of growth at the given singular edges and vertices; false when nothing grew.
+fn grow_round(
+    t: &mut Triangulation,
+    edges: &[(u32, u32)],
+    vertices: &[u32],
+    distance: f64,
+    stats: &mut SingularStats,
+) -> bool {
+    let edge_groups = edge_gaps(t, edges);
+    let vertex_groups = vertex_gaps(t, vertices);
+    let n_edge = edge_groups.len();
+    let groups: Vec<Vec<Growth>> = edge_groups.into_iter().chain(vertex_groups).collect();
+    let points = split_points(t.positions, &groups, distance);
+    let g = grow(t, &groups, points);
+    let added: u64 = g.tets_per_group.iter().sum();
+    for (i, &n) in g.tets_per_group.iter().enumerate() {
+        if n > 0 {
+            if i < n_edge {
+                stats.edge_gaps += 1;
+            } else {
+                stats.vertex_gaps += 1;
+            }
+        }
+    }
+    stats.tets += added;
+    stats.points += g.points;
+    added > 0
+}
+
+/// A copy of what growth changes in a triangulation.
+#[derive(Default)]
+struct Snapshot {
+    positions: Vec<[f64; 3]>,
+    planes: Vec<Planes>,
+    kept: Vec<[u32; 4]>,
+    fillable: Vec<[u32; 4]>,
+    external: Vec<[u32; 4]>,
+    internal: FxHashSet<[u32; 3]>,
+}
+
+impl Snapshot {
+    fn of(t: &Triangulation) -> Snapshot {
+        Snapshot {
+            positions: t.positions.clone(),
+            planes: t.planes.clone(),
+            kept: t.kept.clone(),
+            fillable: t.fillable.clone(),
+            external: t.external.clone(),
+            internal: t.internal.clone(),
+        }
+    }
+
+    fn restore(self, t: &mut Triangulation) {
+        *t.positions = self.positions;
+        *t.planes = self.planes;
+        *t.kept = self.kept;
+        *t.fillable = self.fillable;
+        *t.external = self.external;
+        *t.internal = self.internal;
+    }
 }
 
 /// Per growth, the edges from its core to its other vertices, split at `distance` from the core

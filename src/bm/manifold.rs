@@ -1,0 +1,499 @@
+//! Singular edges and pinched vertices of ∂K removed by toggling whole tetrahedra of the
+//! triangulation, each toggle only when it strictly lowers the number of singular simplices
+//! (manifold-preserving region growing, as in surface reconstruction from a Delaunay labelling).
+//!
+//! Toggling a tetrahedron T changes ∂K only at T's four faces, so only the vertices and edges of T
+//! can change status: the count over them is the change of the global count, which every accepted
+//! toggle lowers, so the search ends, and it never makes ∂K worse. A toggle must keep every
+//! section R ∩ P = A: adding T is allowed when each face of T on a plane is inside its section
+//! (a section triangle), removing T when each face of T on a plane has a kept tetrahedron on its
+//! other side (the face stays in R). Tetrahedra lie between the planes, so nothing else of a
+//! section changes. Combinatorial throughout (plane tags, section triangles); no point is added
+//! or moved. What the search cannot lower (a local minimum) is left to growth (`singular`).
+use super::refine::{key3, Planes, Triangulation};
+use crate::fxhash::{FxHashMap, FxHashSet};
+use smallvec::SmallVec;
+
+/// What the search did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ToggleStats {
+    pub added: u64,
+    pub removed: u64,
+}
+
+/// The whole triangulation with a kept flag per tetrahedron, its faces and vertex stars.
+struct Labelled<'a> {
+    tets: Vec<[u32; 4]>,
+    kept: Vec<bool>,
+    /// Per tetrahedron: 0 kept at the start, 1 fillable, 2 external (where it goes back to).
+    origin: Vec<u8>,
+    faces: FxHashMap<[u32; 3], SmallVec<[u32; 2]>>,
+    star: FxHashMap<u32, SmallVec<[u32; 8]>>,
+    planes: &'a [Planes],
+    internal: &'a FxHashSet<[u32; 3]>,
+    nonconforming: &'a FxHashSet<u32>,
+}
+
+/// Toggle tetrahedra around the singular simplices of ∂K while that lowers their number, at most
+/// `max_toggles` times; never at the vertices of faces that two cells triangulate differently
+/// (`nonconforming`).
+pub fn resolve(
+    k: &mut Triangulation,
+    nonconforming: &FxHashSet<u32>,
+    max_toggles: usize,
+) -> ToggleStats {
+    let lists: [&[[u32; 4]]; 3] = [k.kept, k.fillable, k.external];
+    let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
+    let mut stats = ToggleStats::default();
+    let boundary = super::assembly::boundary_of(k.kept);
+    let (edges, vertices) = super::fill::singular_simplices(&boundary);
+    let mut work: Vec<u32> = vertices;
+    work.extend(edges.iter().flat_map(|&(a, b)| [a, b]));
+    for _ in 0..SET_PASSES {
+        let left = l.toggle_singles(work, max_toggles, &mut stats);
+        // local minima of single toggles: a strip of gap tetrahedra joining two fans at a
+        // pinched vertex, or the smallest fan's tetrahedra removed
+        work = Vec::new();
+        for v in left {
+            if l.fans_at(v) > 1 && l.join_or_carve(v, &mut stats) {
+                work.push(v);
+            }
+        }
+        if work.is_empty() {
+            break;
+        }
+    }
+    let (kept, fillable, external) = l.into_lists();
+    (*k.kept, *k.fillable, *k.external) = (kept, fillable, external);
+    stats
+}
+
+/// Rounds of set moves (each followed by single toggles again).
+const SET_PASSES: usize = 4;
+
+impl<'a> Labelled<'a> {
+    /// From the kept, fillable and external tetrahedra.
+    fn new(
+        lists: [&[[u32; 4]]; 3],
+        planes: &'a [Planes],
+        internal: &'a FxHashSet<[u32; 3]>,
+        nonconforming: &'a FxHashSet<u32>,
+    ) -> Labelled<'a> {
+        let mut l = Labelled {
+            tets: Vec::new(),
+            kept: Vec::new(),
+            origin: Vec::new(),
+            faces: FxHashMap::default(),
+            star: FxHashMap::default(),
+            planes,
+            internal,
+            nonconforming,
+        };
+        for (list, origin) in lists.into_iter().zip(0u8..) {
+            for &t in list.iter() {
+                let ti = l.tets.len() as u32;
+                l.tets.push(t);
+                l.kept.push(origin == 0);
+                l.origin.push(origin);
+                for i in 0..4 {
+                    let f = key3(super::complex::outward_face(&t, i));
+                    l.faces.entry(f).or_default().push(ti);
+                    l.star.entry(t[i]).or_default().push(ti);
+                }
+            }
+        }
+        l
+    }
+
+    /// (kept, fillable, external), each unkept tetrahedron back in the list it came from.
+    #[allow(clippy::type_complexity)]
+    fn into_lists(self) -> (Vec<[u32; 4]>, Vec<[u32; 4]>, Vec<[u32; 4]>) {
+        let (mut kept, mut fillable, mut external) = (Vec::new(), Vec::new(), Vec::new());
+        for ((t, k), origin) in self.tets.into_iter().zip(self.kept).zip(self.origin) {
+            match (k, origin) {
+                (true, _) => kept.push(t),
+                (false, 2) => external.push(t),
+                (false, _) => fillable.push(t),
+            }
+        }
+        (kept, fillable, external)
+    }
+
+    /// Single toggles around the vertices of `work` (and those they touch) while they lower the
+    /// count; returns the vertices looked at that are still singular.
+    fn toggle_singles(
+        &mut self,
+        mut work: Vec<u32>,
+        max_toggles: usize,
+        stats: &mut ToggleStats,
+    ) -> Vec<u32> {
+        let mut queued: FxHashSet<u32> = work.iter().copied().collect();
+        let mut seen: FxHashSet<u32> = queued.clone();
+        while let Some(v) = work.pop() {
+            queued.remove(&v);
+            if (stats.added + stats.removed) as usize >= max_toggles {
+                break;
+            }
+            if let Some(t) = self.toggle_one_at(v, stats) {
+                for w in self.tets[t as usize] {
+                    seen.insert(w);
+                    if queued.insert(w) {
+                        work.push(w);
+                    }
+                }
+            }
+        }
+        let mut left: Vec<u32> = seen
+            .into_iter()
+            .filter(|&v| self.vertex_bad(v) > 0)
+            .collect();
+        left.sort_unstable();
+        left
+    }
+
+    /// The first toggle of a tetrahedron on either side of the surface at `v` (toggling any other
+    /// one of its star leaves the surface at v as it is) that lowers the count; additions first
+    /// (they grow towards the sections' solid rather than carve it).
+    fn toggle_one_at(&mut self, v: u32, stats: &mut ToggleStats) -> Option<u32> {
+        let mut order: Vec<u32> = self
+            .surface_at(v)
+            .iter()
+            .flat_map(|f| self.faces[f].iter().copied())
+            .collect();
+        order.sort_unstable_by_key(|&t| (self.kept[t as usize], t));
+        order.dedup();
+        for t in order {
+            if self.try_set(&[t], stats) {
+                return Some(t);
+            }
+        }
+        None
+    }
+
+    /// Toggle every tetrahedron of `set` (each allowed in turn) and keep the change if it lowers
+    /// the count over their vertices and edges; else undo it.
+    fn try_set(&mut self, set: &[u32], stats: &mut ToggleStats) -> bool {
+        let before: u32 = self.badness(set);
+        if before == 0 {
+            return false;
+        }
+        let mut done = 0;
+        while done < set.len() && self.may_toggle(set[done]) {
+            self.kept[set[done] as usize] ^= true;
+            done += 1;
+        }
+        if done == set.len() && self.badness(set) < before {
+            for &t in set {
+                if self.kept[t as usize] {
+                    stats.added += 1;
+                } else {
+                    stats.removed += 1;
+                }
+            }
+            return true;
+        }
+        for &t in &set[..done] {
+            self.kept[t as usize] ^= true;
+        }
+        false
+    }
+
+    /// At a pinched vertex: join two fans by the shortest strip of gap tetrahedra around `v`, or
+    /// carve the smallest fan's kept tetrahedra at `v`, whichever lowers the count first.
+    fn join_or_carve(&mut self, v: u32, stats: &mut ToggleStats) -> bool {
+        let star: Vec<u32> = self.star.get(&v).map(|s| s.to_vec()).unwrap_or_default();
+        let kept: Vec<u32> = star
+            .iter()
+            .copied()
+            .filter(|&t| self.kept[t as usize])
+            .collect();
+        let comps = self.components_at(v, &kept);
+        if comps.len() >= 2 {
+            if let Some(strip) = self.strip_between(v, &star, &comps) {
+                if self.try_set(&strip, stats) {
+                    return true;
+                }
+            }
+        }
+        let mut by_size = comps;
+        by_size.sort_by_key(|c| c.len());
+        by_size.pop();
+        by_size.into_iter().any(|c| self.try_set(&c, stats))
+    }
+
+    /// Components of `tets` (around `v`) through shared faces containing `v`.
+    fn components_at(&self, v: u32, tets: &[u32]) -> Vec<Vec<u32>> {
+        let set: FxHashSet<u32> = tets.iter().copied().collect();
+        let mut comp: FxHashMap<u32, usize> = FxHashMap::default();
+        let mut out: Vec<Vec<u32>> = Vec::new();
+        for &t0 in tets {
+            if comp.contains_key(&t0) {
+                continue;
+            }
+            let id = out.len();
+            out.push(vec![t0]);
+            comp.insert(t0, id);
+            let mut stack = vec![t0];
+            while let Some(t) = stack.pop() {
+                for n in self.neighbours_at(v, t) {
+                    if set.contains(&n) && !comp.contains_key(&n) {
+                        comp.insert(n, id);
+                        out[id].push(n);
+                        stack.push(n);
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Tetrahedra sharing with `t` a face through `v`.
+    fn neighbours_at(&self, v: u32, t: u32) -> SmallVec<[u32; 3]> {
+        let tet = self.tets[t as usize];
+        (0..4)
+            .filter(|&i| tet[i] != v)
+            .flat_map(|i| {
+                let f = key3(super::complex::outward_face(&tet, i));
+                self.faces[&f].iter().copied().filter(move |&o| o != t)
+            })
+            .collect()
+    }
+
+    /// The shortest chain of unkept tetrahedra around `v`, each allowed to be added, from one
+    /// kept component to another.
+    fn strip_between(&self, v: u32, star: &[u32], comps: &[Vec<u32>]) -> Option<Vec<u32>> {
+        let in_first: FxHashSet<u32> = comps[0].iter().copied().collect();
+        let in_other: FxHashSet<u32> = comps[1..].iter().flatten().copied().collect();
+        let usable: FxHashSet<u32> = star
+            .iter()
+            .copied()
+            .filter(|&t| !self.kept[t as usize] && self.may_toggle(t))
+            .collect();
+        let mut from: FxHashMap<u32, u32> = FxHashMap::default();
+        let mut queue = std::collections::VecDeque::new();
+        for &t in &usable {
+            if self
+                .neighbours_at(v, t)
+                .iter()
+                .any(|n| in_first.contains(n))
+            {
+                from.insert(t, t);
+                queue.push_back(t);
+            }
+        }
+        while let Some(t) = queue.pop_front() {
+            if self
+                .neighbours_at(v, t)
+                .iter()
+                .any(|n| in_other.contains(n))
+            {
+                let mut chain = vec![t];
+                let mut j = t;
+                while from[&j] != j {
+                    j = from[&j];
+                    chain.push(j);
+                }
+                return Some(chain);
+            }
+            for n in self.neighbours_at(v, t) {
+                if usable.contains(&n) && !from.contains_key(&n) {
+                    from.insert(n, t);
+                    queue.push_back(n);
+                }
+            }
+        }
+        None
+    }
+
+    fn fans_at(&self, v: u32) -> usize {
+        fans(&self.surface_at(v), v)
+    }
+
+    fn on_a_plane(&self, f: &[u32; 3]) -> bool {
+        let [a, b, c] = f.map(|v| &self.planes[v as usize]);
+        a.iter().any(|p| b.contains(p) && c.contains(p))
+    }
+
+    /// Whether another tetrahedron than `t` on face `f` is kept.
+    fn other_kept(&self, f: &[u32; 3], t: u32) -> bool {
+        self.faces[f]
+            .iter()
+            .any(|&o| o != t && self.kept[o as usize])
+    }
+
+    /// Toggling `t` keeps every section (see the module docs). Where the two cells of a face
+    /// triangulate it differently (a vertex of such a face, or a face with more than two
+    /// tetrahedra), the tetrahedra overlap and nothing is toggled.
+    fn may_toggle(&self, t: u32) -> bool {
+        let tet = self.tets[t as usize];
+        if tet.iter().any(|v| self.nonconforming.contains(v)) {
+            return false;
+        }
+        let adding = !self.kept[t as usize];
+        (0..4).all(|i| {
+            let f = key3(super::complex::outward_face(&tet, i));
+            let owners = self.faces[&f].len();
+            if owners > 2 {
+                return false;
+            }
+            if !self.on_a_plane(&f) {
+                return true;
+            }
+            if adding {
+                self.internal.contains(&f)
+            } else {
+                self.other_kept(&f, t)
+            }
+        })
+    }
+
+    /// The surface triangles of ∂K through vertex `v` (sorted keys).
+    fn surface_at(&self, v: u32) -> SmallVec<[[u32; 3]; 16]> {
+        let mut out = SmallVec::new();
+        for &t in self.star.get(&v).into_iter().flatten() {
+            if !self.kept[t as usize] {
+                continue;
+            }
+            let tet = self.tets[t as usize];
+            for i in 0..4 {
+                if tet[i] == v {
+                    continue;
+                }
+                let f = key3(super::complex::outward_face(&tet, i));
+                if !self.other_kept(&f, t) {
+                    out.push(f);
+                }
+            }
+        }
+        out
+    }
+
+    /// 1 if `v` is pinched, plus its edges with more than two surface triangles.
+    fn vertex_bad(&self, v: u32) -> u32 {
+        self.vertex_and_edges_bad(v, None)
+    }
+
+    /// Whether `v` is pinched, plus those of its edges to `towards` (all if `None`) that have more
+    /// than two surface triangles.
+    fn vertex_and_edges_bad(&self, v: u32, towards: Option<&FxHashSet<u32>>) -> u32 {
+        let tris = self.surface_at(v);
+        let mut bad = u32::from(fans(&tris, v) > 1);
+        let mut count: FxHashMap<u32, u32> = FxHashMap::default();
+        for f in &tris {
+            for &w in f.iter().filter(|&&w| w != v) {
+                *count.entry(w).or_default() += 1;
+            }
+        }
+        // each edge once: from its smaller end
+        bad += count
+            .iter()
+            .filter(|&(&w, &n)| n > 2 && w > v && towards.is_none_or(|s| s.contains(&w)))
+            .count() as u32;
+        bad
+    }
+
+    /// Singular simplices among the vertices and edges of the tetrahedra of `set`.
+    fn badness(&self, set: &[u32]) -> u32 {
+        let verts: FxHashSet<u32> = set.iter().flat_map(|&t| self.tets[t as usize]).collect();
+        verts
+            .iter()
+            .map(|&v| self.vertex_and_edges_bad(v, Some(&verts)))
+            .sum()
+    }
+}
+
+/// Number of fans of the triangles through `v` (connected through shared edges at `v`).
+fn fans(tris: &[[u32; 3]], v: u32) -> usize {
+    let n = tris.len();
+    let mut parent: SmallVec<[usize; 16]> = (0..n).collect();
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    // the first triangle seen at each other vertex w (the edge vw)
+    let mut first: FxHashMap<u32, usize> = FxHashMap::default();
+    for (i, t) in tris.iter().enumerate() {
+        for &w in t.iter().filter(|&&w| w != v) {
+            match first.entry(w) {
+                std::collections::hash_map::Entry::Occupied(e) => {
+                    let (a, b) = (find(&mut parent, i), find(&mut parent, *e.get()));
+                    parent[a] = b;
+                }
+                std::collections::hash_map::Entry::Vacant(e) => {
+                    e.insert(i);
+                }
+            }
+        }
+    }
+    (0..n).filter(|&i| find(&mut parent, i) == i).count()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use smallvec::smallvec;
+
+    /// Octahedron around vertex 0 at the origin split into eight tets, one per octant; vertices
+    /// 1..=6 are ±x, ±y, ±z.
+    fn octants() -> Vec<[u32; 4]> {
+        let (px, nx, py, ny, pz, nz) = (1, 2, 3, 4, 5, 6);
+        let mut out = Vec::new();
+        for x in [px, nx] {
+            for y in [py, ny] {
+                for z in [pz, nz] {
+                    out.push([0, x, y, z]);
+                }
+            }
+        }
+        out
+    }
+
+    fn run(kept: &[usize], planes: Vec<Planes>, internal: &[[u32; 3]]) -> (ToggleStats, usize) {
+        let all = octants();
+        let mut positions = vec![[0.0; 3]; 7];
+        let mut planes = planes;
+        let mut k_kept: Vec<[u32; 4]> = kept.iter().map(|&i| all[i]).collect();
+        let mut fillable: Vec<[u32; 4]> = (0..8)
+            .filter(|i| !kept.contains(i))
+            .map(|i| all[i])
+            .collect();
+        let mut external = Vec::new();
+        let mut internal: FxHashSet<[u32; 3]> = internal.iter().map(|&f| key3(f)).collect();
+        let mut k = Triangulation {
+            positions: &mut positions,
+            planes: &mut planes,
+            kept: &mut k_kept,
+            fillable: &mut fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        let s = resolve(&mut k, &FxHashSet::default(), 100);
+        let b = super::super::assembly::boundary_of(k.kept);
+        let (e, v) = super::super::fill::singular_simplices(&b);
+        (s, e.len() + v.len())
+    }
+
+    #[test]
+    fn two_octants_touching_at_a_vertex_are_made_manifold() {
+        // octants 0 (+x+y+z) and 7 (-x-y-z) touch only at vertex 0
+        let (s, left) = run(&[0, 7], vec![smallvec![]; 7], &[]);
+        assert_eq!(left, 0);
+        assert!(s.added + s.removed > 0);
+    }
+
+    #[test]
+    fn a_toggle_that_would_change_a_section_is_refused() {
+        // the plane z = 0 (tag 9) through 0 and ±x, ±y, with no section: no tet with a face on it
+        // may be added, and the kept ones have no kept tet across it, so none may be removed
+        let mut planes: Vec<Planes> = vec![smallvec![]; 7];
+        for v in [0, 1, 2, 3, 4] {
+            planes[v] = smallvec![9];
+        }
+        let (s, left) = run(&[0, 7], planes, &[]);
+        assert_eq!(s, ToggleStats::default());
+        assert_eq!(left, 1);
+    }
+}
