@@ -162,12 +162,7 @@ impl<'a> Labelled<'a> {
             .collect();
         order.sort_unstable_by_key(|&t| (self.kept[t as usize], t));
         order.dedup();
-        for t in order {
-            if self.try_set(&[t], stats) {
-                return Some(t);
-            }
-        }
-        None
+        order.into_iter().find(|&t| self.try_set(&[t], stats))
     }
 
     /// Toggle every tetrahedron of `set` (each allowed in turn) and keep the change if it lowers
