@@ -166,6 +166,7 @@ pub fn reconstruct(
             thicken_flat_zones: !no_thicken,
             shared_samples,
             assembly,
+            ..Default::default()
         },
         ..Default::default()
     };
