@@ -11,6 +11,7 @@
 //! first; a round fills every singularity that has one, and the rounds repeat on the new boundary
 //! (a fill can pinch elsewhere) up to a bound. What remains is counted by the caller.
 use crate::fxhash::{FxHashMap, FxHashSet};
+use smallvec::SmallVec;
 
 fn key4(mut t: [u32; 4]) -> [u32; 4] {
     t.sort_unstable();
@@ -80,17 +81,40 @@ pub(super) fn singular_simplices(tris: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<u32
     }
     let mut vertices: Vec<u32> = around
         .into_iter()
-        .filter(|(v, ts)| {
-            let links: Vec<Vec<u32>> = ts
-                .iter()
-                .map(|t| t.iter().copied().filter(|w| w != v).collect())
-                .collect();
-            components(&links, 1).len() > 1
-        })
+        .filter(|(v, ts)| fans(ts, *v) > 1)
         .map(|(v, _)| v)
         .collect();
     vertices.sort_unstable();
     (edges, vertices)
+}
+
+/// Number of fans of the triangles through `v` (connected through shared edges at `v`).
+pub(super) fn fans(tris: &[[u32; 3]], v: u32) -> usize {
+    let n = tris.len();
+    let mut parent: SmallVec<[usize; 16]> = (0..n).collect();
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    // the first triangle seen at each other vertex w (the edge vw)
+    let mut first: FxHashMap<u32, usize> = FxHashMap::default();
+    for (i, t) in tris.iter().enumerate() {
+        for &w in t.iter().filter(|&&w| w != v) {
+            match first.entry(w) {
+                std::collections::hash_map::Entry::Occupied(e) => {
+                    let (a, b) = (find(&mut parent, i), find(&mut parent, *e.get()));
+                    parent[a] = b;
+                }
+                std::collections::hash_map::Entry::Vacant(e) => {
+                    e.insert(i);
+                }
+            }
+        }
+    }
+    (0..n).filter(|&i| find(&mut parent, i) == i).count()
 }
 
 /// Components of `items` (each a small list of vertex ids) where two items are adjacent when they

@@ -10,7 +10,7 @@
 //! other side (the face stays in R). Tetrahedra lie between the planes, so nothing else of a
 //! section changes. Combinatorial throughout (plane tags, section triangles); no point is added
 //! or moved. What the search cannot lower (a local minimum) is left to growth (`singular`).
-use super::refine::{key3, Planes, Triangulation};
+use super::refine::{key3, on_a_plane, Planes, Triangulation};
 use crate::fxhash::{FxHashMap, FxHashSet};
 use smallvec::SmallVec;
 
@@ -301,12 +301,7 @@ impl<'a> Labelled<'a> {
     }
 
     fn fans_at(&self, v: u32) -> usize {
-        fans(&self.surface_at(v), v)
-    }
-
-    fn on_a_plane(&self, f: &[u32; 3]) -> bool {
-        let [a, b, c] = f.map(|v| &self.planes[v as usize]);
-        a.iter().any(|p| b.contains(p) && c.contains(p))
+        super::fill::fans(&self.surface_at(v), v)
     }
 
     /// Whether another tetrahedron than `t` on face `f` is kept.
@@ -331,7 +326,7 @@ impl<'a> Labelled<'a> {
             if owners > 2 {
                 return false;
             }
-            if !self.on_a_plane(&f) {
+            if !on_a_plane(self.planes, &f) {
                 return true;
             }
             if adding {
@@ -372,7 +367,7 @@ impl<'a> Labelled<'a> {
     /// than two surface triangles.
     fn vertex_and_edges_bad(&self, v: u32, towards: Option<&FxHashSet<u32>>) -> u32 {
         let tris = self.surface_at(v);
-        let mut bad = u32::from(fans(&tris, v) > 1);
+        let mut bad = u32::from(super::fill::fans(&tris, v) > 1);
         let mut count: FxHashMap<u32, u32> = FxHashMap::default();
         for f in &tris {
             for &w in f.iter().filter(|&&w| w != v) {
@@ -395,35 +390,6 @@ impl<'a> Labelled<'a> {
             .map(|&v| self.vertex_and_edges_bad(v, Some(&verts)))
             .sum()
     }
-}
-
-/// Number of fans of the triangles through `v` (connected through shared edges at `v`).
-fn fans(tris: &[[u32; 3]], v: u32) -> usize {
-    let n = tris.len();
-    let mut parent: SmallVec<[usize; 16]> = (0..n).collect();
-    fn find(p: &mut [usize], mut x: usize) -> usize {
-        while p[x] != x {
-            p[x] = p[p[x]];
-            x = p[x];
-        }
-        x
-    }
-    // the first triangle seen at each other vertex w (the edge vw)
-    let mut first: FxHashMap<u32, usize> = FxHashMap::default();
-    for (i, t) in tris.iter().enumerate() {
-        for &w in t.iter().filter(|&&w| w != v) {
-            match first.entry(w) {
-                std::collections::hash_map::Entry::Occupied(e) => {
-                    let (a, b) = (find(&mut parent, i), find(&mut parent, *e.get()));
-                    parent[a] = b;
-                }
-                std::collections::hash_map::Entry::Vacant(e) => {
-                    e.insert(i);
-                }
-            }
-        }
-    }
-    (0..n).filter(|&i| find(&mut parent, i) == i).count()
 }
 
 #[cfg(test)]

@@ -173,6 +173,12 @@ fn kept_children(
     (on_core && in_sections).then_some(near)
 }
 
+/// The face `f` lies on a plane: its three vertices share that plane's tag.
+pub fn on_a_plane(planes: &[Planes], f: &[u32; 3]) -> bool {
+    let [a, b, c] = f.map(|v| &planes[v as usize]);
+    a.iter().any(|p| b.contains(p) && c.contains(p))
+}
+
 /// Each face of `tet` that lies on a plane (its three vertices share it) is a section triangle.
 pub fn faces_in_sections(
     tet: &[u32; 4],
@@ -181,10 +187,7 @@ pub fn faces_in_sections(
 ) -> bool {
     (0..4).all(|i| {
         let f = super::complex::outward_face(tet, i);
-        let on_plane = planes[f[0] as usize]
-            .iter()
-            .any(|p| f[1..].iter().all(|&v| planes[v as usize].contains(p)));
-        !on_plane || internal.contains(&key3(f))
+        !on_a_plane(planes, &f) || internal.contains(&key3(f))
     })
 }
 

@@ -9,7 +9,7 @@
 //! between two of them is kept near v) or one component with several holes (the two void wedges
 //! of crossing diagrams: the part near v of every gap but the largest is kept). The rounds repeat
 //! on the new boundary up to a bound; what stays singular is counted by the caller.
-use super::refine::{edge, grow, key3, Growth, Planes, Triangulation};
+use super::refine::{edge, grow, key3, on_a_plane, Growth, Planes, Triangulation};
 use crate::fxhash::{FxHashMap, FxHashSet};
 use smallvec::SmallVec;
 
@@ -192,10 +192,7 @@ fn may_grow(
     (0..4).all(|i| {
         let f = super::complex::outward_face(tet, i);
         let through_core = f.iter().any(|v| core.contains(v));
-        let on_plane = planes[f[0] as usize]
-            .iter()
-            .any(|p| f[1..].iter().all(|&v| planes[v as usize].contains(p)));
-        !through_core || !on_plane || internal.contains(&key3(f))
+        !through_core || !on_a_plane(planes, &f) || internal.contains(&key3(f))
     })
 }
 

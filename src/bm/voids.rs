@@ -10,7 +10,7 @@
 //! section witnesses the empty space: a hole, the outside of a contour) or has no tetrahedron on
 //! its other side (the region reaches the space outside every cell's triangulation, or a face the
 //! two cells triangulate differently: conservative).
-use super::refine::{key3, Planes, Triangulation};
+use super::refine::{key3, on_a_plane, Triangulation};
 use crate::fxhash::FxHashMap;
 
 /// What filling did.
@@ -78,11 +78,6 @@ pub fn fill(k: &mut Triangulation) -> VoidStats {
     stats
 }
 
-fn on_a_plane(planes: &[Planes], face: &[u32; 3]) -> bool {
-    let [a, b, c] = face.map(|v| &planes[v as usize]);
-    a.iter().any(|p| b.contains(p) && c.contains(p))
-}
-
 /// Every face (sorted key) with the tetrahedra of `tets` that have it.
 fn faces_of(tets: &[[u32; 4]]) -> FxHashMap<[u32; 3], smallvec::SmallVec<[u32; 2]>> {
     let mut faces: FxHashMap<[u32; 3], smallvec::SmallVec<[u32; 2]>> = FxHashMap::default();
@@ -142,6 +137,7 @@ fn regions(tets: &[[u32; 4]]) -> Regions {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bm::refine::Planes;
     use crate::fxhash::FxHashSet;
     use smallvec::smallvec;
 
