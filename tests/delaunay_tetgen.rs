@@ -213,3 +213,65 @@ fn validator_rejects_broken_triangulations() {
     assert!(rejected(&pts, &inverted), "an inverted tet passed");
     assert!(rejected(&pts, &good[1..]), "a missing tet passed");
 }
+
+/// TetGen sets process-wide predicate filters from each input's bounding box (`exactinit`), so
+/// runs on other threads at the same time (the test harness runs tests in parallel) must not
+/// change a result: the largest cells of hand and Elephant (points on planes, where rounded
+/// orientations are wrong and only the exact fallback decides), run while another thread keeps
+/// starting runs on a random set 2^-20 wide, give the tetrahedra of a run alone (CI once failed
+/// with a facet in four tetrahedra when the oracle ran beside other tests). Without the lock in
+/// `tetgen_delaunay` this test hangs in TetGen (killed after 15 minutes; with the lock it takes
+/// seconds), so a watchdog fails it after 180 s.
+#[test]
+fn tetgen_runs_at_once_on_different_scales_match_runs_alone() {
+    let scaled = |pts: Vec<[f64; 3]>, e: i32| -> Vec<[f64; 3]> {
+        pts.iter().map(|p| p.map(|c| c * f64::powi(2.0, e))).collect()
+    };
+    let tiny = scaled(gen::uniform(40, 11), -20);
+    let alone = |pts: &[[f64; 3]]| sorted(tetgen_delaunay(pts).unwrap());
+    let tiny_alone = alone(&tiny);
+    let bigs: Vec<Vec<[f64; 3]>> = ["hand", "Elephant"]
+        .iter()
+        .flat_map(|name| {
+            let mut cells = cell_point_sets(name);
+            cells.sort_by_key(|c| std::cmp::Reverse(c.len()));
+            cells.truncate(3);
+            cells
+        })
+        .collect();
+    let bigs_alone: Vec<_> = bigs.iter().map(|b| alone(b)).collect();
+    let done = std::sync::atomic::AtomicBool::new(false);
+    // Without the lock TetGen can loop forever on its corrupted mesh: a hang fails the run too.
+    let finished = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let watched = finished.clone();
+    std::thread::spawn(move || {
+        let start = std::time::Instant::now();
+        while !watched.load(std::sync::atomic::Ordering::Relaxed) {
+            if start.elapsed() > std::time::Duration::from_secs(180) {
+                eprintln!("TetGen runs at once did not finish in 180 s (alone: a few seconds)");
+                std::process::exit(1);
+            }
+            std::thread::sleep(std::time::Duration::from_millis(200));
+        }
+    });
+    std::thread::scope(|s| {
+        let tiny_runs = s.spawn(|| {
+            let mut runs = 0;
+            while !done.load(std::sync::atomic::Ordering::Relaxed) {
+                assert!(alone(&tiny) == tiny_alone, "the small set's result changed");
+                runs += 1;
+            }
+            runs
+        });
+        for round in 0..3 {
+            for (k, (big, big_alone)) in bigs.iter().zip(&bigs_alone).enumerate() {
+                let got = tetgen_delaunay(big).unwrap();
+                delaunay_check::check_tets(big, &got, true);
+                assert!(&sorted(got) == big_alone, "round {round}, cell {k}: result changed");
+            }
+        }
+        done.store(true, std::sync::atomic::Ordering::Relaxed);
+        assert!(tiny_runs.join().unwrap() > 20, "the runs did not overlap");
+    });
+    finished.store(true, std::sync::atomic::Ordering::Relaxed);
+}

@@ -3,6 +3,12 @@
 //! (the kernel's convention, see [`super::pred::orient`]) as indices into the input points.
 use super::pred;
 use std::os::raw::c_int;
+use std::sync::Mutex;
+
+/// TetGen is not reentrant: each run sets process-wide predicate filters from its own bounding
+/// box (`exactinit` in `predicates.cxx`), so two runs at once on different boxes decide
+/// orientations with each other's error bounds. Every call holds this lock.
+static TETGEN: Mutex<()> = Mutex::new(());
 
 extern "C" {
     fn s2s_tetgen_delaunay(
@@ -33,6 +39,7 @@ pub fn tetgen_delaunay(points: &[[f64; 3]]) -> crate::Result<Vec<[u32; 4]>> {
     let mut m: c_int = 0;
     let mut qptr: *mut f64 = std::ptr::null_mut();
     let mut nq: c_int = 0;
+    let guard = TETGEN.lock().unwrap_or_else(|p| p.into_inner());
     // SAFETY: the shim reads 3n doubles from a live slice and writes two owned malloc'ed arrays.
     let code = unsafe {
         s2s_tetgen_delaunay(
@@ -45,6 +52,7 @@ pub fn tetgen_delaunay(points: &[[f64; 3]]) -> crate::Result<Vec<[u32; 4]>> {
             1,
         )
     };
+    drop(guard);
     if code != 0 {
         return Err(crate::Error::Geometry(format!(
             "TetGen failed with code {code}"
