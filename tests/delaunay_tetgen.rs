@@ -225,7 +225,9 @@ fn validator_rejects_broken_triangulations() {
 #[test]
 fn tetgen_runs_at_once_on_different_scales_match_runs_alone() {
     let scaled = |pts: Vec<[f64; 3]>, e: i32| -> Vec<[f64; 3]> {
-        pts.iter().map(|p| p.map(|c| c * f64::powi(2.0, e))).collect()
+        pts.iter()
+            .map(|p| p.map(|c| c * f64::powi(2.0, e)))
+            .collect()
     };
     let tiny = scaled(gen::uniform(40, 11), -20);
     let alone = |pts: &[[f64; 3]]| sorted(tetgen_delaunay(pts).unwrap());
@@ -267,7 +269,10 @@ fn tetgen_runs_at_once_on_different_scales_match_runs_alone() {
             for (k, (big, big_alone)) in bigs.iter().zip(&bigs_alone).enumerate() {
                 let got = tetgen_delaunay(big).unwrap();
                 delaunay_check::check_tets(big, &got, true);
-                assert!(&sorted(got) == big_alone, "round {round}, cell {k}: result changed");
+                assert!(
+                    &sorted(got) == big_alone,
+                    "round {round}, cell {k}: result changed"
+                );
             }
         }
         done.store(true, std::sync::atomic::Ordering::Relaxed);

@@ -367,17 +367,6 @@ fn run_cell_with(
             }
             n_branch += n_branch_round as u64;
             n_cut += n_cut_round as u64;
-            if n_cut_round > 0 && std::env::var("BM_DEBUG").is_ok() {
-                for (s, slot) in input.slots.iter().enumerate() {
-                    let k = cut_chains.samples.iter().filter(|c| c.slot == s).count();
-                    if k > 0 {
-                        eprintln!(
-                            "cell {}: face {}: {k} cutting samples",
-                            input.cell, slot.face
-                        );
-                    }
-                }
-            }
             // inserted into the triangulation we have, in one batch (same result as re-triangulating
             // everything)
             let mut chains = branch_chains;
@@ -529,21 +518,6 @@ fn run_cell_with(
     timing.classify += lap(&mut clock);
     let (alive, counts) = prune(&cx, &cl);
     timing.prune += lap(&mut clock);
-    if std::env::var("BM_DEBUG").is_ok() {
-        let mut h: std::collections::BTreeMap<String, (u32, u32, u32)> = Default::default();
-        for (t, ty) in cl.ty.iter().enumerate() {
-            let e = h.entry(format!("{ty:?}")).or_default();
-            e.0 += 1;
-            e.1 += cl.external[t] as u32;
-            e.2 += alive[t] as u32;
-        }
-        eprintln!(
-            "cell {}: {} pts, (count, external, kept) {:?}",
-            input.cell,
-            input.points.len(),
-            h
-        );
-    }
     let mut kept = Vec::new();
     let mut nonplanar = Vec::new();
     let mut fillable = Vec::new();

@@ -185,23 +185,6 @@ fn cutting_edges(
     if cut.is_empty() {
         return Vec::new();
     }
-    if std::env::var("BM_DEBUG").is_ok() {
-        for &(a, b) in &cut {
-            let mut sizes: IdMap<u32, usize> = IdMap::default();
-            for (i, &(_, apex)) in tri_apex.iter().enumerate() {
-                if apex == b {
-                    *sizes.entry(uf.find(i as u32)).or_default() += 1;
-                }
-            }
-            let na = tri_apex.iter().filter(|t| t.1 == a).count();
-            let mut sz: Vec<usize> = sizes.values().copied().collect();
-            sz.sort();
-            eprintln!(
-                "cell {} slot {s}: cutting pair a {a} ({na} triangles), a' {b} in pieces of {sz:?} triangles",
-                input.cell
-            );
-        }
-    }
     inner
         .iter()
         .filter_map(|&(e, t1, t2)| {

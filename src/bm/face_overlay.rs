@@ -23,8 +23,6 @@
 //! Every inconsistency (two ids at one (u,v), a side whose windings are not 0/1 — overlapping or
 //! folded triangles —, inconsistent windings, a chain that cannot be tracked, a panic inside spade)
 //! is an `Err` with the reason: the caller then keeps its per-side output for that face.
-//! `SLICE2SOLID_OVERLAY_DUMP=dir` writes each failing input to `dir` as JSON (with
-//! `SLICE2SOLID_OVERLAY_DUMP_ALL` set, every input), the format of the tests' `testdata`.
 use crate::fxhash::FxHashMap;
 use crate::geom::predicates::orient2d;
 use smallvec::SmallVec;
@@ -125,17 +123,8 @@ fn overlay_layers<S: UvHasher>(
     first_new: u32,
 ) -> Result<Overlay, String> {
     // spade asserts on some inconsistent inputs: keep them from unwinding through the caller
-    let r = std::panic::catch_unwind(|| overlay_inner(uv, a, b, s, ccw_a, first_new))
-        .unwrap_or_else(|_| Err("constrained triangulation panicked".into()));
-    let dump = r.is_err() || std::env::var("SLICE2SOLID_OVERLAY_DUMP_ALL").is_ok();
-    if let (true, Ok(dir)) = (dump, std::env::var("SLICE2SOLID_OVERLAY_DUMP")) {
-        // debugging aid: the failing (or every) input, as JSON, for a unit test
-        let mut pts: Vec<(u32, [f64; 2])> = uv.iter().map(|(&k, &v)| (k, v)).collect();
-        pts.sort_by_key(|p| p.0);
-        let j = serde_json::json!({"uv": pts, "a": a, "b": b, "s": s, "ccw_a": ccw_a});
-        let _ = std::fs::write(format!("{dir}/overlay_{first_new}.json"), j.to_string());
-    }
-    r
+    std::panic::catch_unwind(|| overlay_inner(uv, a, b, s, ccw_a, first_new))
+        .unwrap_or_else(|_| Err("constrained triangulation panicked".into()))
 }
 
 type Cdt = ConstrainedDelaunayTriangulation<Vx>;
@@ -711,7 +700,7 @@ mod tests {
         assert!(o.splits.contains(&((0, 4), vec![6])));
     }
 
-    /// An input recorded from a real face (`SLICE2SOLID_OVERLAY_DUMP`): (u,v), A, B, ccw_a.
+    /// An input recorded from a real face: (u,v), A, B, ccw_a.
     type Recorded = (HashMap<u32, [f64; 2]>, Vec<[u32; 3]>, Vec<[u32; 3]>, bool);
 
     fn recorded(json: &str) -> Recorded {

@@ -275,21 +275,6 @@ pub fn glue(
                 g.nonconforming_faces += 1;
             }
         }
-        if std::env::var("BM_DEBUG").is_ok() {
-            let d: Vec<String> = list
-                .iter()
-                .map(|cs| {
-                    let t = &side(cs).triangles;
-                    format!(
-                        "cell {} {}/{} attached",
-                        cs.0,
-                        t.iter().filter(|t| t.1).count(),
-                        t.len()
-                    )
-                })
-                .collect();
-            eprintln!("glue face {f}: {}", d.join(", "));
-        }
         match attaching.len() {
             0 => {
                 // whole section unattached: a flat zone
@@ -551,50 +536,12 @@ pub fn glue(
         .collect();
     let untangled = super::untangle::untangle(&mut positions, &tris, &moved);
     laps.lap("untangle", &mut g.timings);
-    if std::env::var_os("BM_DEBUG_CROSS").is_some() {
-        debug_crossings(
-            pool,
-            &positions,
-            &before_lift,
-            &tris,
-            &kind,
-            &samples,
-            &copies,
-            &crease_mids,
-        );
-    }
     g.lifts_redirected = untangled.redirected;
     if untangled.unresolved > 0 {
         g.warnings.push(format!(
             "{} displaced vertices still make their triangles cross others (no candidate position was free)",
             untangled.unresolved
         ));
-    }
-    if std::env::var("BM_DEBUG_CROSSINGS").is_ok() {
-        debug_slab_crossings(&positions, &tris, &kind, &slab_vertices, after_thicken);
-    }
-    if std::env::var("BM_DEBUG").is_ok() {
-        let edges = edge_triangles(&tris);
-        let mut hist: std::collections::BTreeMap<String, u32> = Default::default();
-        for (e, l) in &edges {
-            if l.len() != 2 {
-                let mut ks: Vec<String> = l.iter().map(|&i| format!("{:?}", kind[i])).collect();
-                ks.sort();
-                let tags = |v: u32| pool.tags.get(v as usize).map(|t| t.len()).unwrap_or(0);
-                *hist
-                    .entry(format!(
-                        "{} tris, tags {}/{}: {:?}",
-                        l.len(),
-                        tags(e.0),
-                        tags(e.1),
-                        ks
-                    ))
-                    .or_default() += 1;
-            }
-        }
-        for (k, v) in hist.iter().take(40) {
-            eprintln!("  nonmanifold {v} × {k}");
-        }
     }
     if g.pinched_vertices > 0 {
         g.warnings.push(format!(
@@ -672,111 +619,6 @@ pub fn glue(
     };
     laps.lap("compact", &mut g.timings);
     g
-}
-
-/// Debug (`BM_DEBUG_CROSS`): every crossing pair of the glued surface with its triangles' kinds and
-/// where each vertex came from (pool tags, branching sample, unpinch copy, crease midpoint) and how far
-/// it was displaced.
-#[allow(clippy::too_many_arguments)]
-fn debug_crossings(
-    pool: &VertexPool,
-    positions: &[[f64; 3]],
-    before: &[[f64; 3]],
-    tris: &[[u32; 3]],
-    kind: &[Kind],
-    samples: &[(u32, [f64; 3], u32)],
-    copies: &[(u32, u32)],
-    crease_mids: &[(u32, [f64; 3])],
-) {
-    use crate::geom::bvh::{triangle_boxes, Bvh};
-    use crate::geom::tri_tri::mesh_triangles_intersect;
-    let bvh = Bvh::build(triangle_boxes(positions, tris));
-    let what = |v: u32| -> String {
-        let vu = v as usize;
-        let from = if let Some(&(_, o)) = copies.iter().find(|c| c.0 == v) {
-            format!("copy of {o}")
-        } else if let Some(&(_, o)) = crease_mids.iter().find(|c| c.0 == v) {
-            let d = crate::sections::sub(positions[vu], o);
-            format!(
-                "crease mid (moved {:.2e})",
-                crate::sections::dot(d, d).sqrt()
-            )
-        } else if samples.iter().any(|s| s.0 == v) {
-            "sample".to_string()
-        } else if vu < pool.tags.len() {
-            format!("pool tags {:?}", pool.tags[vu])
-        } else {
-            "other".to_string()
-        };
-        let moved = if vu < before.len() && before[vu] != positions[vu] {
-            let d = crate::sections::sub(positions[vu], before[vu]);
-            format!(" moved {:.2e}", crate::sections::dot(d, d).sqrt())
-        } else {
-            String::new()
-        };
-        format!("{v}[{from}{moved}]")
-    };
-    let mut n = 0;
-    for (i, t) in tris.iter().enumerate() {
-        let bb = crate::geom::bvh::Aabb::of_points(&t.map(|w| positions[w as usize]));
-        bvh.for_each_overlap(&bb, |j| {
-            let j = j as usize;
-            if j > i && mesh_triangles_intersect(*t, tris[j], positions) {
-                n += 1;
-                eprintln!(
-                    "cross {i} {:?} ({}) x {j} {:?} ({})",
-                    kind[i],
-                    t.map(what).join(", "),
-                    kind[j],
-                    tris[j].map(what).join(", ")
-                );
-            }
-        });
-    }
-    eprintln!("crossings: {n}");
-    // vertices a welding consumer (rounding to 1e-8) would merge: pinches again
-    let mut used: Vec<u32> = tris.iter().flatten().copied().collect();
-    used.sort_unstable();
-    used.dedup();
-    let mut by_key: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
-    for &v in &used {
-        let key = positions[v as usize].map(|x| (x * 1e8).round() as i64);
-        by_key.entry(key).or_default().push(v);
-    }
-    for l in by_key.values().filter(|l| l.len() > 1) {
-        let ks: Vec<String> = l
-            .iter()
-            .map(|&v| {
-                let mut k: Vec<String> = tris
-                    .iter()
-                    .zip(kind)
-                    .filter(|(t, _)| t.contains(&v))
-                    .map(|(_, k)| format!("{k:?}"))
-                    .collect();
-                k.sort();
-                k.dedup();
-                format!("{} {:?}", what(v), k)
-            })
-            .collect();
-        eprintln!("near-coincident: {}", ks.join(" ~ "));
-    }
-    if let Ok(path) = std::env::var("BM_DEBUG_CROSS_DUMP") {
-        // the whole glued surface, for offline inspection: positions, triangles with kinds
-        let mut out = String::new();
-        for p in positions {
-            out.push_str(&format!("v {:?} {:?} {:?}\n", p[0], p[1], p[2]));
-        }
-        for (t, k) in tris.iter().zip(kind) {
-            out.push_str(&format!("t {} {} {} {:?}\n", t[0], t[1], t[2], k));
-        }
-        for &(c, o) in copies {
-            out.push_str(&format!("c {c} {o}\n"));
-        }
-        for p in before {
-            out.push_str(&format!("b {:?} {:?} {:?}\n", p[0], p[1], p[2]));
-        }
-        let _ = std::fs::write(path, out);
-    }
 }
 
 /// The overlay of a face attached from both sides (`list`: its two (cell, slot) sides), plus the
@@ -987,58 +829,6 @@ fn split_at_edges(
     }
 }
 
-/// BM_DEBUG_CROSSINGS: every crossing pair of the glued surface, with kinds and which vertices
-/// are slab copies (`slab`) or were created after thickening.
-fn debug_slab_crossings(
-    positions: &[[f64; 3]],
-    tris: &[[u32; 3]],
-    kind: &[Kind],
-    slab: &std::ops::Range<u32>,
-    after: u32,
-) {
-    use crate::eval::bvh::{triangle_boxes, Bvh};
-    let boxes = triangle_boxes(positions, tris);
-    let bvh = Bvh::build(boxes.clone());
-    let tol =
-        crate::eval::near_coplanar::NEAR_COPLANAR_RELATIVE_TOLERANCE * bbox_diagonal(positions);
-    let tag = |v: u32| {
-        if slab.contains(&v) {
-            format!("{v}s")
-        } else if v >= after {
-            format!("{v}n")
-        } else {
-            format!("{v}")
-        }
-    };
-    for (i, t) in tris.iter().enumerate() {
-        let b = &boxes[i];
-        let grown = crate::eval::bvh::Aabb {
-            lo: b.lo.map(|x| x - 2.0 * tol),
-            hi: b.hi.map(|x| x + 2.0 * tol),
-        };
-        bvh.for_each_overlap(&grown, |j| {
-            let j = j as usize;
-            let u = tris[j];
-            let pts = |t: [u32; 3]| t.map(|v| positions[v as usize]);
-            let cross = j > i && crate::eval::tri_tri::mesh_triangles_intersect(*t, u, positions);
-            let overlap = j > i
-                && !cross
-                && crate::eval::near_coplanar::overlapping_near_coplanar(pts(*t), pts(u), tol);
-            if cross || overlap {
-                eprintln!(
-                    "{} {:?} {:?} × {:?} {:?} at {:?}",
-                    if cross { "crossing" } else { "overlap" },
-                    kind[i],
-                    t.map(tag),
-                    kind[j],
-                    tris[j].map(tag),
-                    positions[t[0] as usize]
-                );
-            }
-        });
-    }
-}
-
 /// Diagonal of the bounding box of `positions`.
 fn bbox_diagonal(positions: &[[f64; 3]]) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
@@ -1128,17 +918,6 @@ fn collapse_micro_edges(
         tets.retain(|t| (0..4).all(|i| (i + 1..4).all(|j| t[i] != t[j])));
         done += 1;
     }
-}
-
-fn edge_triangles(tris: &[[u32; 3]]) -> HashMap<(u32, u32), Vec<usize>> {
-    let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
-    for (i, t) in tris.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            edges.entry((a.min(b), a.max(b))).or_default().push(i);
-        }
-    }
-    edges
 }
 
 pub(super) fn sorted(mut t: [u32; 3]) -> [u32; 3] {
@@ -1761,6 +1540,17 @@ fn lift_samples(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn edge_triangles(tris: &[[u32; 3]]) -> HashMap<(u32, u32), Vec<usize>> {
+        let mut edges: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+        for (i, t) in tris.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.entry((a.min(b), a.max(b))).or_default().push(i);
+            }
+        }
+        edges
+    }
 
     #[test]
     fn micro_edge_is_collapsed_and_the_surface_stays_closed() {

@@ -35,8 +35,8 @@
 //! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
 //! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
 //! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
-//! `Options::delaunay` switches branching and cutting samples and flat-zone thickening off; `BM_DEBUG`
-//! prints per-cell diagnostics (it changes no result).
+//! `Options::delaunay` switches branching and cutting samples and flat-zone thickening off. No part of
+//! the engine reads environment variables: every switch is a typed option.
 pub mod assembly;
 pub mod branching;
 pub mod cell;

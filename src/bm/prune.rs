@@ -29,12 +29,7 @@ pub struct PruneCounts {
 
 /// Returns the kept tets (`true`) and the counts.
 pub fn prune(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts) {
-    let (a, c, why) = prune_why(cx, cl);
-    if std::env::var_os("BM_DEBUG").is_some() {
-        for l in debug_voids(cx, cl, &a, &why) {
-            eprintln!("prune: {l}");
-        }
-    }
+    let (a, c, _why) = prune_why(cx, cl);
     (a, c)
 }
 
@@ -511,7 +506,7 @@ fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32, strict: bool) 
     }
 }
 
-/// Debug (`BM_DEBUG`): face-connected groups of removed tets that the complex and grounded
+/// Diagnostic: face-connected groups of removed tets that the complex and grounded
 /// triangles close off (voids of the solid), with each tet's type, removal reason (see
 /// `prune_why`), masks and neighbours. Should be empty after `fill_cavities`.
 pub fn debug_voids(cx: &Complex, cl: &Classified, alive: &[bool], why: &[u8]) -> Vec<String> {

@@ -118,33 +118,6 @@ pub(super) fn thicken(
                         (merge_length(positions, kind, &edges, &c, z.cells[k].0), k)
                     })
                     .fold((f64::NEG_INFINITY, 0), |a, b| if b.0 > a.0 { b } else { a });
-                if std::env::var("BM_DEBUG_THICKEN").is_ok() {
-                    let total: f64 = boundary(&comp)
-                        .iter()
-                        .map(|&(a, b)| {
-                            let d = sub(positions[a as usize], positions[b as usize]);
-                            dot(d, d).sqrt()
-                        })
-                        .sum();
-                    let ls: Vec<f64> = (0..z.cells.len())
-                        .map(|k| {
-                            let c = oriented(&comp, k);
-                            merge_length(positions, kind, &edges, &c, z.cells[k].0)
-                        })
-                        .collect();
-                    for (a, b) in boundary(&comp) {
-                        let ks: Vec<Kind> = edges
-                            .get(&(a.min(b), a.max(b)))
-                            .map(|l| l.iter().map(|&i| kind[i]).collect())
-                            .unwrap_or_default();
-                        eprintln!("  rim edge {a}-{b}: {ks:?}");
-                    }
-                    eprintln!(
-                        "thicken face {}: component of {} triangles, rim {total:.3e}, merge lengths {ls:?}",
-                        z.face,
-                        comp.len()
-                    );
-                }
                 pieces.push((best.1, oriented(&comp, best.1)));
             }
         } else {
@@ -545,12 +518,6 @@ fn apply(
     scale: f64,
     diag: f64,
 ) -> Result<(f64, f64), String> {
-    if std::env::var("BM_DEBUG_THICKEN").is_ok() {
-        eprintln!(
-            "thicken face {face} into cell {cell}, {} triangles, δ × {scale}",
-            z.len()
-        );
-    }
     let mut vz: Vec<u32> = z.iter().flatten().copied().collect();
     vz.sort_unstable();
     vz.dedup();
@@ -692,7 +659,6 @@ fn crossings(
     let tbox = |t: [u32; 3]| Aabb::of_points(&t.map(|v| positions[v as usize]));
     let is_changed: FxHashSet<usize> = changed.iter().copied().collect();
     let pts = |t: [u32; 3]| t.map(|v| positions[v as usize]);
-    let debug = std::env::var("BM_DEBUG_THICKEN").is_ok();
     // the pairs of one changed triangle (independent of the others: counted in parallel)
     let count = |&i: &usize| -> usize {
         let t = tris[i];
@@ -710,23 +676,12 @@ fn crossings(
             }
             let cross = mesh_triangles_intersect(t, u, positions);
             if cross || overlapping_near_coplanar(pts(t), pts(u), tol) {
-                if debug {
-                    eprintln!(
-                        "  thicken: {} {i} {t:?} × {j} {u:?} {:?}",
-                        if cross { "crossing" } else { "overlap" },
-                        pts(t)
-                    );
-                }
                 n += 1;
             }
         });
         n
     };
-    if debug {
-        changed.iter().map(count).sum()
-    } else {
-        changed.par_iter().map(count).sum()
-    }
+    changed.par_iter().map(count).sum()
 }
 
 #[cfg(test)]

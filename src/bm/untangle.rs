@@ -163,13 +163,6 @@ pub fn untangle(
                 }
                 positions[v as usize] = c;
                 let n = crossings(positions, v);
-                if std::env::var_os("BM_DEBUG_UNTANGLE").is_some() {
-                    eprintln!(
-                        "untangle {v}: candidate {:?} (from {:?}) crosses {n}",
-                        sub(c, origin),
-                        origin
-                    );
-                }
                 if n < best.0 {
                     best = (n, c);
                     if n == 0 {
