@@ -29,7 +29,8 @@
 //!   (mean position, union of tags), faces left with fewer than three vertices and cells left
 //!   with no face are dropped, before the pieces are built.
 //! * `pieces`: contour vertices are classified by the exact sign of `n·p + d` at their 3D point;
-//!   planes that share their line with another plane on the section's plane are decided through one
+//!   planes that share their line with another plane on the section's plane (exactly, or after the
+//!   merge: two arrangement vertices on all three, a fan's axis) are decided through one
 //!   representative, planes that do not cut the section's plane inside the box have a constant side.
 //!   A contour edge crossing a plane gets one pool vertex tagged with both planes; a crossing or a
 //!   contour vertex lying on two planes of different lines is the arrangement vertex (same id).

@@ -33,7 +33,9 @@ struct FaceWork {
 
 pub(super) struct Ctx<'a> {
     pub arr: &'a mut Arrangement,
-    triples: HashMap<[u32; 3], VertexId>,
+    /// Per sorted plane triple: an arrangement vertex on all three, and how many there are (two or
+    /// more: the three planes share an arrangement edge, a line).
+    triples: HashMap<[u32; 3], (VertexId, u32)>,
     pub warnings: Vec<String>,
     /// (section plane, pool id) of every section point that lies on another plane.
     line_points: Vec<(u32, VertexId)>,
@@ -82,19 +84,38 @@ impl<'a> Ctx<'a> {
     fn arrangement_vertex(&self, i: u32, zeros: &[u32]) -> Option<VertexId> {
         for a in 0..zeros.len() {
             for b in a + 1..zeros.len() {
-                let mut t = [i, zeros[a], zeros[b]];
                 // Only three planes meeting in a point identify a vertex (not three through a line).
-                let n = |p: u32| self.arr.planes[p as usize].plane.normal;
-                if super::exact::sign_det3(n(t[0]), n(t[1]), n(t[2])) == 0 {
+                if self.same_line(i, zeros[a], zeros[b]) {
                     continue;
                 }
+                let mut t = [i, zeros[a], zeros[b]];
                 t.sort_unstable();
-                if let Some(&v) = self.triples.get(&t) {
+                if let Some(&(v, _)) = self.triples.get(&t) {
                     return Some(v);
                 }
             }
         }
         None
+    }
+
+    /// Whether three distinct planes pass through one line: exactly (rank 2), or combinatorially,
+    /// when two arrangement vertices lie on all three. The second is what a pencil of planes is
+    /// after rounding (a rotational fan: planes through one axis whose equations, rounded, meet in
+    /// points scattered along it, merged into its two ends): treating its planes as one line makes a
+    /// contour cross it at ONE vertex tagged with every plane of the pencil, not at one vertex per
+    /// plane, ulps apart, each on two planes (a cell between two of them would see a cloud of
+    /// near-duplicates of which one is on both its planes).
+    fn same_line(&self, i: u32, j: u32, k: u32) -> bool {
+        let mut t = [i, j, k];
+        t.sort_unstable();
+        if self.triples.get(&t).is_some_and(|&(_, n)| n >= 2) {
+            return true;
+        }
+        let eq = |p: u32| {
+            let p = &self.arr.planes[p as usize].plane;
+            [p.normal[0], p.normal[1], p.normal[2], p.offset]
+        };
+        rank2(eq(i), eq(j), eq(k))
     }
 
     fn uv(&self, v: VertexId, plane: u32) -> [f64; 2] {
@@ -116,7 +137,10 @@ pub(super) fn build_pieces(
         for a in 0..n {
             for b in a + 1..n {
                 for c in b + 1..n {
-                    triples.insert([tags[a], tags[b], tags[c]], v as VertexId);
+                    triples
+                        .entry([tags[a], tags[b], tags[c]])
+                        .and_modify(|e: &mut (VertexId, u32)| e.1 += 1)
+                        .or_insert((v as VertexId, 1));
                 }
             }
         }
@@ -168,19 +192,6 @@ enum Effect {
 fn plane_effects(ctx: &Ctx, i: u32, face_key: &HashMap<Vec<i8>, u32>) -> Vec<Effect> {
     let np = ctx.arr.planes.len();
     let keys: Vec<&Vec<i8>> = face_key.keys().collect();
-    let eq: Vec<[f64; 4]> = ctx
-        .arr
-        .planes
-        .iter()
-        .map(|p| {
-            [
-                p.plane.normal[0],
-                p.plane.normal[1],
-                p.plane.normal[2],
-                p.plane.offset,
-            ]
-        })
-        .collect();
     let mut eff = vec![Effect::Own; np];
     let mut reps: Vec<u32> = Vec::new();
     for j in 0..np {
@@ -195,7 +206,7 @@ fn plane_effects(ctx: &Ctx, i: u32, face_key: &HashMap<Vec<i8>, u32>) -> Vec<Eff
         // Same line as an earlier representative: rank [P_i; P_r; P_j] = 2.
         let mut found = None;
         for &r in &reps {
-            if rank2(eq[i as usize], eq[r as usize], eq[j]) {
+            if ctx.same_line(i, r, j as u32) {
                 // The two planes' sides on P_i agree or are opposite on every face.
                 let k = keys.iter().find(|k| k[j] != 0 && k[r as usize] != 0);
                 let f = k.map_or(1, |k| k[j] * k[r as usize]);

@@ -271,7 +271,10 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
                 }
                 let t = 0.5 * (a + b);
                 let q = [q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1])];
-                let inside = slot.locator.locate(q) == super::cell_input::Where::Inside;
+                let inside = slot
+                    .locator
+                    .locate_clear(q, super::chains::SAMPLE_CLEARANCE * h)
+                    == super::cell_input::Where::Inside;
                 let (b0, b1) = (sites[m0].0, sites[m1].0);
                 on_edge.insert(
                     2 * (j * w + i) + dir,

@@ -81,6 +81,34 @@ impl SectionLocator {
         }
     }
 
+    /// [`SectionLocator::locate`], with a point closer than `margin` to the boundary on it. A
+    /// diagram sample is a point strictly inside a section; one a rounding error off an edge (a grid
+    /// line along a face side that lies on another plane: a fan's axis, the lines of axis-aligned
+    /// planes) would be a point on two planes tagged with one, which no kernel can place
+    /// consistently.
+    pub fn locate_clear(&self, q: [f64; 2], margin: f64) -> Where {
+        match self.locate(q) {
+            Where::Inside if self.near_boundary(q, margin) => Where::Boundary,
+            w => w,
+        }
+    }
+
+    /// Whether some boundary edge is closer than `d` to `q` (floats: a sampling policy, not a
+    /// topological decision).
+    fn near_boundary(&self, q: [f64; 2], d: f64) -> bool {
+        if self.edges.is_empty() {
+            return false;
+        }
+        let nb = self.bins.len();
+        let bin = |y: f64| (((y - self.y0) * self.inv_dy).max(0.0) as usize).min(nb - 1);
+        (bin(q[1] - d)..=bin(q[1] + d)).any(|b| {
+            self.bins[b].iter().any(|&i| {
+                let (a, c) = self.edges[i as usize];
+                segment_distance(q, a, c) < d
+            })
+        })
+    }
+
     pub fn locate(&self, q: [f64; 2]) -> Where {
         if self.edges.is_empty() || q[1] < self.y0 || q[1] > self.y1 {
             return Where::Outside;
@@ -112,6 +140,19 @@ impl SectionLocator {
             Where::Outside
         }
     }
+}
+
+/// Distance from `q` to segment `ab`.
+fn segment_distance(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (ex, ey) = (a[0] + t * dx - q[0], a[1] + t * dy - q[1]);
+    (ex * ex + ey * ey).sqrt()
 }
 
 /// One face of the cell that carries a section.
@@ -340,5 +381,11 @@ mod tests {
         assert_eq!(loc.locate([1.0, 0.0]), Where::Boundary);
         assert_eq!(loc.locate([0.5, 1.0]), Where::Boundary);
         assert_eq!(loc.locate([1.75, 0.5]), Where::Inside);
+        // a rounding error inside the outer edge x = 0 is on it for a sample
+        assert_eq!(loc.locate([1e-17, 1.0]), Where::Inside);
+        assert_eq!(loc.locate_clear([1e-17, 1.0], 1e-9), Where::Boundary);
+        assert_eq!(loc.locate_clear([0.25, 1.0], 1e-9), Where::Inside);
+        assert_eq!(loc.locate_clear([0.25, 1.0], 0.3), Where::Boundary);
+        assert_eq!(loc.locate_clear([1.0, 1.0], 0.3), Where::Outside);
     }
 }

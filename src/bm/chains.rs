@@ -16,6 +16,11 @@ use super::cutting::{diagram_point_across, Thinning};
 use crate::delaunay::Delaunay;
 use crate::sections::{dot, sub};
 
+/// Diagram samples closer than this fraction of the sampling step (grid spacing, or the edge a
+/// sample was found across) to the section boundary are not taken: such a point is on the boundary
+/// up to rounding, where the kernel would see it on one plane only.
+pub(super) const SAMPLE_CLEARANCE: f64 = 1e-6;
+
 /// Which diagram a sample lies on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Kind {

@@ -99,7 +99,7 @@ pub fn sample_chains(
             }
             let cand = diagram_point_near_edge(input, s, n, (p, q), (a, b))
                 .filter(|&uv| {
-                    slot.locator.locate(uv) == Where::Inside
+                    slot.locator.locate_clear(uv, clearance(slot, p, q)) == Where::Inside
                         && not_dominated(input, s, n, &d.sites, &d.index, uv, a)
                 })
                 .map(|uv| DiagramSample {
@@ -283,6 +283,13 @@ fn join_around_apex(
             }
         }
     }
+}
+
+/// How far a sample found across edge (p, q) must be from the section boundary: a millionth of
+/// the edge (see [`super::cell_input::SectionLocator::locate_clear`]).
+fn clearance(slot: &super::cell_input::Slot, p: u32, q: u32) -> f64 {
+    let (a, b) = (slot.uv[p as usize], slot.uv[q as usize]);
+    super::chains::SAMPLE_CLEARANCE * (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
 /// A point of M(a) ∩ M(b) near grounded edge (p, q) of slot `s`, in the slot's (u,v): the root of

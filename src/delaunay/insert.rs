@@ -323,6 +323,47 @@ impl Delaunay {
         true
     }
 
+    /// Whether the cavity is a ball that keeps every vertex: its boundary a closed 2-manifold (each
+    /// edge on exactly two facets) of Euler characteristic 2, with every vertex of the cavity's
+    /// tetrahedra on it. The star test decides the finite facets by orientation; hull facets (with
+    /// the infinite vertex) it can only test against an inner point, so a tag-rule cavity that
+    /// wraps around the hull can pass it and would be glued into a broken structure (seen on a
+    /// fan's axis when the arrangement left near-duplicate points there: a segfault). Only a tag
+    /// rule can make such a cavity (the perturbed float predicates always give a ball), so it is
+    /// checked only then. Combinatorial, so exact.
+    fn cavity_is_ball(&mut self, boundary: &[BoundaryFacet], cavity: &[u32]) -> bool {
+        let mut edges: Vec<(u32, u32)> = Vec::with_capacity(3 * boundary.len());
+        let mut verts: Vec<u32> = Vec::with_capacity(boundary.len() + 4);
+        for b in boundary {
+            let f: Vec<u32> = (0..4)
+                .filter(|&k| k != b.i as usize)
+                .map(|k| b.v[k])
+                .collect();
+            for k in 0..3 {
+                let (x, y) = (f[k], f[(k + 1) % 3]);
+                edges.push((x.min(y), x.max(y)));
+            }
+            verts.extend_from_slice(&f);
+        }
+        edges.sort_unstable();
+        verts.sort_unstable();
+        verts.dedup();
+        let manifold = edges.chunks(2).all(|p| p.len() == 2 && p[0] == p[1])
+            && edges.windows(3).all(|w| !(w[0] == w[1] && w[1] == w[2]));
+        let euler = verts.len() as i64 - (edges.len() / 2) as i64 + boundary.len() as i64;
+        let keeps_vertices = cavity.iter().all(|&c| {
+            self.tds.tets[c as usize]
+                .v
+                .iter()
+                .all(|w| verts.binary_search(w).is_ok())
+        });
+        let ball = manifold && euler == 2 && keeps_vertices;
+        if !ball {
+            self.inconsistent = true;
+        }
+        ball
+    }
+
     /// `Err(w)` when finite vertex `w` of `t` is at position `q`.
     #[inline]
     fn same_position(&self, t: u32, q: P) -> Result<(), u32> {
@@ -469,7 +510,11 @@ impl Delaunay {
                 });
             }
         }
-        if TAGGED && (boundary.is_empty() || !self.cavity_is_star(&boundary, &outside)) {
+        if TAGGED
+            && (boundary.is_empty()
+                || !self.cavity_is_star(&boundary, &outside)
+                || (self.rule_decided.get() && !self.cavity_is_ball(&boundary, &cavity)))
+        {
             // leave the triangulation as it was (valid, without `v`): a non-star cavity, or one
             // that swallowed everything (tag rules contradicting the float predicates on a fan's
             // common line), would break the structure; the caller learns of it from
