@@ -15,6 +15,7 @@ use super::exact::{dot_plus, sign_dot_plus};
 use super::{polygon_area, Arrangement, ArrangementOptions, PlaneTags, SectionPiece, VertexId};
 use crate::error::Result;
 use crate::fxhash::FxHashMap as HashMap;
+use crate::geom::segment_distance_2d;
 use crate::sections::{Contour, Region, Sections};
 use smallvec::SmallVec;
 use std::cmp::Ordering;
@@ -626,11 +627,8 @@ fn trace_face(ctx: &mut Ctx, i: u32, f: u32, w: &FaceWork, region: &Region) -> V
                 ));
                 (0..nc)
                     .min_by(|&a, &b| {
-                        seg_dist(xuv, cuv[a], cuv[(a + 1) % nc]).total_cmp(&seg_dist(
-                            xuv,
-                            cuv[b],
-                            cuv[(b + 1) % nc],
-                        ))
+                        segment_distance_2d(xuv, cuv[a], cuv[(a + 1) % nc])
+                            .total_cmp(&segment_distance_2d(xuv, cuv[b], cuv[(b + 1) % nc]))
                     })
                     .unwrap_or(0)
             }
@@ -714,18 +712,6 @@ fn trace_face(ctx: &mut Ctx, i: u32, f: u32, w: &FaceWork, region: &Region) -> V
         loops.push(lp);
     }
     loops
-}
-
-fn seg_dist(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let d = [b[0] - a[0], b[1] - a[1]];
-    let len2 = d[0] * d[0] + d[1] * d[1];
-    let t = if len2 > 0.0 {
-        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let q = [a[0] + t * d[0] - p[0], a[1] + t * d[1] - p[1]];
-    (q[0] * q[0] + q[1] * q[1]).sqrt()
 }
 
 fn point_in_loop(p: [f64; 2], q: &[[f64; 2]]) -> bool {

@@ -104,7 +104,7 @@ impl SectionLocator {
         (bin(q[1] - d)..=bin(q[1] + d)).any(|b| {
             self.bins[b].iter().any(|&i| {
                 let (a, c) = self.edges[i as usize];
-                segment_distance(q, a, c) < d
+                crate::geom::segment_distance_2d(q, a, c) < d
             })
         })
     }
@@ -140,19 +140,6 @@ impl SectionLocator {
             Where::Outside
         }
     }
-}
-
-/// Distance from `q` to segment `ab`.
-fn segment_distance(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let l2 = dx * dx + dy * dy;
-    let t = if l2 > 0.0 {
-        (((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (ex, ey) = (a[0] + t * dx - q[0], a[1] + t * dy - q[1]);
-    (ex * ex + ey * ey).sqrt()
 }
 
 /// One face of the cell that carries a section.

@@ -4,3 +4,16 @@
 pub mod bvh;
 pub mod predicates;
 pub mod tri_tri;
+
+/// Distance from `q` to the segment `ab` in the plane (a construction, in floats).
+pub fn segment_distance_2d(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    let t = if len2 > 0.0 {
+        (((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let e = [a[0] + t * d[0] - q[0], a[1] + t * d[1] - q[1]];
+    (e[0] * e[0] + e[1] * e[1]).sqrt()
+}
