@@ -335,10 +335,8 @@ impl Delaunay {
         let mut edges: Vec<(u32, u32)> = Vec::with_capacity(3 * boundary.len());
         let mut verts: Vec<u32> = Vec::with_capacity(boundary.len() + 4);
         for b in boundary {
-            let f: Vec<u32> = (0..4)
-                .filter(|&k| k != b.i as usize)
-                .map(|k| b.v[k])
-                .collect();
+            // the facet: the three vertices other than the new one (at `b.i`)
+            let f: [u32; 3] = std::array::from_fn(|k| b.v[(b.i as usize + 1 + k) & 3]);
             for k in 0..3 {
                 let (x, y) = (f[k], f[(k + 1) % 3]);
                 edges.push((x.min(y), x.max(y)));
