@@ -9,7 +9,9 @@
 //! cycles, paper Fig. 12a), counted here; resolving them inside K is the next step of
 //! `docs/design/conforming-complex.md`. This replaces `glue` when `Assembly::Complex` is chosen.
 use super::cell::CellResult;
+use super::manifold::ToggleStats;
 use super::refine::{Planes, Triangulation};
+use super::singular::{EdgeGaps, SingularStats, Snapshot};
 use super::slab::{FaceTri, Side};
 use crate::arrangement::Arrangement;
 use crate::arrangement::VertexPool;
@@ -173,10 +175,46 @@ fn resolve_singularities(
         .retain(|t| !in_kept.contains(&super::refine::key4(*t)));
     let max_toggles = 4 * k.kept.len() + 1000;
     out.toggled = super::manifold::resolve(k, nonconforming, max_toggles);
-    out.grown = super::singular::resolve(k, GROW_ROUNDS, SINGULAR_GROWTH * diag);
-    let again = super::manifold::resolve(k, nonconforming, max_toggles);
-    out.toggled.added += again.added;
-    out.toggled.removed += again.removed;
+    // Growth at edges near them only (nothing far from them changes, but it can be refused
+    // where a whole gap would fit) or by whole gap tetrahedra (which can pinch K far from the
+    // edge): neither is better on every input, so both orders run from the same K, each followed
+    // by the toggles, and the one leaving fewer singular simplices (ties: fewer points) stays.
+    let start = Snapshot::of(k);
+    let mut best: Option<((u64, u64), Snapshot, SingularStats, ToggleStats)> = None;
+    for (i, order) in [
+        [EdgeGaps::NearEdge, EdgeGaps::Whole],
+        [EdgeGaps::Whole, EdgeGaps::NearEdge],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        if i > 0 {
+            start.clone().restore(k);
+        }
+        let mut grown = SingularStats::default();
+        for how in order {
+            grown.add(&super::singular::resolve(
+                k,
+                GROW_ROUNDS,
+                SINGULAR_GROWTH * diag,
+                how,
+            ));
+        }
+        let toggled = super::manifold::resolve(k, nonconforming, max_toggles);
+        let (edges, vertices) = singularities(&boundary_of(k.kept));
+        let score = (edges + vertices, grown.points);
+        if best.as_ref().is_none_or(|b| score < b.0) {
+            best = Some((score, Snapshot::of(k), grown, toggled));
+        }
+        if score.0 == 0 {
+            break;
+        }
+    }
+    let (_, state, grown, toggled) = best.expect("two orders ran");
+    state.restore(k);
+    out.grown = grown;
+    out.toggled.added += toggled.added;
+    out.toggled.removed += toggled.removed;
 }
 
 /// Per face with a section, per cell on it: its section triangles in global ids. A cell without

@@ -24,11 +24,37 @@ pub struct SingularStats {
     pub per_round: Vec<(u64, u64)>,
 }
 
+/// How a gap at a singular edge is grown into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeGaps {
+    /// Whole tetrahedra where every tetrahedron of the gap may be kept (no new points; but a
+    /// whole tetrahedron reaches vertices far from the edge and can pinch K there).
+    Whole,
+    /// Only the part near the edge (split points at `distance`): nothing far from it changes.
+    NearEdge,
+}
+
+impl SingularStats {
+    /// The counts of a later pass added in; its rounds follow this one's.
+    pub fn add(&mut self, later: &SingularStats) {
+        self.edge_gaps += later.edge_gaps;
+        self.vertex_gaps += later.vertex_gaps;
+        self.tets += later.tets;
+        self.points += later.points;
+        self.per_round.extend_from_slice(&later.per_round);
+    }
+}
+
 /// Grow K at its singular edges and vertices, up to `rounds` rounds, with split points at
 /// `distance` from the singular simplex (or halfway along shorter edges). A round can expose more
 /// singularities than it resolves (at the split points, where a growth was refused); the state
 /// with the fewest is kept, so growing never leaves ∂K worse than it found it.
-pub fn resolve(t: &mut Triangulation, rounds: usize, distance: f64) -> SingularStats {
+pub fn resolve(
+    t: &mut Triangulation,
+    rounds: usize,
+    distance: f64,
+    edge_gaps: EdgeGaps,
+) -> SingularStats {
     let mut stats = SingularStats::default();
     // (count, the state then — unless it is the last one —, the stats then)
     let mut best: Option<(u64, Option<Snapshot>, SingularStats)> = None;
@@ -49,7 +75,7 @@ pub fn resolve(t: &mut Triangulation, rounds: usize, distance: f64) -> SingularS
         if last {
             break;
         }
-        if !grow_round(t, &edges, &vertices, distance, &mut stats) {
+        if !grow_round(t, &edges, &vertices, distance, edge_gaps, &mut stats) {
             best_is_current = false;
             break;
         }
@@ -72,9 +98,10 @@ fn grow_round(
     edges: &[(u32, u32)],
     vertices: &[u32],
     distance: f64,
+    how: EdgeGaps,
     stats: &mut SingularStats,
 ) -> bool {
-    let edge_groups = edge_gaps(t, edges);
+    let edge_groups = edge_gaps(t, edges, how);
     let vertex_groups = vertex_gaps(t, vertices);
     let n_edge = edge_groups.len();
     let groups: Vec<Vec<Growth>> = edge_groups.into_iter().chain(vertex_groups).collect();
@@ -96,8 +123,8 @@ fn grow_round(
 }
 
 /// A copy of what growth changes in a triangulation.
-#[derive(Default)]
-struct Snapshot {
+#[derive(Clone, Default)]
+pub(super) struct Snapshot {
     positions: Vec<[f64; 3]>,
     planes: Vec<Planes>,
     kept: Vec<[u32; 4]>,
@@ -107,7 +134,7 @@ struct Snapshot {
 }
 
 impl Snapshot {
-    fn of(t: &Triangulation) -> Snapshot {
+    pub(super) fn of(t: &Triangulation) -> Snapshot {
         Snapshot {
             positions: t.positions.clone(),
             planes: t.planes.clone(),
@@ -118,7 +145,7 @@ impl Snapshot {
         }
     }
 
-    fn restore(self, t: &mut Triangulation) {
+    pub(super) fn restore(self, t: &mut Triangulation) {
         *t.positions = self.positions;
         *t.planes = self.planes;
         *t.kept = self.kept;
@@ -234,7 +261,7 @@ fn components_through(items: &[[u32; 4]]) -> Vec<Vec<usize>> {
 
 /// The gaps to grow into, per singular edge: all but the largest of those that may grow (all of
 /// them if the largest may not).
-fn edge_gaps(t: &Triangulation, edges: &[(u32, u32)]) -> Vec<Vec<Growth>> {
+fn edge_gaps(t: &Triangulation, edges: &[(u32, u32)], how: EdgeGaps) -> Vec<Vec<Growth>> {
     let wanted: FxHashSet<(u32, u32)> = edges.iter().copied().collect();
     let ring = around(t, &wanted, |tet| {
         super::complex::TET_EDGES
@@ -247,7 +274,7 @@ fn edge_gaps(t: &Triangulation, edges: &[(u32, u32)]) -> Vec<Vec<Growth>> {
         let Some(ring) = ring.get(e) else { continue };
         let core: SmallVec<[u32; 3]> = [e.0, e.1].into_iter().collect();
         let gaps: Vec<[u32; 4]> = ring.iter().filter(|r| !r.1).map(|r| r.0).collect();
-        out.extend(all_but_largest(t, &gaps, &core, is_open(ring, &core)));
+        out.extend(all_but_largest(t, &gaps, &core, is_open(ring, &core), how));
     }
     out
 }
@@ -275,6 +302,7 @@ fn all_but_largest(
     gaps: &[[u32; 4]],
     core: &SmallVec<[u32; 3]>,
     open: bool,
+    how: EdgeGaps,
 ) -> Vec<Vec<Growth>> {
     let mut comps: Vec<(bool, Vec<[u32; 4]>)> = components_through(gaps)
         .into_iter()
@@ -299,7 +327,9 @@ fn all_but_largest(
         .filter(|&(i, (ok, _))| i != stay && ok)
         .map(|(_, (_, c))| {
             // a gap of whole tetrahedra that may all be kept is kept whole (no new points)
-            let whole = core.len() == 2 && c.iter().all(|x| may_grow(x, x, t.planes, t.internal));
+            let whole = how == EdgeGaps::Whole
+                && core.len() == 2
+                && c.iter().all(|x| may_grow(x, x, t.planes, t.internal));
             c.into_iter()
                 .map(|tet| Growth {
                     tet,
@@ -339,7 +369,13 @@ fn vertex_gaps(t: &Triangulation, vertices: &[u32]) -> Vec<Vec<Growth>> {
                 );
             }
         } else {
-            out.extend(all_but_largest(t, &gaps, &core, is_open(star, &core)));
+            out.extend(all_but_largest(
+                t,
+                &gaps,
+                &core,
+                is_open(star, &core),
+                EdgeGaps::NearEdge,
+            ));
         }
     }
     out
@@ -481,7 +517,7 @@ mod tests {
             external: &mut external,
             internal: &mut internal,
         };
-        let s = resolve(&mut t, 4, 0.1);
+        let s = resolve(&mut t, 4, 0.1, EdgeGaps::Whole);
         (s, kept, positions)
     }
 
@@ -528,7 +564,7 @@ mod tests {
             external: &mut external,
             internal: &mut internal,
         };
-        let s = resolve(&mut t, 4, 0.1);
+        let s = resolve(&mut t, 4, 0.1, EdgeGaps::Whole);
         assert_eq!(s.edge_gaps, 1, "{s:?}");
         // the gap may be kept whole: no new points
         assert_eq!((s.tets, s.points), (1, 0));
