@@ -51,6 +51,13 @@ pub struct Assembled {
 /// of its tetrahedron is nearer: half its height).
 pub const SLAB_THICKNESS: f64 = 1e-3;
 
+/// All four vertices of `t` on one plane (combinatorially, by their tags).
+fn flat_by_tags(planes: &[Planes], t: &[u32; 4]) -> bool {
+    let [a, b, c, d] = t.map(|v| &planes[v as usize]);
+    a.iter()
+        .any(|p| b.contains(p) && c.contains(p) && d.contains(p))
+}
+
 /// Global ids per cell: pool ids, and fresh ids (appended to `positions`) for cell-local vertices.
 pub(super) fn global_maps(
     results: &[Option<CellResult>],
@@ -123,6 +130,10 @@ pub fn assemble(
         .map(|t| sorted3(t.tri))
         .collect();
     let mut planes = global_planes(pool, results, &maps, positions.len());
+    // An untagged cell's flat tetrahedra (all four vertices on one plane) have no inside and are
+    // never kept; left in, each is a third and fourth tetrahedron on face triangles of the plane,
+    // and every star through them looked pinched to growth and toggles.
+    external.retain(|t| !flat_by_tags(&planes, t));
     let mut k = Triangulation {
         positions: &mut positions,
         planes: &mut planes,
