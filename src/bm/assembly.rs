@@ -51,13 +51,6 @@ pub struct Assembled {
 /// of its tetrahedron is nearer: half its height).
 pub const SLAB_THICKNESS: f64 = 1e-3;
 
-/// All four vertices of `t` on one plane (combinatorially, by their tags).
-fn flat_by_tags(planes: &[Planes], t: &[u32; 4]) -> bool {
-    let [a, b, c, d] = t.map(|v| &planes[v as usize]);
-    a.iter()
-        .any(|p| b.contains(p) && c.contains(p) && d.contains(p))
-}
-
 /// Global ids per cell: pool ids, and fresh ids (appended to `positions`) for cell-local vertices.
 pub(super) fn global_maps(
     results: &[Option<CellResult>],
@@ -130,10 +123,6 @@ pub fn assemble(
         .map(|t| sorted3(t.tri))
         .collect();
     let mut planes = global_planes(pool, results, &maps, positions.len());
-    // An untagged cell's flat tetrahedra (all four vertices on one plane) have no inside and are
-    // never kept; left in, each is a third and fourth tetrahedron on face triangles of the plane,
-    // and every star through them looked pinched to growth and toggles.
-    external.retain(|t| !flat_by_tags(&planes, t));
     let mut k = Triangulation {
         positions: &mut positions,
         planes: &mut planes,
@@ -191,41 +180,59 @@ fn resolve_singularities(
     // edge): neither is better on every input, so both orders run from the same K, each followed
     // by the toggles, and the one leaving fewer singular simplices (ties: fewer points) stays.
     let start = Snapshot::of(k);
-    let mut best: Option<((u64, u64), Snapshot, SingularStats, ToggleStats)> = None;
-    for (i, order) in [
+    let near_first = grow_then_toggle(
+        k,
         [EdgeGaps::NearEdge, EdgeGaps::Whole],
-        [EdgeGaps::Whole, EdgeGaps::NearEdge],
-    ]
-    .into_iter()
-    .enumerate()
-    {
-        if i > 0 {
-            start.clone().restore(k);
+        nonconforming,
+        diag,
+        max_toggles,
+    );
+    let kept = if near_first.0 .0 == 0 {
+        near_first
+    } else {
+        let after_near = Snapshot::of(k);
+        start.restore(k);
+        let whole_first = grow_then_toggle(
+            k,
+            [EdgeGaps::Whole, EdgeGaps::NearEdge],
+            nonconforming,
+            diag,
+            max_toggles,
+        );
+        if near_first.0 < whole_first.0 {
+            after_near.restore(k);
+            near_first
+        } else {
+            whole_first
         }
-        let mut grown = SingularStats::default();
-        for how in order {
-            grown.add(&super::singular::resolve(
-                k,
-                GROW_ROUNDS,
-                SINGULAR_GROWTH * diag,
-                how,
-            ));
-        }
-        let toggled = super::manifold::resolve(k, nonconforming, max_toggles);
-        let (edges, vertices) = singularities(&boundary_of(k.kept));
-        let score = (edges + vertices, grown.points);
-        if best.as_ref().is_none_or(|b| score < b.0) {
-            best = Some((score, Snapshot::of(k), grown, toggled));
-        }
-        if score.0 == 0 {
-            break;
-        }
-    }
-    let (_, state, grown, toggled) = best.expect("two orders ran");
-    state.restore(k);
+    };
+    let (_, grown, toggled) = kept;
     out.grown = grown;
     out.toggled.added += toggled.added;
     out.toggled.removed += toggled.removed;
+}
+
+/// Growth at the singular simplices in the two ways of `order`, then the toggles; with
+/// (singular simplices left, points added) and what each did.
+fn grow_then_toggle(
+    k: &mut Triangulation,
+    order: [EdgeGaps; 2],
+    nonconforming: &FxHashSet<u32>,
+    diag: f64,
+    max_toggles: usize,
+) -> ((u64, u64), SingularStats, ToggleStats) {
+    let mut grown = SingularStats::default();
+    for how in order {
+        grown.add(&super::singular::resolve(
+            k,
+            GROW_ROUNDS,
+            SINGULAR_GROWTH * diag,
+            how,
+        ));
+    }
+    let toggled = super::manifold::resolve(k, nonconforming, max_toggles);
+    let (edges, vertices) = singularities(&boundary_of(k.kept));
+    ((edges + vertices, grown.points), grown, toggled)
 }
 
 /// Per face with a section, per cell on it: its section triangles in global ids. A cell without

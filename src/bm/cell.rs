@@ -54,8 +54,9 @@ pub struct CellResult {
     /// The tets that survived step 1 (no external face) but are not kept: adding one keeps every
     /// section triangle's status outside the section, so singularities can be filled with them.
     pub fillable: Vec<[u32; 4]>,
-    /// The other tets (removed in step 1: a face outside its section). With `kept` and
-    /// `fillable`, the cell's whole triangulation, which the complex is refined in (`refine`).
+    /// The other tets (removed in step 1: a face outside its section), flat ones left out. With
+    /// `kept` and `fillable`, the cell's whole triangulation, which the complex is refined in
+    /// (`refine`).
     pub external: Vec<[u32; 4]>,
     /// Boundary triangles of the kept tets that are not on a face, outward (local ids).
     pub nonplanar: Vec<[u32; 3]>,
@@ -524,6 +525,12 @@ fn run_cell_with(
     let mut external = Vec::new();
     for (t, tv) in cx.tets.iter().enumerate() {
         if !alive[t] {
+            // a flat tet (untagged kernel) has no inside; in the triangulation it would be a
+            // third and fourth tet on face triangles of its plane, and stars through it would
+            // look pinched to the complex's growth and toggles
+            if cl.ty[t] == TetType::Flat {
+                continue;
+            }
             if cl.external[t] {
                 external.push(*tv);
             } else {

@@ -123,7 +123,7 @@ fn grow_round(
 }
 
 /// A copy of what growth changes in a triangulation.
-#[derive(Clone, Default)]
+#[derive(Default)]
 pub(super) struct Snapshot {
     positions: Vec<[f64; 3]>,
     planes: Vec<Planes>,
