@@ -2,7 +2,7 @@
 //! steps 5–6): the cells' kept tetrahedra form one complex, the surface is its boundary. On every
 //! shared file, exactly: the tetrahedral mesh is conforming (no face in three tets, none inverted or
 //! flat) and its boundary is the surface written; the surface has no crossing or overlapping
-//! triangles (Horsers excepted, listed below). Pinned at today's values (upper bounds): faces the two
+//! triangles. Pinned at today's values (upper bounds): faces the two
 //! cells triangulate differently, flat-zone triangles that got no slab (`bm::slab`), and the singular
 //! edges and pinched vertices that filling (`bm::fill`) and growing (`bm::singular`) could not
 //! resolve. Where all of those are zero the solid is a
@@ -16,9 +16,9 @@ use slice2solid::{Assembly, DelaunayOptions, Options};
 /// components of the surface once unwitnessed voids are filled: `bm::voids`)
 const PINS: [(&str, u64, u64, u64, u64, usize); 12] = [
     ("Armadillo-23-better", 0, 0, 0, 0, 3),
-    ("Elephant", 0, 4, 0, 1, 1),
+    ("Elephant", 0, 4, 0, 0, 1),
     ("Heart-simplified", 0, 0, 0, 0, 1),
-    ("Horsers", 0, 9, 0, 1, 1),
+    ("Horsers", 0, 9, 0, 0, 1),
     ("ParallelEight", 0, 0, 0, 0, 1),
     ("ParallelEightMore", 0, 0, 0, 0, 1),
     ("SideBishop", 0, 0, 0, 0, 1),
@@ -29,11 +29,8 @@ const PINS: [(&str, u64, u64, u64, u64, usize); 12] = [
     ("hand", 0, 0, 0, 0, 1),
 ];
 
-/// Listed expectation: Horsers has 7 cells where the tagged kernel meets an exact cosphericity
-/// across planes and falls back to the untagged kernel (`cells_untagged`; 15 before near-pencils of
-/// its planes were recognised, with 4 faces differing and 10 crossing pairs); its boundary keeps 1
-/// overlapping coplanar pair and 1 pinched vertex.
-const CROSSING: [&str; 1] = ["Horsers"];
+// Horsers kept 1 overlapping coplanar pair (two surface triangles folded flat over a wedge of
+// rounded-flat tetrahedra) and was listed here until `manifold::close_flat_folds`.
 
 fn options() -> Options {
     Options {
@@ -81,14 +78,13 @@ fn the_solid_is_the_boundary_of_one_conforming_complex() {
             .is_some_and(|s| s.boundary_equals_surface);
         // conforming as a complex (TetCheck::conforming also wants a manifold boundary, which
         // the pinned singularities are not)
-        let listed_tets = CROSSING.contains(&name) && t.faces_used_more_than_twice == 2;
         let complex = t.coincident_vertices == 0
             && t.faces_used_more_than_twice == 0
             && t.interior_faces_same_side == 0
             && t.inverted == 0
             && t.flat == 0
             && t.volume_matches;
-        if !(complex || listed_tets) || !equal {
+        if !complex || !equal {
             failures.push(format!(
                 "{name}: tets: coincident {} faces in 3+ tets {} same-side faces {} inverted {} flat {} volume matches {} boundary = surface {equal}",
                 t.coincident_vertices, t.faces_used_more_than_twice, t.interior_faces_same_side,
@@ -106,8 +102,7 @@ fn the_solid_is_the_boundary_of_one_conforming_complex() {
             ));
         }
         let crossing = c.self_intersections + c.overlapping_coplanar_pairs > 0;
-        let listed = CROSSING.contains(&name);
-        if crossing != listed || (c.boundary_edges != 0 && !listed) {
+        if crossing || c.boundary_edges != 0 {
             failures.push(format!(
                 "{name}: {} crossing, {} overlapping pairs, {} boundary edges",
                 c.self_intersections, c.overlapping_coplanar_pairs, c.boundary_edges
@@ -228,13 +223,16 @@ fn generated_planes_leave_no_singular_edge() {
     use slice2solid::io::mesh::read_trimesh;
     use slice2solid::io::{read_sections, write_sections};
     use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
-    // (mesh, mode, planes, pinched vertices at most)
+    // (mesh, mode, planes, pinched vertices at most, worst section at most); Elephant random 50:
+    // 37 flat-zone triangles get no slab (0.30% of a section missing), and it kept 2 overlapping
+    // pairs (flat folds) until `manifold::close_flat_folds`
     let cases = [
-        ("hand", SliceMode::Random, 30, 0),
-        ("hand", SliceMode::Fan, 40, 0),
+        ("hand", SliceMode::Random, 30, 0, 1e-5),
+        ("hand", SliceMode::Fan, 40, 0, 1e-5),
+        ("Elephant", SliceMode::Random, 50, 0, 3.2e-3),
     ];
     let mut failures = Vec::new();
-    for (mesh, mode, planes, pinched) in cases {
+    for (mesh, mode, planes, pinched, bound) in cases {
         let m = read_trimesh(&common::shared_reference(mesh)).unwrap();
         let s = slice_mesh(&m, &make_planes(&m, planes, 5, mode)).unwrap();
         let dir = tempfile::tempdir().unwrap();
@@ -250,7 +248,7 @@ fn generated_planes_leave_no_singular_edge() {
         if got.0 != 0 || got.1 > pinched {
             failures.push(format!("{mesh} {mode:?} {planes}: {got:?}"));
         }
-        if c.self_intersections + c.overlapping_coplanar_pairs > 0 || worst > 1e-5 {
+        if c.self_intersections + c.overlapping_coplanar_pairs > 0 || worst > bound {
             failures.push(format!(
                 "{mesh} {mode:?} {planes}: {} crossing, {} overlapping, worst section {worst:e}",
                 c.self_intersections, c.overlapping_coplanar_pairs

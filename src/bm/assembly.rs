@@ -43,6 +43,8 @@ pub struct Assembled {
     pub grown: super::singular::SingularStats,
     /// Whole tetrahedra toggled to lower the number of singularities (`manifold`).
     pub toggled: super::manifold::ToggleStats,
+    /// Flat tetrahedra toggled so that ∂K does not fold flat there.
+    pub folds_closed: super::manifold::ToggleStats,
     /// Enclosed voids that no section witnesses, taken into K (`voids`).
     pub voids: super::voids::VoidStats,
 }
@@ -81,6 +83,11 @@ pub(super) fn global_maps(
 /// bounding-box diagonal; at most halfway along an edge).
 const GROW_ROUNDS: usize = 8;
 pub const SINGULAR_GROWTH: f64 = 1e-3;
+
+/// Tetrahedra flatter than this (relative to the diagonal) fold ∂K flat where three or four of
+/// their faces are on it (`manifold::close_flat_folds`): 10× the tolerance at which `check`
+/// calls two triangles a double sheet.
+pub const FLAT_FOLD: f64 = 1e-8;
 
 /// Most rounds of filling (each may expose new singularities at the filled tets).
 const FILL_ROUNDS: usize = 8;
@@ -145,6 +152,7 @@ pub fn assemble(
         out.voids.voids_filled += again.voids_filled;
         out.voids.tets_filled += again.tets_filled;
     }
+    out.folds_closed = super::manifold::close_flat_folds(&mut k, &nonconforming, FLAT_FOLD * diag);
     let boundary = boundary_of(&tets);
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;

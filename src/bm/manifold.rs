@@ -71,6 +71,116 @@ pub fn resolve(
 /// Rounds of set moves (each followed by single toggles again).
 const SET_PASSES: usize = 4;
 
+/// Close the cracks and cut the fins of ∂K at flat tetrahedra. Where the tetrahedra around an edge
+/// of ∂K between its two surface triangles, on one side, are all flat (their four vertices within
+/// `tol` of one plane: rounded coplanar points that no plane tag makes flat), the two triangles
+/// fold flat onto each other (a double sheet; a crack when that side is outside K, a fin when it
+/// is inside). Toggling that wedge removes the fold; it is done when the sections allow it and no
+/// singular simplex is added, in passes until none is left or a pass changes nothing. Returns the
+/// toggles done.
+pub fn close_flat_folds(
+    k: &mut Triangulation,
+    nonconforming: &FxHashSet<u32>,
+    tol: f64,
+) -> ToggleStats {
+    let lists: [&[[u32; 4]]; 3] = [k.kept, k.fillable, k.external];
+    let positions = &*k.positions;
+    let flat = Flat {
+        flat: lists
+            .iter()
+            .flat_map(|l| l.iter())
+            .map(|t| flat_height(t.map(|v| positions[v as usize])) <= tol)
+            .collect(),
+        positions,
+    };
+    let mut stats = ToggleStats::default();
+    if !flat.flat.contains(&true) {
+        return stats;
+    }
+    let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
+    for _ in 0..FOLD_PASSES {
+        let before = stats;
+        for w in l.flat_wedges(&flat) {
+            // an earlier toggle of this pass may have changed the wedge's side
+            let side = l.kept[w[0] as usize];
+            if w.iter().all(|&t| l.kept[t as usize] == side) && !l.try_unfold(&w, &flat, &mut stats)
+            {
+                // the fold may move to the flat tetrahedra behind the wedge: all of them at once
+                let blob = l.flat_component(&w, &flat);
+                if blob.len() > w.len() {
+                    l.try_unfold(&blob, &flat, &mut stats);
+                }
+            }
+        }
+        if stats == before {
+            break;
+        }
+    }
+    let (kept, fillable, external) = l.into_lists();
+    (*k.kept, *k.fillable, *k.external) = (kept, fillable, external);
+    stats
+}
+
+/// Passes of [`close_flat_folds`] (each toggle can uncover a fold behind it).
+const FOLD_PASSES: usize = 8;
+
+/// Largest set of flat tetrahedra toggled at once.
+const FLAT_COMPONENT: usize = 256;
+
+/// Which tetrahedra are flat, and where the points are (to tell a fold from a flat continuation).
+struct Flat<'a> {
+    flat: Vec<bool>,
+    positions: &'a [[f64; 3]],
+}
+
+impl Flat<'_> {
+    /// Do `a` and `b` lie on the same side of the line through `e` (in the plane they nearly
+    /// share with it)? Two surface triangles at `e` with such apexes folded onto each other.
+    fn same_side(&self, e: (u32, u32), a: u32, b: u32) -> bool {
+        let p = |v: u32| self.positions[v as usize];
+        let (o, d) = (p(e.0), sub3(p(e.1), p(e.0)));
+        let dd = dot3(d, d);
+        let perp = |q: [f64; 3]| {
+            let w = sub3(q, o);
+            let s = dot3(w, d) / dd;
+            [w[0] - s * d[0], w[1] - s * d[1], w[2] - s * d[2]]
+        };
+        dot3(perp(p(a)), perp(p(b))) > 0.0
+    }
+}
+
+fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Distance of the farthest vertex from the plane of the largest face (float; for a flatness
+/// test far above rounding).
+fn flat_height(p: [[f64; 3]; 4]) -> f64 {
+    let (sub, dot) = (sub3, dot3);
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let (mut best, mut height) = (0.0, f64::INFINITY);
+    for i in 0..4 {
+        let f: Vec<[f64; 3]> = (0..4).filter(|&j| j != i).map(|j| p[j]).collect();
+        let n = cross(sub(f[1], f[0]), sub(f[2], f[0]));
+        let len = dot(n, n).sqrt();
+        if len > best {
+            best = len;
+            height = dot(n, sub(p[i], f[0])).abs() / len;
+        }
+    }
+    height
+}
+
 impl<'a> Labelled<'a> {
     /// From the kept, fillable and external tetrahedra.
     fn new(
@@ -191,6 +301,161 @@ impl<'a> Labelled<'a> {
             self.kept[t as usize] ^= true;
         }
         false
+    }
+
+    /// Toggle every tetrahedron of `set` if each is allowed, the folds at their edges get fewer and
+    /// the singular simplices at them no more; else leave them. Toggling changes ∂K only at the
+    /// set's faces, so these local counts are the changes of the global ones.
+    fn try_unfold(&mut self, set: &[u32], flat: &Flat, stats: &mut ToggleStats) -> bool {
+        if !set.iter().all(|&t| self.may_toggle(t)) {
+            return false;
+        }
+        let edges: FxHashSet<(u32, u32)> = set
+            .iter()
+            .flat_map(|&t| {
+                let v = self.tets[t as usize];
+                [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
+                    .map(|(i, j)| super::refine::edge(v[i], v[j]))
+            })
+            .collect();
+        let before = (self.badness(set), self.folds_at(&edges, flat));
+        for &t in set {
+            self.kept[t as usize] ^= true;
+        }
+        let after = (self.badness(set), self.folds_at(&edges, flat));
+        if after.0 > before.0 || after.1 >= before.1 {
+            for &t in set {
+                self.kept[t as usize] ^= true;
+            }
+            return false;
+        }
+        for &t in set {
+            if self.kept[t as usize] {
+                stats.added += 1;
+            } else {
+                stats.removed += 1;
+            }
+        }
+        true
+    }
+
+    /// How many of `edges` are folds of ∂K: a flat wedge on one side between two of its surface
+    /// triangles there.
+    fn folds_at(&self, edges: &FxHashSet<(u32, u32)>, flat: &Flat) -> usize {
+        edges
+            .iter()
+            .filter(|&&(a, b)| {
+                self.surface_at(a)
+                    .iter()
+                    .filter(|f| f.contains(&b))
+                    .any(|f| self.fold_at((a, b), *f, flat))
+            })
+            .count()
+    }
+
+    /// Is surface triangle `f` (sorted key) the start of a flat wedge at its edge `e`, on either
+    /// side?
+    fn fold_at(&self, e: (u32, u32), f: [u32; 3], flat: &Flat) -> bool {
+        self.faces[&f]
+            .iter()
+            .any(|&t| self.wedge(e, f, t, flat).is_some())
+    }
+
+    /// Every wedge of flat tetrahedra (`flat` per tetrahedron) around an edge of ∂K that fills the
+    /// whole angle on one side between the edge's two surface triangles.
+    fn flat_wedges(&self, flat: &Flat) -> Vec<Vec<u32>> {
+        let mut out = Vec::new();
+        let mut seen: FxHashSet<Vec<u32>> = FxHashSet::default();
+        for (t, &kept) in self.kept.iter().enumerate() {
+            if !kept {
+                continue;
+            }
+            let tet = self.tets[t];
+            for i in 0..4 {
+                let f = key3(super::complex::outward_face(&tet, i));
+                if self.other_kept(&f, t as u32) {
+                    continue;
+                }
+                // f is on ∂K: walk around each of its edges on both sides
+                let outside = self.faces[&f].iter().copied().find(|&o| o != t as u32);
+                for e in [(f[0], f[1]), (f[1], f[2]), (f[0], f[2])] {
+                    for start in [Some(t as u32), outside].into_iter().flatten() {
+                        if let Some(mut w) = self.wedge(e, f, start, flat) {
+                            w.sort_unstable();
+                            if seen.insert(w.clone()) {
+                                out.push(w);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// From `start` (a tetrahedron on face `f`, which contains edge `e`), the tetrahedra around `e`
+    /// on `start`'s side of ∂K up to the next surface triangle at `e`, if all are flat.
+    fn wedge(&self, e: (u32, u32), f: [u32; 3], start: u32, flat: &Flat) -> Option<Vec<u32>> {
+        let side = self.kept[start as usize];
+        let (mut t, mut entered) = (start, f);
+        let mut out = Vec::new();
+        let first = *f.iter().find(|&&v| v != e.0 && v != e.1)?;
+        let last = loop {
+            if !flat.flat[t as usize] || out.len() > 64 {
+                return None;
+            }
+            out.push(t);
+            let tet = self.tets[t as usize];
+            // the other face of t at e
+            let apex = *tet
+                .iter()
+                .find(|&&v| v != e.0 && v != e.1 && !entered.contains(&v))?;
+            let next = key3([e.0, e.1, apex]);
+            let beyond = self.faces[&next].iter().copied().find(|&o| o != t);
+            match beyond {
+                Some(n) if self.kept[n as usize] == side => {
+                    if n == start {
+                        return None; // all the way round: no surface at e on this side
+                    }
+                    (t, entered) = (n, next);
+                }
+                // the next surface triangle at e (or the hull, outside everything, for a fin):
+                // a fold if it lies over the first one, not beside it
+                Some(_) => break apex,
+                None if side => break apex,
+                None => return None,
+            }
+        };
+        flat.same_side(e, first, last).then_some(out)
+    }
+
+    /// The flat tetrahedra on the side of `w` (kept or not) connected to `w` through faces, at
+    /// most `FLAT_COMPONENT` of them.
+    fn flat_component(&self, w: &[u32], flat: &Flat) -> Vec<u32> {
+        let side = self.kept[w[0] as usize];
+        let mut out: Vec<u32> = w.to_vec();
+        let mut seen: FxHashSet<u32> = w.iter().copied().collect();
+        let mut i = 0;
+        while i < out.len() && out.len() < FLAT_COMPONENT {
+            for n in self.face_neighbours(out[i]) {
+                if flat.flat[n as usize] && self.kept[n as usize] == side && seen.insert(n) {
+                    out.push(n);
+                }
+            }
+            i += 1;
+        }
+        out
+    }
+
+    /// Tetrahedra sharing a face with `t`.
+    fn face_neighbours(&self, t: u32) -> SmallVec<[u32; 4]> {
+        let tet = self.tets[t as usize];
+        (0..4)
+            .flat_map(|i| {
+                let f = key3(super::complex::outward_face(&tet, i));
+                self.faces[&f].iter().copied().filter(move |&o| o != t)
+            })
+            .collect()
     }
 
     /// At a pinched vertex: join two fans by the shortest strip of gap tetrahedra around `v`, or
@@ -435,6 +700,72 @@ mod tests {
         let b = super::super::assembly::boundary_of(k.kept);
         let (e, v) = super::super::fill::singular_simplices(&b);
         (s, e.len() + v.len())
+    }
+
+    /// Positively oriented (robust orient3d > 0, as K's tetrahedra are).
+    fn oriented(p: &[[f64; 3]], t: [u32; 4]) -> [u32; 4] {
+        let c = |v: u32| {
+            let q = p[v as usize];
+            robust::Coord3D {
+                x: q[0],
+                y: q[1],
+                z: q[2],
+            }
+        };
+        if robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3])) > 0.0 {
+            t
+        } else {
+            [t[1], t[0], t[2], t[3]]
+        }
+    }
+
+    /// A triangle a b c with d `height` above a point inside it: the tetrahedron a b c d, unkept,
+    /// between two kept ones, a b d p above and a b c q below. Flat (1e-13), its faces a b d and
+    /// a b c are on ∂K and lie on each other (a crack; edge a b is singular too), and adding it
+    /// closes the crack: returns the toggles and the singular edges left.
+    fn crack(height: f64) -> (ToggleStats, u64) {
+        let p = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.3, 0.3, height],
+            [0.4, 0.2, 1.0],
+            [0.3, 0.3, -1.0],
+        ];
+        let (a, b, c, d, top, bottom) = (0, 1, 2, 3, 4, 5);
+        let mut kept: Vec<[u32; 4]> = [[a, b, d, top], [a, b, c, bottom]]
+            .map(|t| oriented(&p, t))
+            .to_vec();
+        let mut external = vec![oriented(&p, [a, b, c, d])];
+        let (mut positions, mut planes) = (p, vec![smallvec![]; 6]);
+        let (mut fillable, mut internal) = (Vec::new(), FxHashSet::default());
+        let mut k = Triangulation {
+            positions: &mut positions,
+            planes: &mut planes,
+            kept: &mut kept,
+            fillable: &mut fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        let s = close_flat_folds(&mut k, &FxHashSet::default(), 1e-8);
+        let boundary = super::super::assembly::boundary_of(k.kept);
+        (s, super::super::assembly::singularities(&boundary).0)
+    }
+
+    #[test]
+    fn a_flat_crack_is_closed_and_a_real_gap_kept() {
+        assert_eq!(
+            crack(1e-13),
+            (
+                ToggleStats {
+                    added: 1,
+                    removed: 0
+                },
+                0
+            )
+        );
+        // 0.1 thick: a gap the fold search leaves alone (the singular edge is the toggles' job)
+        assert_eq!(crack(0.1), (ToggleStats::default(), 1));
     }
 
     #[test]

@@ -534,6 +534,8 @@ fn assemble_cells(
     }
     report.count("singular_toggles_added", k.toggled.added);
     report.count("singular_toggles_removed", k.toggled.removed);
+    report.count("flat_fold_toggles_added", k.folds_closed.added);
+    report.count("flat_fold_toggles_removed", k.folds_closed.removed);
     report.count("voids_filled", k.voids.voids_filled);
     report.count("void_tets_filled", k.voids.tets_filled);
     report.count("singular_edges", k.singular_edges);
