@@ -16,9 +16,9 @@ use slice2solid::{Assembly, DelaunayOptions, Options};
 /// components of the surface once unwitnessed voids are filled: `bm::voids`)
 const PINS: [(&str, u64, u64, u64, u64, usize); 12] = [
     ("Armadillo-23-better", 0, 0, 0, 0, 3),
-    ("Elephant", 0, 4, 0, 0, 1),
+    ("Elephant", 0, 0, 0, 0, 1),
     ("Heart-simplified", 0, 0, 0, 0, 1),
-    ("Horsers", 0, 9, 0, 0, 1),
+    ("Horsers", 0, 5, 0, 0, 1),
     ("ParallelEight", 0, 0, 0, 0, 1),
     ("ParallelEightMore", 0, 0, 0, 0, 1),
     ("SideBishop", 0, 0, 0, 0, 1),
@@ -223,13 +223,16 @@ fn generated_planes_leave_no_singular_edge() {
     use slice2solid::io::mesh::read_trimesh;
     use slice2solid::io::{read_sections, write_sections};
     use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
-    // (mesh, mode, planes, pinched vertices at most, worst section at most); Elephant random 50:
-    // 37 flat-zone triangles get no slab (0.30% of a section missing), and it kept 2 overlapping
-    // pairs (flat folds) until `manifold::close_flat_folds`
+    // (mesh, mode, planes, pinched vertices at most, worst section at most). Elephant random 50
+    // kept 2 overlapping pairs (flat folds) until `manifold::close_flat_folds`, and 37 flat-zone
+    // triangles without a slab (0.30% of a section) until a refused slab tried the other side;
+    // 7 are left (6.3e-5). Elephant sweep 300: 24 overlapping pairs, 67 triangles without slab
+    // (6.3%) then; 24 left (8.9e-4).
     let cases = [
         ("hand", SliceMode::Random, 30, 0, 1e-5),
         ("hand", SliceMode::Fan, 40, 0, 1e-5),
-        ("Elephant", SliceMode::Random, 50, 0, 3.2e-3),
+        ("Elephant", SliceMode::Random, 50, 0, 7e-5),
+        ("Elephant", SliceMode::Sweep, 300, 0, 1e-3),
     ];
     let mut failures = Vec::new();
     for (mesh, mode, planes, pinched, bound) in cases {

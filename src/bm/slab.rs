@@ -52,8 +52,53 @@ pub struct SlabStats {
 /// Give every flat zone of `faces` (per face, per side: its section triangles) a slab of
 /// `thickness` inside K.
 pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> SlabStats {
-    let (parents, unsided) = parents_of_zones(faces);
-    let points = split_points(t.positions, t.planes, &parents, thickness);
+    let (candidates, unsided) = parents_of_zones(faces);
+    let mut stats = SlabStats {
+        left: unsided,
+        min_thickness: f64::INFINITY,
+        ..Default::default()
+    };
+    // first every zone triangle's preferred parent; where refused (a split would flip a rounded
+    // neighbour), the next side's, if that tetrahedron is still unsplit
+    let mut pending: Vec<&[Parent]> = candidates.iter().map(|c| &c[..]).collect();
+    while !pending.is_empty() {
+        let parents: Vec<&Parent> = pending.iter().map(|c| &c[0]).collect();
+        let refused = grow_slabs(t, &parents, thickness, &mut stats);
+        let existing: FxHashSet<[u32; 4]> = t
+            .kept
+            .iter()
+            .chain(t.fillable.iter())
+            .chain(t.external.iter())
+            .map(|&x| key4(x))
+            .collect();
+        pending = refused
+            .into_iter()
+            .filter_map(|i| {
+                let rest = &pending[i][1..];
+                let usable = rest
+                    .first()
+                    .is_some_and(|p| existing.contains(&key4(p.tet)));
+                if !usable {
+                    stats.left += 1;
+                }
+                usable.then_some(rest)
+            })
+            .collect();
+    }
+    if stats.points == 0 {
+        stats.min_thickness = 0.0;
+    }
+    stats
+}
+
+/// Grow the slabs of `parents`; returns the indices of those refused.
+fn grow_slabs(
+    t: &mut Triangulation,
+    parents: &[&Parent],
+    thickness: f64,
+    stats: &mut SlabStats,
+) -> Vec<usize> {
+    let points = split_points(t.positions, t.planes, parents, thickness);
     let min_thickness = points.values().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let groups: Vec<Vec<Growth>> = parents
         .iter()
@@ -69,14 +114,15 @@ pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> Sl
         &groups,
         points.into_iter().map(|(e, p)| (e, p.0)).collect(),
     );
-    let thickened = g.tets_per_group.iter().filter(|&&n| n > 0).count() as u64;
-    SlabStats {
-        thickened,
-        left: unsided + parents.len() as u64 - thickened,
-        tets: g.tets_per_group.iter().sum(),
-        points: g.points,
-        min_thickness: if g.points > 0 { min_thickness } else { 0.0 },
+    stats.thickened += g.tets_per_group.iter().filter(|&&n| n > 0).count() as u64;
+    stats.tets += g.tets_per_group.iter().sum::<u64>();
+    stats.points += g.points;
+    if g.points > 0 {
+        stats.min_thickness = stats.min_thickness.min(min_thickness);
     }
+    (0..parents.len())
+        .filter(|&i| g.tets_per_group[i] == 0)
+        .collect()
 }
 
 /// A flat-zone triangle and the tetrahedron (positive: the triangle is outward from the cell)
@@ -88,8 +134,9 @@ struct Parent {
 
 /// Per flat zone (a component of flat triangles of one face, adjacent by edges), the side whose
 /// attached triangles share most edges with the zone's border; its tetrahedra on the zone are the
-/// parents. Returns them and how many flat triangles had no side with volume.
-fn parents_of_zones(faces: &[Vec<Side>]) -> (Vec<Parent>, u64) {
+/// parents, each followed by the other sides' tetrahedra on the same triangle (tried where the
+/// first is refused). Returns them and how many flat triangles had no side with volume.
+fn parents_of_zones(faces: &[Vec<Side>]) -> (Vec<Vec<Parent>>, u64) {
     let mut parents = Vec::new();
     let mut claimed: FxHashSet<[u32; 4]> = FxHashSet::default();
     let mut unsided = 0;
@@ -111,37 +158,42 @@ fn parents_of_zones(faces: &[Vec<Side>]) -> (Vec<Parent>, u64) {
         flat.dedup();
         for zone in edge_components(&flat) {
             let border = border_edges(&zone);
-            let side = (0..sides.len())
+            // sides by preference: most attached edges on the zone's border, then a side with
+            // volume, then the first side
+            let mut ranked: Vec<usize> = (0..sides.len())
                 .filter(|&s| sides[s].tris.iter().any(|t| t.apex != u32::MAX))
-                .max_by_key(|&s| {
-                    let edges: FxHashSet<(u32, u32)> = sides[s]
-                        .tris
-                        .iter()
-                        .filter(|t| t.attached)
-                        .flat_map(|t| (0..3).map(move |i| edge(t.tri[i], t.tri[(i + 1) % 3])))
-                        .collect();
-                    // then a side with volume, then the first side
-                    (
-                        border.iter().filter(|e| edges.contains(e)).count(),
-                        sides[s].has_volume,
-                        std::cmp::Reverse(s),
-                    )
-                });
-            let Some(side) = side else {
-                unsided += zone.len() as u64;
-                continue;
-            };
-            let by_key: FxHashMap<[u32; 3], &FaceTri> =
-                sides[side].tris.iter().map(|t| (key3(t.tri), t)).collect();
+                .collect();
+            ranked.sort_by_key(|&s| {
+                let edges: FxHashSet<(u32, u32)> = sides[s]
+                    .tris
+                    .iter()
+                    .filter(|t| t.attached)
+                    .flat_map(|t| (0..3).map(move |i| edge(t.tri[i], t.tri[(i + 1) % 3])))
+                    .collect();
+                std::cmp::Reverse((
+                    border.iter().filter(|e| edges.contains(e)).count(),
+                    sides[s].has_volume,
+                    std::cmp::Reverse(s),
+                ))
+            });
+            let by_key: Vec<FxHashMap<[u32; 3], &FaceTri>> = ranked
+                .iter()
+                .map(|&s| sides[s].tris.iter().map(|t| (key3(t.tri), t)).collect())
+                .collect();
             for z in &zone {
-                match by_key.get(z).filter(|t| t.apex != u32::MAX) {
-                    Some(t) => {
-                        let tet = [t.tri[0], t.tri[1], t.tri[2], t.apex];
-                        if claimed.insert(key4(tet)) {
-                            parents.push(Parent { zone: t.tri, tet });
-                        } else {
-                            unsided += 1;
-                        }
+                let candidates: Vec<Parent> = by_key
+                    .iter()
+                    .filter_map(|m| m.get(z).filter(|t| t.apex != u32::MAX))
+                    .map(|t| Parent {
+                        zone: t.tri,
+                        tet: [t.tri[0], t.tri[1], t.tri[2], t.apex],
+                    })
+                    .filter(|p| !claimed.contains(&key4(p.tet)))
+                    .collect();
+                match candidates.first() {
+                    Some(first) => {
+                        claimed.insert(key4(first.tet));
+                        parents.push(candidates);
                     }
                     None => unsided += 1,
                 }
@@ -224,7 +276,7 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 fn split_points(
     positions: &[[f64; 3]],
     planes: &[Planes],
-    parents: &[Parent],
+    parents: &[&Parent],
     thickness: f64,
 ) -> FxHashMap<(u32, u32), ([f64; 3], f64)> {
     use crate::sections::{cross, dot};
