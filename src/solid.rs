@@ -61,8 +61,9 @@ pub enum Assembly {
     #[default]
     Glue,
     /// `bm::assembly`: the kept tetrahedra of all cells as one complex, the surface its boundary
-    /// (closed and embedded where the cells triangulate every face alike); flat zones and
-    /// singular edges or vertices are counted and warned, not yet resolved.
+    /// (closed and embedded where the cells triangulate every face alike); flat zones get slabs
+    /// of tetrahedra, singular edges and vertices and flat folds are resolved inside the complex,
+    /// and what is left is counted and warned.
     Complex,
 }
 
