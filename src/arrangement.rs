@@ -120,6 +120,12 @@ pub struct ArrangementOptions {
     /// Where the sections of two planes cross their common line at points closer than this
     /// (relative to the bounding-box diagonal), the crossings are snapped to one shared vertex.
     pub snap_tolerance: f64,
+    /// Where one section has material on its common line with another plane and that plane's
+    /// section has none, the material within this distance of the line (relative to the
+    /// bounding-box diagonal) is removed before the arrangement is built
+    /// (`validate::reconcile_common_lines`; 0: sections are taken as they are).
+    #[serde(default = "default_line_strip")]
+    pub line_strip: f64,
     /// Arrangement vertices closer than this (relative to the bounding-box diagonal) are one vertex:
     /// where several planes meet in one point up to the rounding of their equations, the rounded
     /// vertices of their triples and the sliver faces and cells between them are merged away.
@@ -144,6 +150,10 @@ pub enum CellScope {
     Sections,
 }
 
+fn default_line_strip() -> f64 {
+    crate::validate::LINE_STRIP_RELATIVE
+}
+
 fn default_merge_tolerance() -> f64 {
     1e-10
 }
@@ -153,6 +163,7 @@ impl Default for ArrangementOptions {
         ArrangementOptions {
             margin: 0.1,
             snap_tolerance: 1e-3,
+            line_strip: default_line_strip(),
             merge_tolerance: default_merge_tolerance(),
             scope: CellScope::default(),
         }

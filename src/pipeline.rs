@@ -34,6 +34,13 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
         }
     }
     let selected = sections.select_label(options.label)?;
+    let (selected, trims) = crate::validate::reconcile_common_lines(
+        &selected,
+        options.arrangement.snap_tolerance,
+        options.arrangement.line_strip,
+    )?;
+    report.count("common_lines_trimmed", trims.trimmed as u64);
+    report.warnings.extend(trims.warnings);
     let reconstructed = selected.regions_per_label();
     report.label_names = (selected.label_names.iter())
         .filter(|(l, _)| reconstructed.contains_key(l))

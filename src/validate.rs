@@ -21,9 +21,11 @@ use crate::error::{Error, Result};
 use crate::geom::predicates::orient2d;
 use crate::sections::{cross, dot, sub, Contour, Plane, Sections};
 
+mod common_lines;
 mod labels;
 pub mod planes;
 mod repair;
+pub use common_lines::{reconcile_common_lines, LineTrims, LINE_STRIP_RELATIVE};
 pub use labels::{one_material, LABEL_OVERLAP_RELATIVE_AREA};
 pub use repair::NUDGE_RELATIVE;
 pub(crate) use repair::{material_of, pieces_of};

@@ -1,0 +1,371 @@
+//! Sections that disagree along their planes' common line (DESIGN invariant 5), reconciled before
+//! the arrangement by one rule: **material only where both sections have it**.
+//!
+//! A solid R with R ∩ P_i = A_i for every plane meets the line L = P_i ∩ P_j in A_i ∩ L and in
+//! A_j ∩ L, so two sections can only both be kept when these agree. Real sections rarely do
+//! exactly: the crossings of the two contours with L are a rounding or a sampling step apart
+//! (the arrangement snaps those, `arrangement::reconcile`, within `snap_tolerance`), and sometimes
+//! one section has material over a stretch of L where the other has none (a missed or dropped
+//! contour, a segmentation that disagrees with its neighbour). Kept as it is, such a stretch
+//! forces the solid to touch P_j along a segment without crossing it: a singular edge, which no
+//! closed manifold has. The rule here: where A_i has material on L and A_j does not, the material
+//! of A_i within `strip` (relative to the model diagonal) of L is removed there, from where A_j's
+//! material ends on L to where A_i's ends (a rectangle of half-width `strip` along L, subtracted
+//! with `i_overlay`). Then A_i ∩ L = A_j ∩ L = (A_i ∩ A_j) ∩ L. Stretches shorter than the snap
+//! tolerance that continue one of A_j's intervals are left to the snapping. Each trim is warned
+//! with both planes, the length of L concerned and the area removed.
+//!
+//! The intervals are constructions in floating point (where a contour edge crosses the other
+//! plane), not decisions of the engine: the arrangement computes the crossings it uses itself.
+use super::{material_of, model_diagonal, pieces_of, repair::region_of_piece, NUDGE_RELATIVE};
+use crate::error::Result;
+use crate::sections::{cross, dot, polygon_signed_area, Plane, Section, Sections};
+use i_overlay::core::{fill_rule::FillRule, overlay_rule::OverlayRule};
+use i_overlay::float::single::SingleFloatOverlay;
+use rayon::prelude::*;
+
+/// Half-width of the strip removed along a common line where one section has material and the
+/// other none, relative to the model diagonal: ten times the repairs' vertex nudge, a tenth of the
+/// snap tolerance (so the small mismatches a trim leaves where two lines meet are snapped).
+pub const LINE_STRIP_RELATIVE: f64 = 1e-4;
+
+/// Planes whose normals' cross product is shorter than this are parallel (no common line).
+const PARALLEL: f64 = 1e-12;
+
+/// What `reconcile_common_lines` changed.
+#[derive(Clone, Debug, Default)]
+pub struct LineTrims {
+    pub warnings: Vec<String>,
+    /// Number of (section, line) pairs trimmed.
+    pub trimmed: usize,
+    /// Longest stretch of a common line on which one section had material and the other none.
+    pub max_length: f64,
+}
+
+/// The common line of two planes, parametrised by arc length `s = dir · x`.
+struct Line {
+    dir: [f64; 3],
+}
+
+/// A stretch [s0, s1] of line (i, j) to clear of section `owner`'s material.
+struct Trim {
+    owner: usize,
+    other: usize,
+    s0: f64,
+    s1: f64,
+    /// Length of the owner's material on L inside the stretch.
+    material: f64,
+}
+
+/// Apply the rule of the module docs to every pair of non-parallel planes. `snap_relative` is the
+/// arrangement's snap tolerance, `strip_relative` the strip's half-width (0: nothing is changed).
+pub fn reconcile_common_lines(
+    sections: &Sections,
+    snap_relative: f64,
+    strip_relative: f64,
+) -> Result<(Sections, LineTrims)> {
+    let mut out = sections.clone();
+    let mut log = LineTrims::default();
+    let diag = model_diagonal(sections);
+    if strip_relative <= 0.0 || diag <= 0.0 {
+        return Ok((out, log));
+    }
+    let (tol, strip) = (snap_relative * diag, strip_relative * diag);
+    let boxes: Vec<Option<([f64; 3], [f64; 3])>> =
+        sections.sections.iter().map(section_box).collect();
+    let n = sections.sections.len();
+    let trims: Vec<Trim> = (0..n)
+        .into_par_iter()
+        .flat_map_iter(|i| {
+            let boxes = &boxes;
+            (i + 1..n).flat_map(move |j| pair_trims(sections, boxes, i, j, tol))
+        })
+        .collect();
+    let mut per_section: Vec<Vec<&Trim>> = (0..n).map(|_| Vec::new()).collect();
+    for t in &trims {
+        per_section[t.owner].push(t);
+        log.max_length = log.max_length.max(t.material);
+    }
+    for (i, list) in per_section.iter().enumerate() {
+        if list.is_empty() {
+            continue;
+        }
+        let sec = &mut out.sections[i];
+        let rects: Vec<Vec<[f64; 2]>> = list
+            .iter()
+            .map(|t| {
+                let other = &sections.sections[t.other].plane;
+                strip_rectangle(&sec.plane, other, t.s0, t.s1, strip)
+            })
+            .collect();
+        let before = sec.area();
+        trim_section(sec, &rects, strip, NUDGE_RELATIVE * diag);
+        let removed = before - sec.area();
+        log.trimmed += list.len();
+        for t in list {
+            log.warnings.push(format!(
+                "planes {} and {} disagree along their common line: plane {} has material over {:.3e} of it where plane {} has none; plane {}'s material within {strip:.1e} of the line removed there (material only where both sections have it)",
+                sections.sections[t.owner].source_index.min(sections.sections[t.other].source_index),
+                sections.sections[t.owner].source_index.max(sections.sections[t.other].source_index),
+                sections.sections[t.owner].source_index,
+                t.material,
+                sections.sections[t.other].source_index,
+                sections.sections[t.owner].source_index,
+            ));
+        }
+        log.warnings.push(format!(
+            "plane {}: {removed:.3e} of its area {before:.3e} removed along {} common line(s) where another section has no material",
+            sec.source_index,
+            list.len()
+        ));
+    }
+    Ok((out, log))
+}
+
+fn section_box(sec: &Section) -> Option<([f64; 3], [f64; 3])> {
+    let mut pts = sec
+        .regions
+        .iter()
+        .flat_map(|r| std::iter::once(&r.outer).chain(&r.holes))
+        .flat_map(|c| c.points3.iter());
+    let first = *pts.next()?;
+    Some(pts.fold((first, first), |(lo, hi), p| {
+        (
+            [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+            [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+        )
+    }))
+}
+
+/// Whether `plane` meets the box (some corner on each side, or on it).
+fn plane_meets_box(plane: &Plane, b: &([f64; 3], [f64; 3])) -> bool {
+    let (mut neg, mut pos) = (false, false);
+    for k in 0..8 {
+        let c = [
+            if k & 1 == 0 { b.0[0] } else { b.1[0] },
+            if k & 2 == 0 { b.0[1] } else { b.1[1] },
+            if k & 4 == 0 { b.0[2] } else { b.1[2] },
+        ];
+        let d = plane.signed_distance(c);
+        neg |= d <= 0.0;
+        pos |= d >= 0.0;
+    }
+    neg && pos
+}
+
+/// The stretches of line (i, j) to clear from section i and from section j.
+fn pair_trims(
+    sections: &Sections,
+    boxes: &[Option<([f64; 3], [f64; 3])>],
+    i: usize,
+    j: usize,
+    tol: f64,
+) -> Vec<Trim> {
+    let (pi, pj) = (&sections.sections[i].plane, &sections.sections[j].plane);
+    let d = cross(pi.normal, pj.normal);
+    let l = dot(d, d).sqrt();
+    if l < PARALLEL {
+        return Vec::new();
+    }
+    let line = Line {
+        dir: [d[0] / l, d[1] / l, d[2] / l],
+    };
+    let meets = |a: usize, b: usize| {
+        boxes[a]
+            .as_ref()
+            .is_some_and(|bx| plane_meets_box(&sections.sections[b].plane, bx))
+    };
+    let (mi, mj) = (meets(i, j), meets(j, i));
+    if !mi && !mj {
+        return Vec::new();
+    }
+    let on_line = |a: usize, b: usize, m: bool| {
+        if m {
+            material_on_line(&sections.sections[a], &sections.sections[b].plane, &line)
+        } else {
+            Vec::new()
+        }
+    };
+    let (ii, ij) = (on_line(i, j, mi), on_line(j, i, mj));
+    let mut out = Vec::new();
+    for (owner, other, mine, theirs) in [(i, j, &ii, &ij), (j, i, &ij, &ii)] {
+        for (s0, s1, material) in stretches_to_clear(mine, theirs, tol) {
+            out.push(Trim {
+                owner,
+                other,
+                s0,
+                s1,
+                material,
+            });
+        }
+    }
+    out
+}
+
+/// The intervals of the line (sorted, disjoint) where `sec` has material: between consecutive
+/// crossings of its contours with `other` (validated contours are disjoint and nested, so parity
+/// is material). A vertex on the other plane counts as on its positive side.
+fn material_on_line(sec: &Section, other: &Plane, line: &Line) -> Vec<(f64, f64)> {
+    let mut s = Vec::new();
+    for c in sec
+        .regions
+        .iter()
+        .flat_map(|r| std::iter::once(&r.outer).chain(&r.holes))
+    {
+        let p = &c.points3;
+        let m = p.len();
+        for k in 0..m {
+            let (a, b) = (p[k], p[(k + 1) % m]);
+            let (fa, fb) = (other.signed_distance(a), other.signed_distance(b));
+            if (fa >= 0.0) == (fb >= 0.0) {
+                continue;
+            }
+            let t = fa / (fa - fb);
+            let x = [
+                a[0] + t * (b[0] - a[0]),
+                a[1] + t * (b[1] - a[1]),
+                a[2] + t * (b[2] - a[2]),
+            ];
+            s.push(dot(line.dir, x));
+        }
+    }
+    s.sort_by(f64::total_cmp);
+    s.chunks_exact(2).map(|c| (c[0], c[1])).collect()
+}
+
+/// Stretches (s0, s1, material length) of the line to clear from `mine`: every gap of `theirs`
+/// holding material of `mine`, except a piece shorter than `tol` that continues one of `theirs`'
+/// intervals (the snapping's case). A gap without end is closed just past `mine`'s material.
+fn stretches_to_clear(
+    mine: &[(f64, f64)],
+    theirs: &[(f64, f64)],
+    tol: f64,
+) -> Vec<(f64, f64, f64)> {
+    let Some((first, last)) = mine.first().zip(mine.last()) else {
+        return Vec::new();
+    };
+    let pad = 0.01 * (last.1 - first.0) + tol;
+    let mut gaps = Vec::with_capacity(theirs.len() + 1);
+    let mut start = f64::NEG_INFINITY;
+    for &(a, b) in theirs {
+        gaps.push((start, a));
+        start = b;
+    }
+    gaps.push((start, f64::INFINITY));
+    let mut out = Vec::new();
+    for (g0, g1) in gaps {
+        let mut material = 0.0;
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &(a, b) in mine {
+            let (p0, p1) = (a.max(g0), b.min(g1));
+            if p1 <= p0 {
+                continue;
+            }
+            let continues = (p0 == g0 || p1 == g1) && p1 - p0 <= tol;
+            if !continues {
+                material += p1 - p0;
+                lo = lo.min(p0);
+                hi = hi.max(p1);
+            }
+        }
+        if material > 0.0 {
+            let s0 = if g0.is_finite() { g0 } else { lo - pad };
+            let s1 = if g1.is_finite() { g1 } else { hi + pad };
+            out.push((s0, s1, material));
+        }
+    }
+    out
+}
+
+/// The rectangle of plane `p`'s (u,v) coordinates along its line with `other` from s0 to s1,
+/// `half_width` to either side, counter-clockwise.
+fn strip_rectangle(p: &Plane, other: &Plane, s0: f64, s1: f64, half_width: f64) -> Vec<[f64; 2]> {
+    // The other plane's signed distance restricted to p: a s + b t + c.
+    let (a, b) = (dot(other.normal, p.u), dot(other.normal, p.v));
+    let c = dot(other.normal, p.origin) + other.offset;
+    let g = (a * a + b * b).sqrt();
+    let normal = [a / g, b / g];
+    // Along the line: n_p × n_other = a v − b u, i.e. (−b, a) in (u,v).
+    let along = [-normal[1], normal[0]];
+    let foot = [-c * normal[0] / g, -c * normal[1] / g];
+    let s_foot = dot(cross(p.normal, other.normal), p.to_3d(foot)) / g;
+    let at = |s: f64, side: f64| {
+        [
+            foot[0] + (s - s_foot) * along[0] + side * half_width * normal[0],
+            foot[1] + (s - s_foot) * along[1] + side * half_width * normal[1],
+        ]
+    };
+    vec![at(s0, -1.0), at(s1, -1.0), at(s1, 1.0), at(s0, 1.0)]
+}
+
+/// Subtract the rectangles from every region of `sec`; pieces with less area than a square of
+/// the strip's half-width are dropped (slivers a rectangle cut off).
+fn trim_section(sec: &mut Section, rects: &[Vec<[f64; 2]>], strip: f64, nudge: f64) {
+    let mut clip: Vec<Vec<[f64; 2]>> = rects.to_vec();
+    for r in &mut clip {
+        if polygon_signed_area(r) < 0.0 {
+            r.reverse();
+        }
+    }
+    let mut regions = Vec::new();
+    for region in &sec.regions {
+        let mut subject = Vec::new();
+        material_of(region, &mut subject);
+        let shapes = subject.overlay_as::<i64>(&clip, OverlayRule::Difference, FillRule::NonZero);
+        for piece in pieces_of(shapes, nudge).unwrap_or_default() {
+            let r = region_of_piece(region.label, &sec.plane, piece);
+            if r.area() >= strip * strip {
+                regions.push(r);
+            }
+        }
+    }
+    sec.regions = regions;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_gap_of_the_other_section_is_cleared() {
+        // Theirs covers [0,1] and [3,4]; mine [0.5, 3.5]: clear the gap (1, 3).
+        let s = stretches_to_clear(&[(0.5, 3.5)], &[(0.0, 1.0), (3.0, 4.0)], 1e-3);
+        assert_eq!(s.len(), 1);
+        assert_eq!((s[0].0, s[0].1), (1.0, 3.0));
+        assert!((s[0].2 - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_short_overhang_is_left_to_snapping_but_an_island_is_not() {
+        // Mine continues theirs by 1e-4 past 1.0: snapping's case.
+        assert!(stretches_to_clear(&[(0.0, 1.0001)], &[(0.0, 1.0)], 1e-3).is_empty());
+        // A tiny island of mine inside their gap is cleared, however short.
+        let s = stretches_to_clear(&[(0.0, 1.0), (2.0, 2.00001)], &[(0.0, 1.0)], 1e-3);
+        assert_eq!(s.len(), 1);
+        assert_eq!(s[0].0, 1.0);
+        assert!(s[0].1 > 2.00001);
+    }
+
+    #[test]
+    fn nothing_on_their_side_clears_all_of_mine() {
+        let s = stretches_to_clear(&[(0.0, 1.0), (2.0, 3.0)], &[], 1e-3);
+        assert_eq!(s.len(), 1);
+        assert!(s[0].0 < 0.0 && s[0].1 > 3.0);
+        assert!((s[0].2 - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_strip_rectangle_lies_along_the_line() {
+        let p = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+        let q = Plane::from_equation([1.0, 0.0, 1.0], -0.5).unwrap();
+        let r = strip_rectangle(&p, &q, -1.0, 2.0, 0.01);
+        let dir = cross(p.normal, q.normal);
+        let l = dot(dir, dir).sqrt();
+        let mid = |a: [f64; 2], b: [f64; 2]| p.to_3d([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]);
+        for (x, s) in [(mid(r[0], r[3]), -1.0), (mid(r[1], r[2]), 2.0)] {
+            assert!(q.signed_distance(x).abs() < 1e-12);
+            assert!((dot(dir, x) / l - s).abs() < 1e-12);
+        }
+        assert!(polygon_signed_area(&r) > 0.0);
+    }
+}
