@@ -295,7 +295,7 @@ fn strip_rectangle(p: &Plane, other: &Plane, s0: f64, s1: f64, half_width: f64) 
             foot[1] + (s - s_foot) * along[1] + side * half_width * normal[1],
         ]
     };
-    vec![at(s0, -1.0), at(s1, -1.0), at(s1, 1.0), at(s0, 1.0)]
+    vec![at(s0, 1.0), at(s1, 1.0), at(s1, -1.0), at(s0, -1.0)]
 }
 
 /// Subtract the rectangles from every region of `sec`; pieces with less area than a square of
