@@ -26,11 +26,20 @@ pub enum Method {
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum Assembly {
-    /// Overlay the two sides of every face, split pinched vertices, thicken flat zones
-    Glue,
-    /// (experimental) The kept tetrahedra of all cells as one complex, the surface its boundary;
-    /// use with --shared-samples, so that the cells triangulate every face alike
+    /// The kept tetrahedra of all cells as one conforming complex, the surface its boundary
     Complex,
+    /// The first pipeline, for comparison: overlay the two sides of every face, split pinched
+    /// vertices, lift samples, thicken flat zones (tetrahedra not conforming across faces)
+    Glue,
+}
+
+/// Which diagram samples the cells of a face insert
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Samples {
+    /// Both cells insert the samples of both sides (they triangulate the face alike)
+    Shared,
+    /// Each cell inserts its own samples only (the first pipeline's way)
+    PerCell,
 }
 
 /// Plane placements of `slice` (see `slice2solid::slice::SliceMode` for the exact rules)
@@ -118,12 +127,15 @@ pub struct ReconstructArgs {
     /// voids between the planes that no section witnesses are filled)
     #[arg(long)]
     pub keep_topology: bool,
-    /// Delaunay method (experimental): both cells of a face insert the diagram samples of both
-    /// sides, so that they triangulate the face alike
-    #[arg(long)]
+    /// Delaunay method: which diagram samples the cells of a face insert (default: shared with
+    /// --assembly complex, per-cell with --assembly glue)
+    #[arg(long, value_enum)]
+    pub samples: Option<Samples>,
+    /// Same as --samples shared (kept for old scripts)
+    #[arg(long, hide = true, conflicts_with = "samples")]
     pub shared_samples: bool,
     /// Delaunay method: how the cells become one solid
-    #[arg(long, value_enum, default_value = "glue")]
+    #[arg(long, value_enum, default_value = "complex")]
     pub assembly: Assembly,
     /// Refuse input that would be repaired (plane equations off their vertices, self-intersecting
     /// contours, touching or overlapping components): each repair becomes a located error

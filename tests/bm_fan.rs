@@ -92,13 +92,14 @@ fn the_tagged_kernel_takes_every_wedge_cell() {
 }
 
 /// Hand and figure-eight cut by 16 and 40 fan planes: closed, oriented, manifold, no crossing, every
-/// section within 5e-5 of the input (today 4.0e-5–4.5e-5 for the hand, 2e-11 for the eight), few
-/// cells untagged, in seconds.
+/// section within 1e-9 of the input (today at most 1.1e-10; 4.5e-5 before the conforming complex
+/// became the default), few cells untagged, in seconds.
 #[test]
 fn fans_reconstruct_clean() {
+    let mut failures = Vec::new();
     for (mesh, n, untagged, genus) in [
-        ("hand", 16, 0, 16),
-        ("hand", 40, 1, 20),
+        ("hand", 16, 0, 38),
+        ("hand", 40, 1, 24),
         ("eight_15", 16, 0, 2),
     ] {
         let s = fan(mesh, n);
@@ -121,14 +122,17 @@ fn fans_reconstruct_clean() {
         );
         assert!(c.closed && c.manifold && c.oriented, "{mesh} fan {n}");
         assert_eq!((c.self_intersections, c.overlapping_coplanar_pairs), (0, 0));
-        assert!(worst < 5e-5, "{mesh} fan {n}: worst section {worst:e}");
-        assert_eq!(
-            solid.report.counts["cells_untagged"], untagged,
-            "{mesh} fan {n}"
-        );
+        assert!(worst < 1e-9, "{mesh} fan {n}: worst section {worst:e}");
         // topology is issue 19's (the hand's reference genus is 5): pinned so that a change shows
-        assert_eq!(c.genus, genus, "{mesh} fan {n}");
+        let got = (solid.report.counts["cells_untagged"], c.genus);
+        if got != (untagged, genus) {
+            failures.push(format!(
+                "{mesh} fan {n}: (untagged, genus) {got:?}, pinned {:?}",
+                (untagged, genus)
+            ));
+        }
         // before: over 300 s; today 0.6–3.7 s on a shared 2-core machine (a loose bound: noisy)
         assert!(secs < 30.0, "{mesh} fan {n}: {secs:.1} s");
     }
+    assert!(failures.is_empty(), "{failures:#?}");
 }

@@ -131,11 +131,12 @@ fn sphere_cut_by_cube_faces_gives_the_hull_of_the_contours() {
 /// Today's volumes (relative 1e-9): no closed form (the join between non-parallel circles; slabs
 /// whose thickness the thickening chooses).
 const TWO_PLANES_VOLUME: f64 = 4.792340527294353;
-const ISLAND_VOLUME: f64 = 6.211725110113161;
-/// The square (area 4) times a slab 7.3e-5 thick (2.6e-5 of the diagonal).
-const SINGLE_VOLUME: f64 = 2.937806898987763e-4;
+const ISLAND_VOLUME: f64 = 6.215034900771671;
+/// The square (area 4) as a slab of tetrahedra 3.6e-3 thick (1e-3 of the padded box's diagonal,
+/// `bm::slab`).
+const SINGLE_VOLUME: f64 = 1.431090890340885e-2;
 /// Two such slabs, thicker (the thickness follows the model's size).
-const EMPTY_MIDDLE_VOLUME: f64 = 7.462562584225434e-4;
+const EMPTY_MIDDLE_VOLUME: f64 = 3.664144922515024e-2;
 
 fn assert_volume(name: &str, vol: f64, expected: f64) {
     assert!(
@@ -207,7 +208,7 @@ fn island_attached_from_neither_side_is_thickened() {
     let thickened = solid
         .report
         .counts
-        .get("flat_zones_thickened")
+        .get("flat_zone_triangles_thickened")
         .copied()
         .unwrap_or(0);
     assert!(thickened >= 1, "{:?}", solid.report.counts);
@@ -226,13 +227,18 @@ fn square_section(plane: Plane, z: f64, index: usize) -> Section {
     polygon_section(plane, pts, index)
 }
 
-/// Whether `report` names a flat zone thickened into a slab.
-fn thickened(report: &slice2solid::Report) -> usize {
-    report
+/// Flat-zone triangles thickened into slabs, when the warning says so and none is left out.
+fn thickened(report: &slice2solid::Report) -> u64 {
+    let warned = report
         .warnings
         .iter()
-        .filter(|w| w.contains("flat zone") && w.contains("thickened into"))
-        .count()
+        .any(|w| w.starts_with("flat zones:") && w.contains("thickened into slabs"));
+    assert_eq!(report.counts["flat_zone_triangles_left"], 0);
+    if warned {
+        report.counts["flat_zone_triangles_thickened"]
+    } else {
+        0
+    }
 }
 
 /// One section alone bounds no volume in any cell: it is a flat zone attached from neither side,
@@ -247,7 +253,7 @@ fn a_single_section_is_a_thin_slab() {
         label_names: Default::default(),
     };
     let solid = slice2solid::reconstruct(&sections, &Options::default()).unwrap();
-    assert_eq!(thickened(&solid.report), 1, "{:?}", solid.report.warnings);
+    assert_eq!(thickened(&solid.report), 2, "{:?}", solid.report.warnings);
     let (comps, genus, vol) = run("single", &sections);
     assert_eq!((comps, genus), (1, 0));
     assert_volume("single", vol, SINGLE_VOLUME);
@@ -273,7 +279,7 @@ fn sections_apart_from_an_empty_plane_between_them_are_kept() {
         label_names: Default::default(),
     };
     let solid = slice2solid::reconstruct(&sections, &Options::default()).unwrap();
-    assert_eq!(thickened(&solid.report), 2, "{:?}", solid.report.warnings);
+    assert_eq!(thickened(&solid.report), 4, "{:?}", solid.report.warnings);
     let (comps, genus, vol) = run("empty-middle", &sections);
     assert_eq!((comps, genus), (2, 0));
     assert_volume("empty-middle", vol, EMPTY_MIDDLE_VOLUME);

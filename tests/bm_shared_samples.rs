@@ -5,8 +5,7 @@
 //! Armadillo 57, hand 17, …), the consecutive sample pairs that are not joined by Delaunay edges
 //! (where the two sides' diagrams cross, paper Fig. 12a, through the other side's points:
 //! `chains::route_pairs`), and that the surface stays a clean closed manifold with its sections.
-//! Why it is not the default yet: with random planes it leaves more crossing pairs than `glue`'s
-//! lifting of cell-local samples does (`random_planes_with_shared_samples`).
+//! On by default (with the default assembly, one conforming complex, which needs it).
 mod common;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::{DelaunayOptions, Options};
@@ -14,18 +13,18 @@ use slice2solid::{DelaunayOptions, Options};
 /// (file, faces triangulated differently: with sharing / without, sample pairs not edges with
 /// sharing, components, genus)
 const PINS: [(&str, u64, u64, u64, usize, i64); 12] = [
-    ("Armadillo-23-better", 0, 57, 0, 3, 2),
-    ("Elephant", 0, 544, 0, 10, 29),
+    ("Armadillo-23-better", 0, 57, 0, 3, 3),
+    ("Elephant", 0, 544, 0, 1, 28),
     ("Heart-simplified", 0, 0, 0, 1, 0),
-    ("Horsers", 0, 292, 0, 13, 4),
+    ("Horsers", 0, 292, 0, 1, 5),
     ("ParallelEight", 0, 4, 0, 1, 2),
     ("ParallelEightMore", 0, 4, 0, 1, 2),
     ("SideBishop", 0, 8, 0, 1, 0),
     ("balloondog", 0, 12, 0, 1, 0),
     ("balloondog_box", 0, 13, 0, 2, 0),
     ("eight_15", 0, 8, 0, 1, 2),
-    ("eight_20", 0, 96, 0, 3, 3),
-    ("hand", 0, 17, 0, 1, 15),
+    ("eight_20", 0, 96, 0, 1, 2),
+    ("hand", 0, 17, 0, 1, 22),
 ];
 
 fn options(shared_samples: bool) -> Options {
@@ -97,9 +96,9 @@ fn both_cells_of_a_face_triangulate_it_alike() {
 }
 
 /// The random-plane cases of `bm_random_planes::many_random_planes` (20 and 30 planes, seeds 4 and 5,
-/// five reference meshes; sliced directly, not through a CSL file) with shared samples: today 11 of
-/// 20 keep crossing pairs (8 without sharing), one is not closed. A listed expectation, so a fix
-/// shows.
+/// five reference meshes; sliced directly, not through a CSL file) with shared samples: today 4 of
+/// 20 are not clean (pinched vertices, singular edges or flat folds left; no exact crossing). With
+/// `--assembly glue` 11 kept crossing pairs. A listed expectation, so a fix shows.
 #[test]
 fn random_planes_with_shared_samples() {
     use slice2solid::io::mesh::read_trimesh;
@@ -134,17 +133,10 @@ fn random_planes_with_shared_samples() {
     assert_eq!(
         bad,
         [
-            "hand: 20 planes, seed 4",
-            "hand: 30 planes, seed 4",
-            "eight_15: 20 planes, seed 4",
-            "eight_15: 20 planes, seed 5",
-            "eight_15: 30 planes, seed 5",
-            "balloondog: 20 planes, seed 4",
-            "balloondog: 30 planes, seed 4",
+            "balloondog: 30 planes, seed 5",
             "balloondog_box: 20 planes, seed 4",
             "balloondog_box: 30 planes, seed 4",
-            "Elephant: 30 planes, seed 4",
-            "Elephant: 30 planes, seed 5",
+            "Elephant: 20 planes, seed 5",
         ]
     );
 }

@@ -115,11 +115,12 @@ impl Solid {
 
 /// Reconstruct a solid from `sections` with the options of `slice2solid reconstruct`:
 /// `method` ("delaunay" or "implicit"), `label` (only this label), `depth` (octree depth of the
-/// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `shared_samples`, `assembly`
-/// ("glue" or "complex"). Runs without the GIL.
+/// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `assembly` ("complex", the
+/// default, or "glue"), `shared_samples` (default: on with "complex", off with "glue"). Runs
+/// without the GIL.
 #[pyfunction]
 #[pyo3(signature = (sections, method = "delaunay", label = None, depth = 9, no_branching = false,
-    no_cutting = false, no_thicken = false, shared_samples = false, assembly = "glue"))]
+    no_cutting = false, no_thicken = false, shared_samples = None, assembly = "complex"))]
 #[allow(clippy::too_many_arguments)]
 pub fn reconstruct(
     py: Python<'_>,
@@ -130,7 +131,7 @@ pub fn reconstruct(
     no_branching: bool,
     no_cutting: bool,
     no_thicken: bool,
-    shared_samples: bool,
+    shared_samples: Option<bool>,
     assembly: &str,
 ) -> PyResult<Solid> {
     let assembly = match assembly {
@@ -164,7 +165,7 @@ pub fn reconstruct(
             branching: !no_branching,
             cutting: !no_cutting,
             thicken_flat_zones: !no_thicken,
-            shared_samples,
+            shared_samples: shared_samples.unwrap_or(assembly == slice2solid::Assembly::Complex),
             assembly,
             ..Default::default()
         },

@@ -546,6 +546,12 @@ fn assemble_cells(
             k.nonconforming_faces
         ));
     }
+    if k.slabs.thickened > 0 {
+        report.warnings.push(format!(
+            "flat zones: {} section triangles (area {:.6e}) that no cell attaches to on either side (the paper's Fig. 13) thickened into slabs of tetrahedra, at least {:.3e} thick",
+            k.slabs.thickened, k.flat_area, k.slabs.min_thickness
+        ));
+    }
     let left = if slabs {
         k.slabs.left
     } else {
