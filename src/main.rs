@@ -24,24 +24,6 @@ pub enum Method {
     Implicit,
 }
 
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Assembly {
-    /// The kept tetrahedra of all cells as one conforming complex, the surface its boundary
-    Complex,
-    /// The first pipeline, for comparison: overlay the two sides of every face, split pinched
-    /// vertices, lift samples, thicken flat zones (tetrahedra not conforming across faces)
-    Glue,
-}
-
-/// Which diagram samples the cells of a face insert
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Samples {
-    /// Both cells insert the samples of both sides (they triangulate the face alike)
-    Shared,
-    /// Each cell inserts its own samples only (the first pipeline's way)
-    PerCell,
-}
-
 /// Plane placements of `slice` (see `slice2solid::slice::SliceMode` for the exact rules)
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum SliceMode {
@@ -123,20 +105,15 @@ pub struct ReconstructArgs {
     /// Delaunay method: leave flat zones out of the solid instead of thickening them (warned)
     #[arg(long)]
     pub no_thicken: bool,
-    /// Delaunay method, --assembly complex: keep the raw Boissonnat–Memari topology (by default,
-    /// voids between the planes that no section witnesses are filled)
+    /// Delaunay method: keep the raw Boissonnat–Memari topology (by default, voids between the
+    /// planes that no section witnesses are filled)
     #[arg(long)]
     pub keep_topology: bool,
-    /// Delaunay method: which diagram samples the cells of a face insert (default: shared with
-    /// --assembly complex, per-cell with --assembly glue)
-    #[arg(long, value_enum)]
-    pub samples: Option<Samples>,
-    /// Same as --samples shared (kept for old scripts)
-    #[arg(long, hide = true, conflicts_with = "samples")]
-    pub shared_samples: bool,
-    /// Delaunay method: how the cells become one solid
-    #[arg(long, value_enum, default_value = "complex")]
-    pub assembly: Assembly,
+    /// Delaunay method: each cell inserts its own diagram samples only, not those of the other
+    /// side of its faces (the two sides of a face may then be triangulated differently and the
+    /// tetrahedra do not conform there; to study what sharing contributes)
+    #[arg(long)]
+    pub no_shared_samples: bool,
     /// Refuse input that would be repaired (plane equations off their vertices, self-intersecting
     /// contours, touching or overlapping components): each repair becomes a located error
     #[arg(long)]

@@ -40,33 +40,13 @@ pub struct DelaunayOptions {
     /// off, they are left out of the solid and warned.
     pub thicken_flat_zones: bool,
     /// Both cells of a face insert the diagram samples of both sides (`bm::shared_samples`), so
-    /// that they triangulate the face alike: what makes `Assembly::Complex` one conforming complex
-    /// (on by default). `Assembly::Glue` wants it off (`DelaunayOptions::glue`): glue lifts only
-    /// cell-local samples off their plane to keep the two cells' diagrams from crossing, and with
-    /// random planes shared samples leave it more crossing pairs (`tests/bm_shared_samples.rs`).
+    /// that they triangulate the face alike: what makes the kept tetrahedra one conforming complex.
+    /// Off, each cell inserts its own samples only and the two sides of a face may be triangulated
+    /// differently (counted as `nonconforming_faces`, warned): to study what sharing contributes.
     pub shared_samples: bool,
-    /// How the cells' kept tetrahedra become one solid.
-    pub assembly: Assembly,
-    /// Keep the raw Boissonnat–Memari topology: with `Assembly::Complex`, voids between the planes
-    /// that no section witnesses are otherwise taken into the solid (`bm::voids`).
+    /// Keep the raw Boissonnat–Memari topology: voids between the planes that no section witnesses
+    /// are otherwise taken into the solid (`bm::voids`).
     pub keep_topology: bool,
-}
-
-/// How the cells become one solid (`docs/design/conforming-complex.md`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Assembly {
-    /// `bm::assembly` (the default): the kept tetrahedra of all cells as one complex, the surface
-    /// its boundary (closed and embedded where the cells triangulate every face alike); flat
-    /// zones get slabs of tetrahedra, singular edges and vertices and flat folds are resolved
-    /// inside the complex, and what is left is counted and warned.
-    #[default]
-    Complex,
-    /// `bm::glue`, the first pipeline, kept for comparison: per face the overlay of both sides'
-    /// attached regions, pinched vertices split, samples lifted off the plane, flat zones
-    /// thickened into slabs. Its tetrahedra do not conform across faces, and with dense or
-    /// oblique planes its surface can cross itself.
-    Glue,
 }
 
 impl Default for DelaunayOptions {
@@ -76,19 +56,7 @@ impl Default for DelaunayOptions {
             cutting: true,
             thicken_flat_zones: true,
             shared_samples: true,
-            assembly: Assembly::Complex,
             keep_topology: false,
-        }
-    }
-}
-
-impl DelaunayOptions {
-    /// The first pipeline (`Assembly::Glue`, cell-local samples), everything else as `self`.
-    pub fn glue(self) -> Self {
-        DelaunayOptions {
-            shared_samples: false,
-            assembly: Assembly::Glue,
-            ..self
         }
     }
 }

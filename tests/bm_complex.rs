@@ -10,7 +10,7 @@
 mod common;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::eval::tets::check_tets;
-use slice2solid::{Assembly, DelaunayOptions, Options};
+use slice2solid::{DelaunayOptions, Options};
 
 /// (file, faces triangulated differently, flat-zone triangles, singular edges, pinched vertices,
 /// components of the surface once unwitnessed voids are filled: `bm::voids`)
@@ -36,7 +36,6 @@ fn options() -> Options {
     Options {
         delaunay: DelaunayOptions {
             shared_samples: true,
-            assembly: Assembly::Complex,
             ..Default::default()
         },
         ..Default::default()

@@ -64,7 +64,7 @@ fn figure_eight_cut_by_random_planes() {
 /// fix (a case leaves the list: remove it here) and a regression (a case joins it) fail the test.
 /// None has an exact crossing; each keeps pinched vertices or singular edges that the resolution
 /// inside the complex leaves, or 3–9 overlapping near-coplanar pairs (flat folds). With the first
-/// pipeline (`--assembly glue`) 8 cases kept 3–15 exact crossings instead.
+/// pipeline (each cell glued, since removed) 8 cases kept 3–15 exact crossings instead.
 const KNOWN_UNCLEAN: &[&str] = &[
     "balloondog: 30 planes, seed 5",
     "balloondog_box: 20 planes, seed 4",

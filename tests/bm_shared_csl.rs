@@ -107,7 +107,7 @@ macro_rules! shared_file {
 }
 
 // name, file, exact, shifted, summed exact, components, genus, flat-zone triangles thickened
-// (the default assembly, one conforming complex; the sections are exact up to rounding, so the
+// (one conforming complex; the sections are exact up to rounding, so the
 // exact bounds are 1e-9 where today's value is below it)
 shared_file!(
     armadillo,

@@ -5,7 +5,7 @@
 //! Armadillo 57, hand 17, …), the consecutive sample pairs that are not joined by Delaunay edges
 //! (where the two sides' diagrams cross, paper Fig. 12a, through the other side's points:
 //! `chains::route_pairs`), and that the surface stays a clean closed manifold with its sections.
-//! On by default (with the default assembly, one conforming complex, which needs it).
+//! On by default (one conforming complex needs it).
 mod common;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::{DelaunayOptions, Options};
@@ -98,7 +98,8 @@ fn both_cells_of_a_face_triangulate_it_alike() {
 /// The random-plane cases of `bm_random_planes::many_random_planes` (20 and 30 planes, seeds 4 and 5,
 /// five reference meshes; sliced directly, not through a CSL file) with shared samples: today 4 of
 /// 20 are not clean (pinched vertices, singular edges or flat folds left; no exact crossing). With
-/// `--assembly glue` 11 kept crossing pairs. A listed expectation, so a fix shows.
+/// the first pipeline (cells glued, since removed) 11 kept crossing pairs. A listed expectation,
+/// so a fix shows.
 #[test]
 fn random_planes_with_shared_samples() {
     use slice2solid::io::mesh::read_trimesh;

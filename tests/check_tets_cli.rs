@@ -40,8 +40,8 @@ fn check_json(tets: &Path, surface: Option<&Path>) -> (Option<i32>, Value) {
 
 /// Today's engine output for eight_15, as `check` measures it: one conforming complex (the default
 /// assembly), every tetrahedron positive, its boundary the surface triangle for triangle. Before the
-/// complex was the default (`--assembly glue`, still available for comparison) the same run gave a
-/// non-conforming mesh: 741 edges in more than two boundary triangles, 6959 crossing pairs, 2204
+/// complex (each cell glued to its neighbours, since removed) the same run gave a non-conforming
+/// mesh: 741 edges in more than two boundary triangles, 6959 crossing pairs, 2204
 /// boundary triangles the surface did not have and 262 it lacked.
 #[test]
 fn todays_eight_15_tets_are_pinned() {

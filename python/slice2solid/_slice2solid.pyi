@@ -94,8 +94,8 @@ def reconstruct(
     no_branching: bool = False,
     no_cutting: bool = False,
     no_thicken: bool = False,
-    shared_samples: Optional[bool] = None,
-    assembly: Literal["complex", "glue"] = "complex",
+    no_shared_samples: bool = False,
+    keep_topology: bool = False,
 ) -> Solid: ...
 def check(vertices: _Points, faces: _Points, sections: Optional[Sections] = None) -> dict[str, Any]: ...
 def compare(a: _MeshArg, b: _MeshArg, samples: int = 25000, seed: int = 0) -> dict[str, Any]: ...

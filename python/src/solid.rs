@@ -115,12 +115,11 @@ impl Solid {
 
 /// Reconstruct a solid from `sections` with the options of `slice2solid reconstruct`:
 /// `method` ("delaunay" or "implicit"), `label` (only this label), `depth` (octree depth of the
-/// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `assembly` ("complex", the
-/// default, or "glue"), `shared_samples` (default: on with "complex", off with "glue"). Runs
-/// without the GIL.
+/// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `no_shared_samples`,
+/// `keep_topology`. Runs without the GIL.
 #[pyfunction]
 #[pyo3(signature = (sections, method = "delaunay", label = None, depth = 9, no_branching = false,
-    no_cutting = false, no_thicken = false, shared_samples = None, assembly = "complex"))]
+    no_cutting = false, no_thicken = false, no_shared_samples = false, keep_topology = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn reconstruct(
     py: Python<'_>,
@@ -131,20 +130,9 @@ pub fn reconstruct(
     no_branching: bool,
     no_cutting: bool,
     no_thicken: bool,
-    shared_samples: Option<bool>,
-    assembly: &str,
+    no_shared_samples: bool,
+    keep_topology: bool,
 ) -> PyResult<Solid> {
-    let assembly = match assembly {
-        "glue" => slice2solid::Assembly::Glue,
-        "complex" => slice2solid::Assembly::Complex,
-        other => {
-            return Err(crate::input_err(
-                py,
-                "assembly",
-                format!("unknown assembly \"{other}\" (expected \"glue\" or \"complex\")"),
-            ))
-        }
-    };
     let method = match method {
         "delaunay" => Method::Delaunay,
         "implicit" => Method::Implicit,
@@ -165,9 +153,8 @@ pub fn reconstruct(
             branching: !no_branching,
             cutting: !no_cutting,
             thicken_flat_zones: !no_thicken,
-            shared_samples: shared_samples.unwrap_or(assembly == slice2solid::Assembly::Complex),
-            assembly,
-            ..Default::default()
+            shared_samples: !no_shared_samples,
+            keep_topology,
         },
         ..Default::default()
     };

@@ -6,8 +6,8 @@
 //! by construction: a section triangle kept from both sides is interior, from one side is surface,
 //! from neither is a flat zone (not in ∂K, counted with its area). What ∂K can still have are
 //! singularities (an edge with four surface triangles, a vertex whose surface link is several
-//! cycles, paper Fig. 12a), counted here; resolving them inside K is the next step of
-//! `docs/design/conforming-complex.md`. This replaces `glue` when `Assembly::Complex` is chosen.
+//! cycles, paper Fig. 12a): they are resolved inside K (`fill`, `singular`, `manifold`), and
+//! what is left is counted (`docs/design/conforming-complex.md`).
 use super::cell::CellResult;
 use super::manifold::ToggleStats;
 use super::refine::{Planes, Triangulation};
@@ -398,7 +398,7 @@ fn count_faces(faces: &[Vec<Side>], positions: &[[f64; 3]], out: &mut Assembled)
             let k = sorted3(t.tri);
             if !attached.contains(&k) {
                 out.flat_triangles += 1;
-                out.flat_area += super::glue::tri_area(positions, k);
+                out.flat_area += crate::geom::triangle_area(k.map(|v| positions[v as usize]));
             }
         }
     }

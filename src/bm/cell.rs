@@ -28,7 +28,7 @@ impl Default for Sampling {
     }
 }
 use super::chains::{conform_pairs, DiagramSample, Kind, SamplePair};
-use super::complex::{outward_face, Complex, NONE};
+use super::complex::{outward_face, Complex};
 use super::prune::{prune, PruneCounts};
 use super::shared_samples::SharedSamples;
 use crate::error::Result;
@@ -58,8 +58,6 @@ pub struct CellResult {
     /// `kept` and `fillable`, the cell's whole triangulation, which the complex is refined in
     /// (`refine`).
     pub external: Vec<[u32; 4]>,
-    /// Boundary triangles of the kept tets that are not on a face, outward (local ids).
-    pub nonplanar: Vec<[u32; 3]>,
     pub faces: Vec<FaceSide>,
     pub counts: PruneCounts,
     pub tets: u64,
@@ -156,7 +154,7 @@ fn lap(t: &mut std::time::Instant) -> f64 {
 
 /// Triangulate `points` with our exact kernel; finite tets in input vertex ids, positively oriented
 /// in `robust`'s convention (`orient3d > 0`, the pruning's convention; the kernel hands out the
-/// opposite orientation, so two vertices are swapped; `glue` swaps them back for `TetMesh`), in canonical order (see
+/// opposite orientation, so two vertices are swapped; `assembly` swaps them back for `TetMesh`), in canonical order (see
 /// [`finite_tets`]). Exact duplicates are merged by the kernel into the smallest index.
 pub fn delaunay_tets(points: &[[f64; 3]]) -> Result<Vec<[u32; 4]>> {
     Ok(finite_tets(&crate::delaunay::Delaunay::try_new(points)?))
@@ -520,7 +518,6 @@ fn run_cell_with(
     let (alive, counts) = prune(&cx, &cl);
     timing.prune += lap(&mut clock);
     let mut kept = Vec::new();
-    let mut nonplanar = Vec::new();
     let mut fillable = Vec::new();
     let mut external = Vec::new();
     for (t, tv) in cx.tets.iter().enumerate() {
@@ -539,18 +536,6 @@ fn run_cell_with(
             continue;
         }
         kept.push(*tv);
-        for i in 0..4 {
-            let nb = cx.nbr[t][i];
-            if nb != NONE && alive[nb as usize] {
-                continue;
-            }
-            let f = outward_face(tv, i);
-            let m =
-                input.mask[f[0] as usize] & input.mask[f[1] as usize] & input.mask[f[2] as usize];
-            if m == 0 {
-                nonplanar.push(f);
-            }
-        }
     }
     let faces: Vec<FaceSide> = (0..n_slots)
         .map(|s| {
@@ -601,7 +586,6 @@ fn run_cell_with(
         kept,
         fillable,
         external,
-        nonplanar,
         faces,
         counts,
         tets: cx.len() as u64,

@@ -18,14 +18,6 @@ pub type IdMap<K, V> = HashMap<K, V, IdHash>;
 pub type IdSet<K> = HashSet<K, IdHash>;
 pub const MAX_SLOTS: usize = 128;
 
-/// (u,v) of global vertex `v` in plane `p`, if `v` carries tag `p`.
-pub fn uv_on(pool: &VertexPool, v: u32, p: PlaneId) -> Option<[f64; 2]> {
-    let tags = &pool.tags[v as usize];
-    tags.iter()
-        .position(|&t| t == p)
-        .map(|i| pool.uv[v as usize][i])
-}
-
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Where {
     Inside,

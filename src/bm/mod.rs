@@ -1,42 +1,34 @@
-//! Boissonnat–Memari reconstruction: per arrangement cell, Delaunay of contour vertices and branching samples,
-//! pruned in three steps; the cells glued into one solid.
+//! Boissonnat–Memari reconstruction: per arrangement cell, Delaunay of contour vertices and branching
+//! samples, pruned in three steps; the kept tetrahedra of all cells are one conforming complex whose
+//! boundary is the solid's surface.
 //!
 //! Flow: face boundary loops (global pool ids) → rounds of { every dirty cell in parallel (rayon):
-//! Delaunay (our kernel), branching samples (`branching`), conformity check } with global Steiner
-//! splits (`conform`) until every contour edge is an edge of every cell's section triangulation → per
-//! cell classify (`classify`, by plane tags) + prune (`prune`, steps 1–3) → `glue`.
+//! Delaunay (our kernel, tagged construction: `cell::cell_delaunay`), branching samples
+//! (`branching`), conformity check } with global Steiner splits (`conform`) until every contour edge
+//! is an edge of every cell's section triangulation → the cells' diagram samples become pool
+//! vertices and every cell runs once more with the samples of both sides of its faces
+//! (`shared_samples`), so both triangulate each face alike (a pair the other side's points took
+//! away is joined through them, `chains::route_pairs`) → per cell classify (`classify`, by plane
+//! tags) + prune (`prune`, steps 1–3) → `assembly`: the kept tetrahedra as one complex; flat zones
+//! get slabs of tetrahedra (`slab`), singular edges and pinched vertices are filled (`fill`), grown
+//! into (`refine`, `singular`) or toggled away (`manifold`), enclosed voids no section witnesses
+//! are filled (`voids`), never by moving a vertex.
 //!
-//! Decisions (see each module's doc): flat tets (four vertices on one plane, from rounding) are removed
-//! in step 1; tet types by the tag rule in `classify`; step 3 uses the paper's face-count rule plus
-//! filling of enclosed voids; branching samples are cell-local vertices placed on the Moebius diagram
-//! where the Delaunay apex map is discontinuous; gluing never matches section triangles across cells
-//! (`glue`), flat zones attached from neither side are thickened into thin slabs merged into the cell
-//! whose surface borders them most (`thicken`, Fig. 12c), pinched vertices are split and singular crossings of the two
-//! cells' branching diagrams avoided by displacing samples 1e-6 of an edge into their cell (Fig. 12b).
+//! Decisions (see each module's doc): flat tets (four vertices on one plane by tags) are left out in
+//! the cells; tet types by the tag rule in `classify`; step 3 uses the paper's face-count rule plus
+//! filling of enclosed voids; branching samples are placed on the Moebius diagram where the Delaunay
+//! apex map is discontinuous. Cutting-diagram samples (`cutting`) are added beside the branching
+//! samples where a site's Moebius cell on a face is disconnected next to a connected one (the
+//! borders of flat zones). Consecutive branching or cutting samples (chains along the diagram,
+//! `chains`) are made Delaunay edges of the cell by Steiner points on the diagram (counts
+//! `sample_pairs`, `sample_steiner_points`, `sample_pairs_not_edges`, the last warned per cell and
+//! face).
 //!
-//! Cutting-diagram samples (`cutting`) are added beside the branching samples where a site's Moebius
-//! cell on a face is disconnected next to a connected one (the borders of flat zones).
-//!
-//! Consecutive branching or cutting samples (chains along the diagram, `chains`) are made Delaunay
-//! edges of the cell by Steiner points on the diagram (counts `sample_pairs`, `sample_steiner_points`,
-//! `sample_pairs_not_edges`, the last warned per cell and face).
-//!
-//! With `DelaunayOptions::shared_samples` (off by default), the cells first run only to their
-//! samples, which become pool vertices (`shared_samples`); then every cell runs once more with the
-//! samples of both sides of its faces, so that both triangulate each face alike, and a pair the
-//! other side's points took away is joined through them (`chains::route_pairs`).
-//!
-//! With `DelaunayOptions::assembly = Complex` the cells are not glued: the solid is the boundary
-//! of the kept tetrahedra of all cells as one complex (`assembly`), singular edges and pinched
-//! vertices filled with step-1 survivors inside the complex (`fill`); the cells triangulate with
-//! the kernel's tagged construction in both assemblies (`cell::cell_delaunay`).
-//!
-//! Known limits: on a face attached from both sides the
-//! output is the 2D overlay of the two attached regions (`face_overlay`), except where it is
-//! inconsistent (folded triangles in (u,v)): there two flat-zone sheets can remain (warned); the
-//! tetrahedral mesh is non-conforming across faces whose two cells triangulate the section differently.
-//! `Options::delaunay` switches branching and cutting samples and flat-zone thickening off. No part of
-//! the engine reads environment variables: every switch is a typed option.
+//! Known limits: what the resolution inside the complex leaves (singular simplices, flat-zone
+//! triangles without a slab, faces two cells triangulate differently where a cell fell back to the
+//! untagged kernel) is counted and warned. `Options::delaunay` switches branching and cutting
+//! samples, flat-zone slabs and sample sharing off, to study what each contributes. No part of the
+//! engine reads environment variables: every switch is a typed option.
 pub mod assembly;
 pub mod branching;
 pub mod cell;
@@ -46,17 +38,13 @@ pub mod classify;
 pub mod complex;
 pub mod conform;
 pub mod cutting;
-pub mod face_overlay;
 pub mod fill;
-pub mod glue;
 pub mod manifold;
 pub mod prune;
 pub mod refine;
 pub mod shared_samples;
 pub mod singular;
 pub mod slab;
-pub mod thicken;
-pub mod untangle;
 pub mod voids;
 
 use crate::arrangement::Arrangement;
@@ -115,7 +103,7 @@ fn run_timed(
     Ok(Some(r))
 }
 
-/// The cells after global conformity splitting: what `glue` joins into one solid.
+/// The cells after global conformity splitting: what `assembly` joins into one complex.
 pub struct CellRuns {
     /// The arrangement's vertex pool with the conformity Steiner points added.
     pub pool: crate::arrangement::VertexPool,
@@ -452,51 +440,7 @@ pub fn reconstruct(
         report.count("cutting_samples_on_flat_border", r.cutting_on_flat_border);
         *report.values.entry("cell_flat_area".into()).or_insert(0.0) += r.flat_area;
     }
-    match options.delaunay.assembly {
-        crate::solid::Assembly::Glue => Ok(glue_cells(arr, &pool, &results, options, report)),
-        crate::solid::Assembly::Complex => {
-            Ok(assemble_cells(arr, &pool, &results, options, report))
-        }
-    }
-}
-
-/// The solid by `glue` (overlay, unpinch, lift, thicken).
-fn glue_cells(
-    arr: &Arrangement,
-    pool: &crate::arrangement::VertexPool,
-    results: &[Option<CellResult>],
-    options: &Options,
-    report: &mut Report,
-) -> Solid {
-    let glued = report.time("glue", || {
-        glue::glue(arr, pool, results, options.delaunay.thicken_flat_zones)
-    });
-    report.count("flat_zone_faces", glued.flat_zone_faces);
-    report
-        .values
-        .insert("flat_zone_area".into(), glued.flat_zone_area);
-    report.count("flat_zones_thickened", glued.flat_zones_thickened);
-    report.values.insert(
-        "flat_zone_area_thickened".into(),
-        glued.flat_zone_area_thickened,
-    );
-    report.count("flat_zones_left", glued.flat_zones_left);
-    report.count("nonconforming_faces", glued.nonconforming_faces);
-    report.count("pinched_vertices_lifted", glued.pinched_vertices);
-    report.count("lifts_redirected", glued.lifts_redirected);
-    report.count("samples_kept_on_plane", glued.samples_kept_on_plane);
-    report.count("overlay_faces", glued.overlay_faces);
-    report.count("overlay_vertices", glued.overlay_vertices);
-    report.count("overlay_fallbacks", glued.overlay_fallbacks);
-    for &(step, secs) in &glued.timings {
-        report.values.insert(format!("glue_seconds.{step}"), secs);
-    }
-    report.warnings.extend(glued.warnings);
-    Solid {
-        surface: glued.surface,
-        tets: Some(glued.tets),
-        report: Report::default(),
-    }
+    Ok(assemble_cells(arr, &pool, &results, options, report))
 }
 
 /// The solid as one complex (`assembly`): the surface is the boundary of the kept tetrahedra.
@@ -565,7 +509,7 @@ fn assemble_cells(
     }
     if k.singular_edges + k.singular_vertices > 0 {
         report.warnings.push(format!(
-            "the boundary of the complex has {} singular edges and {} pinched vertices (not yet resolved with --assembly complex)",
+            "the boundary of the complex has {} singular edges and {} pinched vertices that its resolution leaves: the surface is not a manifold there",
             k.singular_edges, k.singular_vertices
         ));
     }
@@ -573,21 +517,5 @@ fn assemble_cells(
         surface: k.surface,
         tets: Some(k.tets),
         report: Report::default(),
-    }
-}
-
-/// An arrangement without planes or cells (unit tests of the gluing steps that do not look at it).
-#[cfg(test)]
-fn empty_arrangement() -> Arrangement {
-    Arrangement {
-        planes: Vec::new(),
-        n_input: 0,
-        pool: Default::default(),
-        faces: Vec::new(),
-        cells: Vec::new(),
-        bbox: ([0.0; 3], [1.0; 3]),
-        scope: crate::arrangement::CellScope::Sections,
-        max_disagreement: 0.0,
-        warnings: Vec::new(),
     }
 }

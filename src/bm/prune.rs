@@ -506,30 +506,6 @@ fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32, strict: bool) 
     }
 }
 
-/// Diagnostic: face-connected groups of removed tets that the complex and grounded
-/// triangles close off (voids of the solid), with each tet's type, removal reason (see
-/// `prune_why`), masks and neighbours. Should be empty after `fill_cavities`.
-pub fn debug_voids(cx: &Complex, cl: &Classified, alive: &[bool], why: &[u8]) -> Vec<String> {
-    let mut out = Vec::new();
-    for group in enclosed_groups(cx, cl, alive, |t| cl.ty[t] != TetType::Flat && why[t] != 1) {
-        out.push(format!("void of {} tets", group.len()));
-        for &t in &group {
-            out.push(format!(
-                "   tet {t} {:?}/{} piv {:06b} nbr {:?}",
-                cl.ty[t as usize],
-                why[t as usize],
-                cl.pivot_edges[t as usize],
-                cx.nbr[t as usize].map(|nb| if nb == NONE {
-                    "hull".to_string()
-                } else {
-                    format!("{}:{:?}/{}", nb, cl.ty[nb as usize], why[nb as usize])
-                })
-            ));
-        }
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::classify::tet_type;

@@ -3,8 +3,8 @@
 //! Each cell samples the branching and cutting diagrams of its faces from its own Delaunay
 //! triangulation (the Moebius diagram seen from its side). Inserted into that cell only, they made
 //! the two cells of a face triangulate it differently on 544 of Elephant's 1129 shared faces (all
-//! but one measured difference; `docs/design/conforming-complex.md`), which `glue` then had to
-//! overlay. Here every cell's samples on a face become one global pool vertex each (tagged with the
+//! but one measured difference; `docs/design/conforming-complex.md`), which the first pipeline
+//! then had to overlay. Here every cell's samples on a face become one global pool vertex each (tagged with the
 //! face's plane), and both cells of the face insert all of them: with the same points on a face,
 //! both restrictions of the cells' triangulations to the face are the same 2D Delaunay triangulation
 //! (exactly so on axis-aligned planes; on oblique ones up to ties that rounding decides).

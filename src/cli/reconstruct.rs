@@ -25,15 +25,7 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
             cutting: !args.no_cutting,
             thicken_flat_zones: !args.no_thicken,
             keep_topology: args.keep_topology,
-            shared_samples: match (args.samples, args.shared_samples) {
-                (Some(crate::Samples::Shared), _) | (None, true) => true,
-                (Some(crate::Samples::PerCell), _) => false,
-                (None, false) => matches!(args.assembly, crate::Assembly::Complex),
-            },
-            assembly: match args.assembly {
-                crate::Assembly::Glue => slice2solid::Assembly::Glue,
-                crate::Assembly::Complex => slice2solid::Assembly::Complex,
-            },
+            shared_samples: !args.no_shared_samples,
         },
         ..Default::default()
     };

@@ -21,7 +21,6 @@
 //! whose domains share no interface triangle is reported as a gap.
 use super::bvh::{triangle_boxes, Aabb, Bvh};
 use super::check::{check_mesh, CheckReport};
-use super::topology::{cross, norm, sub};
 use super::tri_tri::{is_degenerate, mesh_triangles_intersect, segment_meets_triangle};
 use crate::geom::predicates::orient3d;
 use crate::mesh::TriMesh;
@@ -192,10 +191,6 @@ fn joined(a: &TriMesh, b: &TriMesh) -> (Vec<[f64; 3]>, Vec<[u32; 3]>, Vec<bool>)
     (vertices, tb, shared_b)
 }
 
-fn triangle_area(p: [[f64; 3]; 3]) -> f64 {
-    0.5 * norm(cross(sub(p[1], p[0]), sub(p[2], p[0])))
-}
-
 /// The exact pair tests of the module docs for domains `a` and `b` (labels left unset).
 pub fn check_pair(a: &TriMesh, b: &TriMesh) -> PairReport {
     let mut r = PairReport::default();
@@ -230,7 +225,7 @@ pub fn check_pair(a: &TriMesh, b: &TriMesh) -> PairReport {
             r.coincident_same_orientation += 1;
         } else {
             r.interface_triangles += 1;
-            r.interface_area += triangle_area(t.map(|k| v[k as usize]));
+            r.interface_area += crate::geom::triangle_area(t.map(|k| v[k as usize]));
         }
         twin_a[i] = true;
         twin_b[j] = true;

@@ -1,9 +1,16 @@
 //! Geometry: every geometric decision goes through `predicates`. `tri_tri` (exact triangle-triangle
-//! intersection) and `bvh` (bounding-volume hierarchy of boxes) serve the engine (bm::untangle) and the
-//! measuring instruments (eval) alike.
+//! intersection) and `bvh` (bounding-volume hierarchy of boxes) serve the measuring instruments
+//! (eval).
 pub mod bvh;
 pub mod predicates;
 pub mod tri_tri;
+
+/// Area of the triangle `p` (a construction, in floats).
+pub fn triangle_area(p: [[f64; 3]; 3]) -> f64 {
+    use crate::sections::{cross, dot, sub};
+    let w = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+    0.5 * dot(w, w).sqrt()
+}
 
 /// Distance from `q` to the segment `ab` in the plane (a construction, in floats).
 pub fn segment_distance_2d(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
