@@ -340,18 +340,9 @@ fn diagonal(points: &[[f64; 3]]) -> f64 {
     d.sqrt()
 }
 
-/// The triangles of `tets` with exactly one tetrahedron, oriented outward from it.
+/// The triangles of `tets` with exactly one tetrahedron, oriented outward from it, sorted.
 pub fn boundary_of(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
-    let mut open: FxHashMap<[u32; 3], Option<[u32; 3]>> = FxHashMap::default();
-    for t in tets {
-        for i in 0..4 {
-            let f = super::complex::outward_face(t, i);
-            open.entry(sorted3(f))
-                .and_modify(|e| *e = None)
-                .or_insert(Some(f));
-        }
-    }
-    let mut out: Vec<[u32; 3]> = open.into_values().flatten().collect();
+    let mut out = super::faces::boundary(tets);
     out.sort_unstable();
     out
 }

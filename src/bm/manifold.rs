@@ -12,6 +12,8 @@
 //! or moved. What the search cannot lower (a local minimum) is left to growth (`singular`).
 use super::refine::{key3, on_a_plane, Planes, Triangulation};
 use crate::fxhash::{FxHashMap, FxHashSet};
+use super::faces::FaceTable;
+use crate::mesh::Stars;
 use smallvec::SmallVec;
 
 /// What the search did.
@@ -27,8 +29,8 @@ struct Labelled<'a> {
     kept: Vec<bool>,
     /// Per tetrahedron: 0 kept at the start, 1 fillable, 2 external (where it goes back to).
     origin: Vec<u8>,
-    faces: FxHashMap<[u32; 3], SmallVec<[u32; 2]>>,
-    star: FxHashMap<u32, SmallVec<[u32; 8]>>,
+    faces: FaceTable,
+    star: Stars,
     planes: &'a [Planes],
     internal: &'a FxHashSet<[u32; 3]>,
     nonconforming: &'a FxHashSet<u32>,
@@ -45,8 +47,7 @@ pub fn resolve(
     let lists: [&[[u32; 4]]; 3] = [k.kept, k.fillable, k.external];
     let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
     let mut stats = ToggleStats::default();
-    let boundary = super::assembly::boundary_of(k.kept);
-    let (edges, vertices) = super::fill::singular_simplices(&boundary);
+    let (edges, vertices) = super::fill::singular_simplices(&l.boundary());
     let mut work: Vec<u32> = vertices;
     work.extend(edges.iter().flat_map(|&(a, b)| [a, b]));
     for _ in 0..SET_PASSES {
@@ -189,30 +190,23 @@ impl<'a> Labelled<'a> {
         internal: &'a FxHashSet<[u32; 3]>,
         nonconforming: &'a FxHashSet<u32>,
     ) -> Labelled<'a> {
-        let mut l = Labelled {
-            tets: Vec::new(),
-            kept: Vec::new(),
-            origin: Vec::new(),
-            faces: FxHashMap::default(),
-            star: FxHashMap::default(),
+        let tets: Vec<[u32; 4]> = lists.concat();
+        let n = tets.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+        let (mut kept, mut origin) = (Vec::new(), Vec::new());
+        for (list, o) in lists.into_iter().zip(0u8..) {
+            kept.resize(kept.len() + list.len(), o == 0);
+            origin.resize(origin.len() + list.len(), o);
+        }
+        Labelled {
+            faces: FaceTable::new(&tets),
+            star: Stars::new(n, &tets),
+            tets,
+            kept,
+            origin,
             planes,
             internal,
             nonconforming,
-        };
-        for (list, origin) in lists.into_iter().zip(0u8..) {
-            for &t in list.iter() {
-                let ti = l.tets.len() as u32;
-                l.tets.push(t);
-                l.kept.push(origin == 0);
-                l.origin.push(origin);
-                for i in 0..4 {
-                    let f = key3(super::complex::outward_face(&t, i));
-                    l.faces.entry(f).or_default().push(ti);
-                    l.star.entry(t[i]).or_default().push(ti);
-                }
-            }
         }
-        l
     }
 
     /// (kept, fillable, external), each unkept tetrahedron back in the list it came from.
@@ -268,7 +262,7 @@ impl<'a> Labelled<'a> {
         let mut order: Vec<u32> = self
             .surface_at(v)
             .iter()
-            .flat_map(|f| self.faces[f].iter().copied())
+            .flat_map(|f| self.faces.owners(f))
             .collect();
         order.sort_unstable_by_key(|&t| (self.kept[t as usize], t));
         order.dedup();
@@ -356,9 +350,9 @@ impl<'a> Labelled<'a> {
     /// Is surface triangle `f` (sorted key) the start of a flat wedge at its edge `e`, on either
     /// side?
     fn fold_at(&self, e: (u32, u32), f: [u32; 3], flat: &Flat) -> bool {
-        self.faces[&f]
-            .iter()
-            .any(|&t| self.wedge(e, f, t, flat).is_some())
+        self.faces
+            .owners(&f)
+            .any(|t| self.wedge(e, f, t, flat).is_some())
     }
 
     /// Every wedge of flat tetrahedra (`flat` per tetrahedron) around an edge of ∂K that fills the
@@ -377,7 +371,7 @@ impl<'a> Labelled<'a> {
                     continue;
                 }
                 // f is on ∂K: walk around each of its edges on both sides
-                let outside = self.faces[&f].iter().copied().find(|&o| o != t as u32);
+                let outside = self.faces.owners(&f).find(|&o| o != t as u32);
                 for e in [(f[0], f[1]), (f[1], f[2]), (f[0], f[2])] {
                     for start in [Some(t as u32), outside].into_iter().flatten() {
                         if let Some(mut w) = self.wedge(e, f, start, flat) {
@@ -411,7 +405,7 @@ impl<'a> Labelled<'a> {
                 .iter()
                 .find(|&&v| v != e.0 && v != e.1 && !entered.contains(&v))?;
             let next = key3([e.0, e.1, apex]);
-            let beyond = self.faces[&next].iter().copied().find(|&o| o != t);
+            let beyond = self.faces.owners(&next).find(|&o| o != t);
             match beyond {
                 Some(n) if self.kept[n as usize] == side => {
                     if n == start {
@@ -453,7 +447,7 @@ impl<'a> Labelled<'a> {
         (0..4)
             .flat_map(|i| {
                 let f = key3(super::complex::outward_face(&tet, i));
-                self.faces[&f].iter().copied().filter(move |&o| o != t)
+                self.faces.owners(&f).filter(move |&o| o != t)
             })
             .collect()
     }
@@ -461,7 +455,7 @@ impl<'a> Labelled<'a> {
     /// At a pinched vertex: join two fans by the shortest strip of gap tetrahedra around `v`, or
     /// carve the smallest fan's kept tetrahedra at `v`, whichever lowers the count first.
     fn join_or_carve(&mut self, v: u32, stats: &mut ToggleStats) -> bool {
-        let star: Vec<u32> = self.star.get(&v).map(|s| s.to_vec()).unwrap_or_default();
+        let star: Vec<u32> = self.star_of(v).to_vec();
         let kept: Vec<u32> = star
             .iter()
             .copied()
@@ -514,7 +508,7 @@ impl<'a> Labelled<'a> {
             .filter(|&i| tet[i] != v)
             .flat_map(|i| {
                 let f = key3(super::complex::outward_face(&tet, i));
-                self.faces[&f].iter().copied().filter(move |&o| o != t)
+                self.faces.owners(&f).filter(move |&o| o != t)
             })
             .collect()
     }
@@ -571,9 +565,9 @@ impl<'a> Labelled<'a> {
 
     /// Whether another tetrahedron than `t` on face `f` is kept.
     fn other_kept(&self, f: &[u32; 3], t: u32) -> bool {
-        self.faces[f]
-            .iter()
-            .any(|&o| o != t && self.kept[o as usize])
+        self.faces
+            .owners(f)
+            .any(|o| o != t && self.kept[o as usize])
     }
 
     /// Toggling `t` keeps every section (see the module docs). Where the two cells of a face
@@ -587,7 +581,7 @@ impl<'a> Labelled<'a> {
         let adding = !self.kept[t as usize];
         (0..4).all(|i| {
             let f = key3(super::complex::outward_face(&tet, i));
-            let owners = self.faces[&f].len();
+            let owners = self.faces.owners(&f).len();
             if owners > 2 {
                 return false;
             }
@@ -605,7 +599,7 @@ impl<'a> Labelled<'a> {
     /// The surface triangles of ∂K through vertex `v` (sorted keys).
     fn surface_at(&self, v: u32) -> SmallVec<[[u32; 3]; 16]> {
         let mut out = SmallVec::new();
-        for &t in self.star.get(&v).into_iter().flatten() {
+        for &t in self.star_of(v) {
             if !self.kept[t as usize] {
                 continue;
             }
@@ -621,6 +615,28 @@ impl<'a> Labelled<'a> {
             }
         }
         out
+    }
+
+    /// The surface triangles (`assembly::boundary_of` of the kept tetrahedra, in another order).
+    fn boundary(&self) -> Vec<[u32; 3]> {
+        let mut out = Vec::new();
+        self.faces.for_each_face(|codes| {
+            let mut kept = codes.iter().filter(|&&c| self.kept[(c >> 2) as usize]);
+            if let (Some(&c), None) = (kept.next(), kept.next()) {
+                let t = &self.tets[(c >> 2) as usize];
+                out.push(super::complex::outward_face(t, (c & 3) as usize));
+            }
+        });
+        out
+    }
+
+    /// The tetrahedra with vertex `v`.
+    fn star_of(&self, v: u32) -> &[u32] {
+        if (v as usize) < self.star.len() {
+            &self.star[v as usize]
+        } else {
+            &[]
+        }
     }
 
     /// 1 if `v` is pinched, plus its edges with more than two surface triangles.

@@ -47,6 +47,7 @@ pub mod complex;
 pub mod conform;
 pub mod cutting;
 pub mod face_overlay;
+pub(crate) mod faces;
 pub mod fill;
 pub mod glue;
 pub mod manifold;
