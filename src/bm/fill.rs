@@ -25,17 +25,29 @@ pub fn fill_singularities(
     fillable: &[[u32; 4]],
     max_rounds: usize,
 ) -> u64 {
+    fill_and_drop(kept, &mut fillable.to_vec(), max_rounds).0
+}
+
+/// [`fill_singularities`], then drop from `fillable` the tetrahedra K has (by vertex set); also
+/// returns the boundary's singular simplices before filling.
+pub fn fill_and_drop(
+    kept: &mut Vec<[u32; 4]>,
+    fillable: &mut Vec<[u32; 4]>,
+    max_rounds: usize,
+) -> (u64, super::assembly::Sets) {
     // one index over kept ++ fillable: filling only moves fillable tetrahedra into K
     let mut ix = Index::new(kept, fillable);
-    let mut in_kept: FxHashSet<[u32; 4]> = kept.iter().map(|&t| key4(t)).collect();
+    for j in 0..fillable.len() {
+        ix.candidate[j] = !ix.in_k(j);
+    }
     let mut added = 0u64;
+    let mut found = None;
     for _ in 0..max_rounds {
         let (edges, vertices) = singular_simplices(&ix.boundary());
-        if edges.is_empty() && vertices.is_empty() {
+        let stop = edges.is_empty() && vertices.is_empty();
+        found.get_or_insert_with(|| (edges.clone(), vertices.clone()));
+        if stop {
             break;
-        }
-        for (j, t) in fillable.iter().enumerate() {
-            ix.candidate[j] = !in_kept.contains(&key4(*t));
         }
         let mut to_add: FxHashSet<[u32; 4]> = FxHashSet::default();
         for gap in edge_gaps(&ix, &edges)
@@ -47,15 +59,25 @@ pub fn fill_singularities(
         if to_add.is_empty() {
             break;
         }
-        for (j, &t) in fillable.iter().enumerate() {
-            if ix.candidate[j] && to_add.contains(&key4(t)) && in_kept.insert(key4(t)) {
-                kept.push(t);
-                ix.kept[ix.n_kept + j] = true;
+        let chosen: Vec<usize> = (0..fillable.len())
+            .filter(|&j| ix.candidate[j] && to_add.contains(&key4(fillable[j])))
+            .collect();
+        for j in chosen {
+            // an equal tetrahedron may have been added just before
+            if !ix.in_k(j) {
+                kept.push(fillable[j]);
+                ix.add(j);
                 added += 1;
             }
         }
     }
-    added
+    let mut j = 0;
+    fillable.retain(|_| {
+        j += 1;
+        ix.candidate[j - 1]
+    });
+    let found = found.unwrap_or_else(|| singular_simplices(&ix.boundary()));
+    (added, found)
 }
 
 /// K's tetrahedra and the fillable ones, with their faces and vertex stars, which of them K
@@ -85,6 +107,30 @@ impl Index {
         }
     }
 
+    /// Whether K has fillable tetrahedron `j` (it, or one with the same vertices, is kept).
+    fn in_k(&self, j: usize) -> bool {
+        let t = self.all[self.n_kept + j];
+        let key = key4(t);
+        let f = key4([t[0], t[1], t[2], u32::MAX]);
+        self.faces
+            .owners(&[f[0], f[1], f[2]])
+            .any(|o| self.kept[o as usize] && key4(self.all[o as usize]) == key)
+    }
+
+    /// Keep fillable tetrahedron `j`: no tetrahedron with its vertices is a candidate any more.
+    fn add(&mut self, j: usize) {
+        let t = self.all[self.n_kept + j];
+        self.kept[self.n_kept + j] = true;
+        let key = key4(t);
+        let f = key4([t[0], t[1], t[2], u32::MAX]);
+        for o in self.faces.owners(&[f[0], f[1], f[2]]) {
+            let o = o as usize;
+            if o >= self.n_kept && key4(self.all[o]) == key {
+                self.candidate[o - self.n_kept] = false;
+            }
+        }
+    }
+
     /// `assembly::boundary_of` of the kept tetrahedra (in another order).
     fn boundary(&self) -> Vec<[u32; 3]> {
         let mut out = Vec::new();
@@ -102,7 +148,11 @@ impl Index {
     fn around(&self, verts: &[u32]) -> (Vec<[u32; 4]>, Vec<[u32; 4]>) {
         let (mut kept, mut cands) = (Vec::new(), Vec::new());
         let v = verts[0] as usize;
-        let star: &[u32] = if v < self.star.len() { &self.star[v] } else { &[] };
+        let star: &[u32] = if v < self.star.len() {
+            &self.star[v]
+        } else {
+            &[]
+        };
         for &i in star {
             let t = self.all[i as usize];
             if !verts[1..].iter().all(|v| t.contains(v)) {

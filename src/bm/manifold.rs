@@ -10,9 +10,9 @@
 //! other side (the face stays in R). Tetrahedra lie between the planes, so nothing else of a
 //! section changes. Combinatorial throughout (plane tags, section triangles); no point is added
 //! or moved. What the search cannot lower (a local minimum) is left to growth (`singular`).
+use super::faces::FaceTable;
 use super::refine::{key3, on_a_plane, Planes, Triangulation};
 use crate::fxhash::{FxHashMap, FxHashSet};
-use super::faces::FaceTable;
 use crate::mesh::Stars;
 use smallvec::SmallVec;
 
@@ -30,6 +30,8 @@ struct Labelled<'a> {
     /// Per tetrahedron: 0 kept at the start, 1 fillable, 2 external (where it goes back to).
     origin: Vec<u8>,
     faces: FaceTable,
+    /// Per tetrahedron and local face: the other tetrahedron on it, `NONE` or `MANY` (see `twins`).
+    twin: Vec<[u32; 4]>,
     star: Stars,
     planes: &'a [Planes],
     internal: &'a FxHashSet<[u32; 3]>,
@@ -38,12 +40,12 @@ struct Labelled<'a> {
 
 /// Toggle tetrahedra around the singular simplices of ∂K while that lowers their number, at most
 /// `max_toggles` times; never at the vertices of faces that two cells triangulate differently
-/// (`nonconforming`).
+/// (`nonconforming`). Also returns the singular simplices left.
 pub fn resolve(
     k: &mut Triangulation,
     nonconforming: &FxHashSet<u32>,
     max_toggles: usize,
-) -> ToggleStats {
+) -> (ToggleStats, super::assembly::Sets) {
     let lists: [&[[u32; 4]]; 3] = [k.kept, k.fillable, k.external];
     let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
     let mut stats = ToggleStats::default();
@@ -64,9 +66,29 @@ pub fn resolve(
             break;
         }
     }
+    let left = super::fill::singular_simplices(&l.boundary());
     let (kept, fillable, external) = l.into_lists();
     (*k.kept, *k.fillable, *k.external) = (kept, fillable, external);
-    stats
+    (stats, left)
+}
+
+/// Twin markers: no other tetrahedron on the face, or more than one.
+const NONE: u32 = u32::MAX;
+const MANY: u32 = u32::MAX - 1;
+
+/// Per tetrahedron and local face, the one other tetrahedron on that face (`NONE`, `MANY`).
+fn twins(faces: &FaceTable, n: usize) -> Vec<[u32; 4]> {
+    let mut twin = vec![[NONE; 4]; n];
+    faces.for_each_face(|codes| {
+        for &c in codes {
+            twin[(c >> 2) as usize][(c & 3) as usize] = match codes {
+                [a, b] => (if *a == c { b } else { a }) >> 2,
+                [_] => NONE,
+                _ => MANY,
+            };
+        }
+    });
+    twin
 }
 
 /// Rounds of set moves (each followed by single toggles again).
@@ -171,7 +193,9 @@ fn flat_height(p: [[f64; 3]; 4]) -> f64 {
     };
     let (mut best, mut height) = (0.0, f64::INFINITY);
     for i in 0..4 {
-        let f: Vec<[f64; 3]> = (0..4).filter(|&j| j != i).map(|j| p[j]).collect();
+        // the other three in increasing index
+        let f = [(1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2)][i];
+        let f = [p[f.0], p[f.1], p[f.2]];
         let n = cross(sub(f[1], f[0]), sub(f[2], f[0]));
         let len = dot(n, n).sqrt();
         if len > best {
@@ -197,8 +221,10 @@ impl<'a> Labelled<'a> {
             kept.resize(kept.len() + list.len(), o == 0);
             origin.resize(origin.len() + list.len(), o);
         }
+        let faces = FaceTable::new(&tets);
         Labelled {
-            faces: FaceTable::new(&tets),
+            twin: twins(&faces, tets.len()),
+            faces,
             star: Stars::new(n, &tets),
             tets,
             kept,
@@ -361,13 +387,14 @@ impl<'a> Labelled<'a> {
         let mut out = Vec::new();
         let mut seen: FxHashSet<Vec<u32>> = FxHashSet::default();
         for (t, &kept) in self.kept.iter().enumerate() {
-            if !kept {
+            // a wedge starts at t or at a tetrahedron across one of its faces, and is all flat
+            if !kept || !self.near_flat(t as u32, flat) {
                 continue;
             }
             let tet = self.tets[t];
             for i in 0..4 {
                 let f = key3(super::complex::outward_face(&tet, i));
-                if self.other_kept(&f, t as u32) {
+                if self.other_kept_at(t as u32, i) {
                     continue;
                 }
                 // f is on ∂K: walk around each of its edges on both sides
@@ -385,6 +412,19 @@ impl<'a> Labelled<'a> {
             }
         }
         out
+    }
+
+    /// Whether `t` or a tetrahedron sharing a face with it is flat.
+    fn near_flat(&self, t: u32, flat: &Flat) -> bool {
+        flat.flat[t as usize]
+            || (0..4).any(|i| match self.twin[t as usize][i] {
+                NONE => false,
+                MANY => {
+                    let f = key3(super::complex::outward_face(&self.tets[t as usize], i));
+                    self.faces.owners(&f).any(|o| flat.flat[o as usize])
+                }
+                o => flat.flat[o as usize],
+            })
     }
 
     /// From `start` (a tetrahedron on face `f`, which contains edge `e`), the tetrahedra around `e`
@@ -570,6 +610,18 @@ impl<'a> Labelled<'a> {
             .any(|o| o != t && self.kept[o as usize])
     }
 
+    /// `other_kept` of the face of `t` opposite its local vertex `i`.
+    fn other_kept_at(&self, t: u32, i: usize) -> bool {
+        match self.twin[t as usize][i] {
+            NONE => false,
+            MANY => {
+                let f = key3(super::complex::outward_face(&self.tets[t as usize], i));
+                self.other_kept(&f, t)
+            }
+            o => self.kept[o as usize],
+        }
+    }
+
     /// Toggling `t` keeps every section (see the module docs). Where the two cells of a face
     /// triangulate it differently (a vertex of such a face, or a face with more than two
     /// tetrahedra), the tetrahedra overlap and nothing is toggled.
@@ -591,7 +643,7 @@ impl<'a> Labelled<'a> {
             if adding {
                 self.internal.contains(&f)
             } else {
-                self.other_kept(&f, t)
+                self.other_kept_at(t, i)
             }
         })
     }
@@ -608,9 +660,8 @@ impl<'a> Labelled<'a> {
                 if tet[i] == v {
                     continue;
                 }
-                let f = key3(super::complex::outward_face(&tet, i));
-                if !self.other_kept(&f, t) {
-                    out.push(f);
+                if !self.other_kept_at(t, i) {
+                    out.push(key3(super::complex::outward_face(&tet, i)));
                 }
             }
         }
@@ -649,16 +700,15 @@ impl<'a> Labelled<'a> {
     fn vertex_and_edges_bad(&self, v: u32, towards: Option<&FxHashSet<u32>>) -> u32 {
         let tris = self.surface_at(v);
         let mut bad = u32::from(super::fill::fans(&tris, v) > 1);
-        let mut count: FxHashMap<u32, u32> = FxHashMap::default();
-        for f in &tris {
-            for &w in f.iter().filter(|&&w| w != v) {
-                *count.entry(w).or_default() += 1;
-            }
-        }
+        let mut ends: SmallVec<[u32; 32]> =
+            tris.iter().flatten().copied().filter(|&w| w != v).collect();
+        ends.sort_unstable();
         // each edge once: from its smaller end
-        bad += count
-            .iter()
-            .filter(|&(&w, &n)| n > 2 && w > v && towards.is_none_or(|s| s.contains(&w)))
+        bad += ends
+            .chunk_by(|a, b| a == b)
+            .filter(|run| {
+                run.len() > 2 && run[0] > v && towards.is_none_or(|s| s.contains(&run[0]))
+            })
             .count() as u32;
         bad
     }
@@ -712,7 +762,7 @@ mod tests {
             external: &mut external,
             internal: &mut internal,
         };
-        let s = resolve(&mut k, &FxHashSet::default(), 100);
+        let (s, _) = resolve(&mut k, &FxHashSet::default(), 100);
         let b = super::super::assembly::boundary_of(k.kept);
         let (e, v) = super::super::fill::singular_simplices(&b);
         (s, e.len() + v.len())
