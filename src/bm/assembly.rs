@@ -174,15 +174,13 @@ fn resolve_singularities(
     diag: f64,
     out: &mut Assembled,
 ) {
-    let (edges, vertices) = singularities(&boundary_of(k.kept));
-    out.singular_edges_found = edges;
-    out.singular_vertices_found = vertices;
-    out.tets_filled = super::fill::fill_singularities(k.kept, k.fillable, FILL_ROUNDS);
-    let in_kept: FxHashSet<[u32; 4]> = k.kept.iter().map(|&t| super::refine::key4(t)).collect();
-    k.fillable
-        .retain(|t| !in_kept.contains(&super::refine::key4(*t)));
+    let (filled, (edges, vertices)) = super::fill::fill_and_drop(k.kept, k.fillable, FILL_ROUNDS);
+    out.tets_filled = filled;
+    out.singular_edges_found = edges.len() as u64;
+    out.singular_vertices_found = vertices.len() as u64;
     let max_toggles = 4 * k.kept.len() + 1000;
-    out.toggled = super::manifold::resolve(k, nonconforming, max_toggles);
+    let (toggled, sets) = super::manifold::resolve(k, nonconforming, max_toggles);
+    out.toggled = toggled;
     // Growth at edges near them only (nothing far from them changes, but it can be refused
     // where a whole gap would fit) or by whole gap tetrahedra (which can pinch K far from the
     // edge): neither is better on every input, so both orders run from the same K, each followed
@@ -191,6 +189,7 @@ fn resolve_singularities(
     let near_first = grow_then_toggle(
         k,
         [EdgeGaps::NearEdge, EdgeGaps::Whole],
+        sets.clone(),
         nonconforming,
         diag,
         max_toggles,
@@ -203,6 +202,7 @@ fn resolve_singularities(
         let whole_first = grow_then_toggle(
             k,
             [EdgeGaps::Whole, EdgeGaps::NearEdge],
+            sets,
             nonconforming,
             diag,
             max_toggles,
@@ -222,26 +222,30 @@ fn resolve_singularities(
 
 /// Growth at the singular simplices in the two ways of `order`, then the toggles; with
 /// (singular simplices left, points added) and what each did.
+/// `sets`: the singular simplices of ∂K now.
 fn grow_then_toggle(
     k: &mut Triangulation,
     order: [EdgeGaps; 2],
+    sets: Sets,
     nonconforming: &FxHashSet<u32>,
     diag: f64,
     max_toggles: usize,
 ) -> ((u64, u64), SingularStats, ToggleStats) {
     let mut grown = SingularStats::default();
+    let mut known = Some(sets);
     for how in order {
-        grown.add(&super::singular::resolve(
-            k,
-            GROW_ROUNDS,
-            SINGULAR_GROWTH * diag,
-            how,
-        ));
+        let distance = SINGULAR_GROWTH * diag;
+        let (stats, now) = super::singular::resolve(k, GROW_ROUNDS, distance, how, known);
+        grown.add(&stats);
+        known = now;
     }
-    let toggled = super::manifold::resolve(k, nonconforming, max_toggles);
-    let (edges, vertices) = singularities(&boundary_of(k.kept));
-    ((edges + vertices, grown.points), grown, toggled)
+    let (toggled, (edges, vertices)) = super::manifold::resolve(k, nonconforming, max_toggles);
+    let left = (edges.len() + vertices.len()) as u64;
+    ((left, grown.points), grown, toggled)
 }
+
+/// Singular edges and pinched vertices of ∂K (`fill::singular_simplices`).
+pub(super) type Sets = (Vec<(u32, u32)>, Vec<u32>);
 
 /// Per face with a section, per cell on it: its section triangles in global ids. A cell without
 /// volume gets one more vertex (appended to `positions`), inside it, as the apex of its triangles.
@@ -340,18 +344,9 @@ fn diagonal(points: &[[f64; 3]]) -> f64 {
     d.sqrt()
 }
 
-/// The triangles of `tets` with exactly one tetrahedron, oriented outward from it.
+/// The triangles of `tets` with exactly one tetrahedron, oriented outward from it, sorted.
 pub fn boundary_of(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
-    let mut open: FxHashMap<[u32; 3], Option<[u32; 3]>> = FxHashMap::default();
-    for t in tets {
-        for i in 0..4 {
-            let f = super::complex::outward_face(t, i);
-            open.entry(sorted3(f))
-                .and_modify(|e| *e = None)
-                .or_insert(Some(f));
-        }
-    }
-    let mut out: Vec<[u32; 3]> = open.into_values().flatten().collect();
+    let mut out = super::faces::boundary(tets);
     out.sort_unstable();
     out
 }

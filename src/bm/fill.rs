@@ -25,66 +25,174 @@ pub fn fill_singularities(
     fillable: &[[u32; 4]],
     max_rounds: usize,
 ) -> u64 {
-    let mut in_kept: FxHashSet<[u32; 4]> = kept.iter().map(|&t| key4(t)).collect();
+    fill_and_drop(kept, &mut fillable.to_vec(), max_rounds).0
+}
+
+/// [`fill_singularities`], then drop from `fillable` the tetrahedra K has (by vertex set); also
+/// returns the boundary's singular simplices before filling.
+pub fn fill_and_drop(
+    kept: &mut Vec<[u32; 4]>,
+    fillable: &mut Vec<[u32; 4]>,
+    max_rounds: usize,
+) -> (u64, super::assembly::Sets) {
+    // one index over kept ++ fillable: filling only moves fillable tetrahedra into K
+    let mut ix = Index::new(kept, fillable);
+    for j in 0..fillable.len() {
+        ix.candidate[j] = !ix.in_k(j);
+    }
     let mut added = 0u64;
+    let mut found = None;
     for _ in 0..max_rounds {
-        let boundary = super::assembly::boundary_of(kept);
-        let (edges, vertices) = singular_simplices(&boundary);
-        if edges.is_empty() && vertices.is_empty() {
+        let (edges, vertices) = singular_simplices(&ix.boundary());
+        let stop = edges.is_empty() && vertices.is_empty();
+        found.get_or_insert_with(|| (edges.clone(), vertices.clone()));
+        if stop {
             break;
         }
-        let candidates: Vec<[u32; 4]> = fillable
-            .iter()
-            .copied()
-            .filter(|t| !in_kept.contains(&key4(*t)))
-            .collect();
         let mut to_add: FxHashSet<[u32; 4]> = FxHashSet::default();
-        for gap in edge_gaps(kept, &candidates, &edges)
+        for gap in edge_gaps(&ix, &edges)
             .into_iter()
-            .chain(vertex_gaps(kept, &candidates, &vertices))
+            .chain(vertex_gaps(&ix, &vertices))
         {
             to_add.extend(gap.iter().map(|&t| key4(t)));
         }
         if to_add.is_empty() {
             break;
         }
-        for t in candidates {
-            if to_add.contains(&key4(t)) && in_kept.insert(key4(t)) {
-                kept.push(t);
+        let chosen: Vec<usize> = (0..fillable.len())
+            .filter(|&j| ix.candidate[j] && to_add.contains(&key4(fillable[j])))
+            .collect();
+        for j in chosen {
+            // an equal tetrahedron may have been added just before
+            if !ix.in_k(j) {
+                kept.push(fillable[j]);
+                ix.add(j);
                 added += 1;
             }
         }
     }
-    added
+    let mut j = 0;
+    fillable.retain(|_| {
+        j += 1;
+        ix.candidate[j - 1]
+    });
+    let found = found.unwrap_or_else(|| singular_simplices(&ix.boundary()));
+    (added, found)
+}
+
+/// K's tetrahedra and the fillable ones, with their faces and vertex stars, which of them K
+/// keeps and which fillable ones are candidates this round (not already in K by key).
+struct Index {
+    all: Vec<[u32; 4]>,
+    n_kept: usize,
+    faces: super::faces::FaceTable,
+    star: crate::mesh::Stars,
+    kept: Vec<bool>,
+    candidate: Vec<bool>,
+}
+
+impl Index {
+    fn new(kept: &[[u32; 4]], fillable: &[[u32; 4]]) -> Index {
+        let all = [kept, fillable].concat();
+        let n = all.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+        let mut is_kept = vec![true; kept.len()];
+        is_kept.resize(all.len(), false);
+        Index {
+            faces: super::faces::FaceTable::new(&all),
+            star: crate::mesh::Stars::new(n, &all),
+            n_kept: kept.len(),
+            kept: is_kept,
+            candidate: vec![false; fillable.len()],
+            all,
+        }
+    }
+
+    /// Whether K has fillable tetrahedron `j` (it, or one with the same vertices, is kept).
+    fn in_k(&self, j: usize) -> bool {
+        let t = self.all[self.n_kept + j];
+        let key = key4(t);
+        let f = key4([t[0], t[1], t[2], u32::MAX]);
+        self.faces
+            .owners(&[f[0], f[1], f[2]])
+            .any(|o| self.kept[o as usize] && key4(self.all[o as usize]) == key)
+    }
+
+    /// Keep fillable tetrahedron `j`: no tetrahedron with its vertices is a candidate any more.
+    fn add(&mut self, j: usize) {
+        let t = self.all[self.n_kept + j];
+        self.kept[self.n_kept + j] = true;
+        let key = key4(t);
+        let f = key4([t[0], t[1], t[2], u32::MAX]);
+        for o in self.faces.owners(&[f[0], f[1], f[2]]) {
+            let o = o as usize;
+            if o >= self.n_kept && key4(self.all[o]) == key {
+                self.candidate[o - self.n_kept] = false;
+            }
+        }
+    }
+
+    /// `assembly::boundary_of` of the kept tetrahedra (in another order).
+    fn boundary(&self) -> Vec<[u32; 3]> {
+        let mut out = Vec::new();
+        self.faces.for_each_face(|codes| {
+            let mut kept = codes.iter().filter(|&&c| self.kept[(c >> 2) as usize]);
+            if let (Some(&c), None) = (kept.next(), kept.next()) {
+                let t = &self.all[(c >> 2) as usize];
+                out.push(super::complex::outward_face(t, (c & 3) as usize));
+            }
+        });
+        out
+    }
+
+    /// The kept tetrahedra and the candidates (in fillable order) with all of `verts`.
+    fn around(&self, verts: &[u32]) -> (Vec<[u32; 4]>, Vec<[u32; 4]>) {
+        let (mut kept, mut cands) = (Vec::new(), Vec::new());
+        let v = verts[0] as usize;
+        let star: &[u32] = if v < self.star.len() {
+            &self.star[v]
+        } else {
+            &[]
+        };
+        for &i in star {
+            let t = self.all[i as usize];
+            if !verts[1..].iter().all(|v| t.contains(v)) {
+                continue;
+            }
+            if self.kept[i as usize] {
+                kept.push(t);
+            } else if i as usize >= self.n_kept && self.candidate[i as usize - self.n_kept] {
+                cands.push(t);
+            }
+        }
+        (kept, cands)
+    }
 }
 
 /// The boundary's singular edges (more than two triangles) and pinched vertices (several fans).
 pub(super) fn singular_simplices(tris: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<u32>) {
-    let mut edge_count: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-    for t in tris {
-        for i in 0..3 {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            *edge_count.entry((a.min(b), a.max(b))).or_default() += 1;
+    // sorting and counting runs: no hashing of the whole surface
+    let mut all_edges: Vec<(u32, u32)> = tris
+        .iter()
+        .flat_map(|t| (0..3).map(move |i| (t[i], t[(i + 1) % 3])))
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    all_edges.sort_unstable();
+    let mut edges = Vec::new();
+    for run in all_edges.chunk_by(|a, b| a == b) {
+        if run.len() > 2 {
+            edges.push(run[0]);
         }
     }
-    let mut edges: Vec<(u32, u32)> = edge_count
-        .into_iter()
-        .filter(|&(_, n)| n > 2)
-        .map(|(e, _)| e)
+    let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+    let around = crate::mesh::Stars::<u32>::new(n, tris);
+    let mut ts: Vec<[u32; 3]> = Vec::new();
+    let vertices = (0..n as u32)
+        .filter(|&v| {
+            ts.clear();
+            ts.extend(around[v as usize].iter().map(|&i| tris[i as usize]));
+            !ts.is_empty() && fans(&ts, v) > 1
+        })
         .collect();
-    edges.sort_unstable();
-    let mut around: FxHashMap<u32, Vec<[u32; 3]>> = FxHashMap::default();
-    for t in tris {
-        for &v in t {
-            around.entry(v).or_default().push(*t);
-        }
-    }
-    let mut vertices: Vec<u32> = around
-        .into_iter()
-        .filter(|(v, ts)| fans(ts, *v) > 1)
-        .map(|(v, _)| v)
-        .collect();
-    vertices.sort_unstable();
     (edges, vertices)
 }
 
@@ -99,19 +207,16 @@ pub(super) fn fans(tris: &[[u32; 3]], v: u32) -> usize {
         }
         x
     }
-    // the first triangle seen at each other vertex w (the edge vw)
-    let mut first: FxHashMap<u32, usize> = FxHashMap::default();
+    // triangles sharing an edge vw (the same other vertex w) are joined
+    let mut at: SmallVec<[(u32, usize); 32]> = SmallVec::new();
     for (i, t) in tris.iter().enumerate() {
-        for &w in t.iter().filter(|&&w| w != v) {
-            match first.entry(w) {
-                std::collections::hash_map::Entry::Occupied(e) => {
-                    let (a, b) = (find(&mut parent, i), find(&mut parent, *e.get()));
-                    parent[a] = b;
-                }
-                std::collections::hash_map::Entry::Vacant(e) => {
-                    e.insert(i);
-                }
-            }
+        at.extend(t.iter().filter(|&&w| w != v).map(|&w| (w, i)));
+    }
+    at.sort_unstable();
+    for run in at.chunk_by(|a, b| a.0 == b.0) {
+        for x in &run[1..] {
+            let (a, b) = (find(&mut parent, x.1), find(&mut parent, run[0].1));
+            parent[a] = b;
         }
     }
     (0..n).filter(|&i| find(&mut parent, i) == i).count()
@@ -168,33 +273,17 @@ fn others(t: &[u32; 4], of: &[u32]) -> Vec<u32> {
 /// Per singular edge, the smallest gap of candidates around it whose ends are all kept
 /// tetrahedra (around an edge, two tetrahedra are adjacent when they share a face through it,
 /// i.e. one more vertex).
-fn edge_gaps(
-    kept: &[[u32; 4]],
-    candidates: &[[u32; 4]],
-    edges: &[(u32, u32)],
-) -> Vec<Vec<[u32; 4]>> {
-    let wanted: FxHashSet<(u32, u32)> = edges.iter().copied().collect();
-    let mut kept_around: FxHashMap<(u32, u32), Vec<[u32; 4]>> = FxHashMap::default();
-    let mut cand_around: FxHashMap<(u32, u32), Vec<[u32; 4]>> = FxHashMap::default();
-    for (list, map) in [(kept, &mut kept_around), (candidates, &mut cand_around)] {
-        for t in list {
-            for (i, j) in super::complex::TET_EDGES {
-                let e = (t[i].min(t[j]), t[i].max(t[j]));
-                if wanted.contains(&e) {
-                    map.entry(e).or_default().push(*t);
-                }
-            }
-        }
-    }
+fn edge_gaps(ix: &Index, edges: &[(u32, u32)]) -> Vec<Vec<[u32; 4]>> {
     let mut gaps = Vec::new();
     for e in edges {
-        let Some(cands) = cand_around.get(e) else {
+        let (kept_around, cands) = ix.around(&[e.0, e.1]);
+        if cands.is_empty() {
             continue;
-        };
+        }
         let kept_faces: FxHashSet<u32> = kept_around
-            .get(e)
-            .map(|ts| ts.iter().flat_map(|t| others(t, &[e.0, e.1])).collect())
-            .unwrap_or_default();
+            .iter()
+            .flat_map(|t| others(t, &[e.0, e.1]))
+            .collect();
         let links: Vec<Vec<u32>> = cands.iter().map(|t| others(t, &[e.0, e.1])).collect();
         let best = components(&links, 1)
             .into_iter()
@@ -223,24 +312,13 @@ fn edge_gaps(
 
 /// Per pinched vertex, the smallest component of candidates around it (adjacent through a face
 /// through the vertex, i.e. two more vertices) that touches two different kept components.
-fn vertex_gaps(kept: &[[u32; 4]], candidates: &[[u32; 4]], vertices: &[u32]) -> Vec<Vec<[u32; 4]>> {
-    let wanted: FxHashSet<u32> = vertices.iter().copied().collect();
-    let mut kept_around: FxHashMap<u32, Vec<[u32; 4]>> = FxHashMap::default();
-    let mut cand_around: FxHashMap<u32, Vec<[u32; 4]>> = FxHashMap::default();
-    for (list, map) in [(kept, &mut kept_around), (candidates, &mut cand_around)] {
-        for t in list {
-            for &v in t {
-                if wanted.contains(&v) {
-                    map.entry(v).or_default().push(*t);
-                }
-            }
-        }
-    }
+fn vertex_gaps(ix: &Index, vertices: &[u32]) -> Vec<Vec<[u32; 4]>> {
     let mut gaps = Vec::new();
     for v in vertices {
-        let (Some(ks), Some(cs)) = (kept_around.get(v), cand_around.get(v)) else {
+        let (ks, cs) = ix.around(&[*v]);
+        if ks.is_empty() || cs.is_empty() {
             continue;
-        };
+        }
         let kept_links: Vec<Vec<u32>> = ks.iter().map(|t| others(t, &[*v])).collect();
         // kept component of each face (edge of the link) through v
         let mut face_comp: FxHashMap<(u32, u32), usize> = FxHashMap::default();

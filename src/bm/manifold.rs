@@ -10,8 +10,10 @@
 //! other side (the face stays in R). Tetrahedra lie between the planes, so nothing else of a
 //! section changes. Combinatorial throughout (plane tags, section triangles); no point is added
 //! or moved. What the search cannot lower (a local minimum) is left to growth (`singular`).
+use super::faces::FaceTable;
 use super::refine::{key3, on_a_plane, Planes, Triangulation};
 use crate::fxhash::{FxHashMap, FxHashSet};
+use crate::mesh::Stars;
 use smallvec::SmallVec;
 
 /// What the search did.
@@ -27,8 +29,10 @@ struct Labelled<'a> {
     kept: Vec<bool>,
     /// Per tetrahedron: 0 kept at the start, 1 fillable, 2 external (where it goes back to).
     origin: Vec<u8>,
-    faces: FxHashMap<[u32; 3], SmallVec<[u32; 2]>>,
-    star: FxHashMap<u32, SmallVec<[u32; 8]>>,
+    faces: FaceTable,
+    /// Per tetrahedron and local face: the other tetrahedron on it, `NONE` or `MANY` (see `twins`).
+    twin: Vec<[u32; 4]>,
+    star: Stars,
     planes: &'a [Planes],
     internal: &'a FxHashSet<[u32; 3]>,
     nonconforming: &'a FxHashSet<u32>,
@@ -36,17 +40,16 @@ struct Labelled<'a> {
 
 /// Toggle tetrahedra around the singular simplices of ∂K while that lowers their number, at most
 /// `max_toggles` times; never at the vertices of faces that two cells triangulate differently
-/// (`nonconforming`).
+/// (`nonconforming`). Also returns the singular simplices left.
 pub fn resolve(
     k: &mut Triangulation,
     nonconforming: &FxHashSet<u32>,
     max_toggles: usize,
-) -> ToggleStats {
+) -> (ToggleStats, super::assembly::Sets) {
     let lists: [&[[u32; 4]]; 3] = [k.kept, k.fillable, k.external];
     let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
     let mut stats = ToggleStats::default();
-    let boundary = super::assembly::boundary_of(k.kept);
-    let (edges, vertices) = super::fill::singular_simplices(&boundary);
+    let (edges, vertices) = super::fill::singular_simplices(&l.boundary());
     let mut work: Vec<u32> = vertices;
     work.extend(edges.iter().flat_map(|&(a, b)| [a, b]));
     for _ in 0..SET_PASSES {
@@ -63,9 +66,29 @@ pub fn resolve(
             break;
         }
     }
+    let left = super::fill::singular_simplices(&l.boundary());
     let (kept, fillable, external) = l.into_lists();
     (*k.kept, *k.fillable, *k.external) = (kept, fillable, external);
-    stats
+    (stats, left)
+}
+
+/// Twin markers: no other tetrahedron on the face, or more than one.
+const NONE: u32 = u32::MAX;
+const MANY: u32 = u32::MAX - 1;
+
+/// Per tetrahedron and local face, the one other tetrahedron on that face (`NONE`, `MANY`).
+fn twins(faces: &FaceTable, n: usize) -> Vec<[u32; 4]> {
+    let mut twin = vec![[NONE; 4]; n];
+    faces.for_each_face(|codes| {
+        for &c in codes {
+            twin[(c >> 2) as usize][(c & 3) as usize] = match codes {
+                [a, b] => (if *a == c { b } else { a }) >> 2,
+                [_] => NONE,
+                _ => MANY,
+            };
+        }
+    });
+    twin
 }
 
 /// Rounds of set moves (each followed by single toggles again).
@@ -170,7 +193,9 @@ fn flat_height(p: [[f64; 3]; 4]) -> f64 {
     };
     let (mut best, mut height) = (0.0, f64::INFINITY);
     for i in 0..4 {
-        let f: Vec<[f64; 3]> = (0..4).filter(|&j| j != i).map(|j| p[j]).collect();
+        // the other three in increasing index
+        let f = [(1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2)][i];
+        let f = [p[f.0], p[f.1], p[f.2]];
         let n = cross(sub(f[1], f[0]), sub(f[2], f[0]));
         let len = dot(n, n).sqrt();
         if len > best {
@@ -189,30 +214,25 @@ impl<'a> Labelled<'a> {
         internal: &'a FxHashSet<[u32; 3]>,
         nonconforming: &'a FxHashSet<u32>,
     ) -> Labelled<'a> {
-        let mut l = Labelled {
-            tets: Vec::new(),
-            kept: Vec::new(),
-            origin: Vec::new(),
-            faces: FxHashMap::default(),
-            star: FxHashMap::default(),
+        let tets: Vec<[u32; 4]> = lists.concat();
+        let n = tets.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+        let (mut kept, mut origin) = (Vec::new(), Vec::new());
+        for (list, o) in lists.into_iter().zip(0u8..) {
+            kept.resize(kept.len() + list.len(), o == 0);
+            origin.resize(origin.len() + list.len(), o);
+        }
+        let faces = FaceTable::new(&tets);
+        Labelled {
+            twin: twins(&faces, tets.len()),
+            faces,
+            star: Stars::new(n, &tets),
+            tets,
+            kept,
+            origin,
             planes,
             internal,
             nonconforming,
-        };
-        for (list, origin) in lists.into_iter().zip(0u8..) {
-            for &t in list.iter() {
-                let ti = l.tets.len() as u32;
-                l.tets.push(t);
-                l.kept.push(origin == 0);
-                l.origin.push(origin);
-                for i in 0..4 {
-                    let f = key3(super::complex::outward_face(&t, i));
-                    l.faces.entry(f).or_default().push(ti);
-                    l.star.entry(t[i]).or_default().push(ti);
-                }
-            }
         }
-        l
     }
 
     /// (kept, fillable, external), each unkept tetrahedron back in the list it came from.
@@ -268,7 +288,7 @@ impl<'a> Labelled<'a> {
         let mut order: Vec<u32> = self
             .surface_at(v)
             .iter()
-            .flat_map(|f| self.faces[f].iter().copied())
+            .flat_map(|f| self.faces.owners(f))
             .collect();
         order.sort_unstable_by_key(|&t| (self.kept[t as usize], t));
         order.dedup();
@@ -356,9 +376,9 @@ impl<'a> Labelled<'a> {
     /// Is surface triangle `f` (sorted key) the start of a flat wedge at its edge `e`, on either
     /// side?
     fn fold_at(&self, e: (u32, u32), f: [u32; 3], flat: &Flat) -> bool {
-        self.faces[&f]
-            .iter()
-            .any(|&t| self.wedge(e, f, t, flat).is_some())
+        self.faces
+            .owners(&f)
+            .any(|t| self.wedge(e, f, t, flat).is_some())
     }
 
     /// Every wedge of flat tetrahedra (`flat` per tetrahedron) around an edge of ∂K that fills the
@@ -367,17 +387,18 @@ impl<'a> Labelled<'a> {
         let mut out = Vec::new();
         let mut seen: FxHashSet<Vec<u32>> = FxHashSet::default();
         for (t, &kept) in self.kept.iter().enumerate() {
-            if !kept {
+            // a wedge starts at t or at a tetrahedron across one of its faces, and is all flat
+            if !kept || !self.near_flat(t as u32, flat) {
                 continue;
             }
             let tet = self.tets[t];
             for i in 0..4 {
                 let f = key3(super::complex::outward_face(&tet, i));
-                if self.other_kept(&f, t as u32) {
+                if self.other_kept_at(t as u32, i) {
                     continue;
                 }
                 // f is on ∂K: walk around each of its edges on both sides
-                let outside = self.faces[&f].iter().copied().find(|&o| o != t as u32);
+                let outside = self.faces.owners(&f).find(|&o| o != t as u32);
                 for e in [(f[0], f[1]), (f[1], f[2]), (f[0], f[2])] {
                     for start in [Some(t as u32), outside].into_iter().flatten() {
                         if let Some(mut w) = self.wedge(e, f, start, flat) {
@@ -391,6 +412,19 @@ impl<'a> Labelled<'a> {
             }
         }
         out
+    }
+
+    /// Whether `t` or a tetrahedron sharing a face with it is flat.
+    fn near_flat(&self, t: u32, flat: &Flat) -> bool {
+        flat.flat[t as usize]
+            || (0..4).any(|i| match self.twin[t as usize][i] {
+                NONE => false,
+                MANY => {
+                    let f = key3(super::complex::outward_face(&self.tets[t as usize], i));
+                    self.faces.owners(&f).any(|o| flat.flat[o as usize])
+                }
+                o => flat.flat[o as usize],
+            })
     }
 
     /// From `start` (a tetrahedron on face `f`, which contains edge `e`), the tetrahedra around `e`
@@ -411,7 +445,7 @@ impl<'a> Labelled<'a> {
                 .iter()
                 .find(|&&v| v != e.0 && v != e.1 && !entered.contains(&v))?;
             let next = key3([e.0, e.1, apex]);
-            let beyond = self.faces[&next].iter().copied().find(|&o| o != t);
+            let beyond = self.faces.owners(&next).find(|&o| o != t);
             match beyond {
                 Some(n) if self.kept[n as usize] == side => {
                     if n == start {
@@ -453,7 +487,7 @@ impl<'a> Labelled<'a> {
         (0..4)
             .flat_map(|i| {
                 let f = key3(super::complex::outward_face(&tet, i));
-                self.faces[&f].iter().copied().filter(move |&o| o != t)
+                self.faces.owners(&f).filter(move |&o| o != t)
             })
             .collect()
     }
@@ -461,7 +495,7 @@ impl<'a> Labelled<'a> {
     /// At a pinched vertex: join two fans by the shortest strip of gap tetrahedra around `v`, or
     /// carve the smallest fan's kept tetrahedra at `v`, whichever lowers the count first.
     fn join_or_carve(&mut self, v: u32, stats: &mut ToggleStats) -> bool {
-        let star: Vec<u32> = self.star.get(&v).map(|s| s.to_vec()).unwrap_or_default();
+        let star: Vec<u32> = self.star_of(v).to_vec();
         let kept: Vec<u32> = star
             .iter()
             .copied()
@@ -514,7 +548,7 @@ impl<'a> Labelled<'a> {
             .filter(|&i| tet[i] != v)
             .flat_map(|i| {
                 let f = key3(super::complex::outward_face(&tet, i));
-                self.faces[&f].iter().copied().filter(move |&o| o != t)
+                self.faces.owners(&f).filter(move |&o| o != t)
             })
             .collect()
     }
@@ -571,9 +605,21 @@ impl<'a> Labelled<'a> {
 
     /// Whether another tetrahedron than `t` on face `f` is kept.
     fn other_kept(&self, f: &[u32; 3], t: u32) -> bool {
-        self.faces[f]
-            .iter()
-            .any(|&o| o != t && self.kept[o as usize])
+        self.faces
+            .owners(f)
+            .any(|o| o != t && self.kept[o as usize])
+    }
+
+    /// `other_kept` of the face of `t` opposite its local vertex `i`.
+    fn other_kept_at(&self, t: u32, i: usize) -> bool {
+        match self.twin[t as usize][i] {
+            NONE => false,
+            MANY => {
+                let f = key3(super::complex::outward_face(&self.tets[t as usize], i));
+                self.other_kept(&f, t)
+            }
+            o => self.kept[o as usize],
+        }
     }
 
     /// Toggling `t` keeps every section (see the module docs). Where the two cells of a face
@@ -587,7 +633,7 @@ impl<'a> Labelled<'a> {
         let adding = !self.kept[t as usize];
         (0..4).all(|i| {
             let f = key3(super::complex::outward_face(&tet, i));
-            let owners = self.faces[&f].len();
+            let owners = self.faces.owners(&f).len();
             if owners > 2 {
                 return false;
             }
@@ -597,7 +643,7 @@ impl<'a> Labelled<'a> {
             if adding {
                 self.internal.contains(&f)
             } else {
-                self.other_kept(&f, t)
+                self.other_kept_at(t, i)
             }
         })
     }
@@ -605,7 +651,7 @@ impl<'a> Labelled<'a> {
     /// The surface triangles of ∂K through vertex `v` (sorted keys).
     fn surface_at(&self, v: u32) -> SmallVec<[[u32; 3]; 16]> {
         let mut out = SmallVec::new();
-        for &t in self.star.get(&v).into_iter().flatten() {
+        for &t in self.star_of(v) {
             if !self.kept[t as usize] {
                 continue;
             }
@@ -614,13 +660,34 @@ impl<'a> Labelled<'a> {
                 if tet[i] == v {
                     continue;
                 }
-                let f = key3(super::complex::outward_face(&tet, i));
-                if !self.other_kept(&f, t) {
-                    out.push(f);
+                if !self.other_kept_at(t, i) {
+                    out.push(key3(super::complex::outward_face(&tet, i)));
                 }
             }
         }
         out
+    }
+
+    /// The surface triangles (`assembly::boundary_of` of the kept tetrahedra, in another order).
+    fn boundary(&self) -> Vec<[u32; 3]> {
+        let mut out = Vec::new();
+        self.faces.for_each_face(|codes| {
+            let mut kept = codes.iter().filter(|&&c| self.kept[(c >> 2) as usize]);
+            if let (Some(&c), None) = (kept.next(), kept.next()) {
+                let t = &self.tets[(c >> 2) as usize];
+                out.push(super::complex::outward_face(t, (c & 3) as usize));
+            }
+        });
+        out
+    }
+
+    /// The tetrahedra with vertex `v`.
+    fn star_of(&self, v: u32) -> &[u32] {
+        if (v as usize) < self.star.len() {
+            &self.star[v as usize]
+        } else {
+            &[]
+        }
     }
 
     /// 1 if `v` is pinched, plus its edges with more than two surface triangles.
@@ -633,16 +700,15 @@ impl<'a> Labelled<'a> {
     fn vertex_and_edges_bad(&self, v: u32, towards: Option<&FxHashSet<u32>>) -> u32 {
         let tris = self.surface_at(v);
         let mut bad = u32::from(super::fill::fans(&tris, v) > 1);
-        let mut count: FxHashMap<u32, u32> = FxHashMap::default();
-        for f in &tris {
-            for &w in f.iter().filter(|&&w| w != v) {
-                *count.entry(w).or_default() += 1;
-            }
-        }
+        let mut ends: SmallVec<[u32; 32]> =
+            tris.iter().flatten().copied().filter(|&w| w != v).collect();
+        ends.sort_unstable();
         // each edge once: from its smaller end
-        bad += count
-            .iter()
-            .filter(|&(&w, &n)| n > 2 && w > v && towards.is_none_or(|s| s.contains(&w)))
+        bad += ends
+            .chunk_by(|a, b| a == b)
+            .filter(|run| {
+                run.len() > 2 && run[0] > v && towards.is_none_or(|s| s.contains(&run[0]))
+            })
             .count() as u32;
         bad
     }
@@ -696,7 +762,7 @@ mod tests {
             external: &mut external,
             internal: &mut internal,
         };
-        let s = resolve(&mut k, &FxHashSet::default(), 100);
+        let (s, _) = resolve(&mut k, &FxHashSet::default(), 100);
         let b = super::super::assembly::boundary_of(k.kept);
         let (e, v) = super::super::fill::singular_simplices(&b);
         (s, e.len() + v.len())

@@ -38,6 +38,7 @@ pub mod classify;
 pub mod complex;
 pub mod conform;
 pub mod cutting;
+pub(crate) mod faces;
 pub mod fill;
 pub mod manifold;
 pub mod prune;

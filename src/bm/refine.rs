@@ -69,12 +69,17 @@ pub fn grow(
     groups: &[Vec<Growth>],
     mut points: FxHashMap<(u32, u32), [f64; 3]>,
 ) -> Grown {
+    // only tetrahedra with the smallest vertex of a growth can be one of them
+    let wanted: FxHashSet<[u32; 4]> = groups.iter().flatten().map(|g| key4(g.tet)).collect();
+    let first = marks(t.positions.len(), wanted.iter().map(|k| k[0]));
     let known: FxHashSet<[u32; 4]> = t
         .kept
         .iter()
         .chain(t.fillable.iter())
         .chain(t.external.iter())
+        .filter(|x| x.iter().any(|&v| first[v as usize]))
         .map(|&x| key4(x))
+        .filter(|k| wanted.contains(k))
         .collect();
     for g in groups.iter().flatten() {
         if !known.contains(&key4(g.tet)) {
@@ -83,11 +88,13 @@ pub fn grow(
     }
     // each round drops at least one edge
     loop {
+        let ends = marks(t.positions.len(), points.keys().flat_map(|e| [e.0, e.1]));
         let all = t
             .kept
             .iter()
             .chain(t.fillable.iter())
-            .chain(t.external.iter());
+            .chain(t.external.iter())
+            .filter(|x| touches_two(x, &ends));
         let bad = inverted_edges(t.positions, &points, all);
         if bad.is_empty() {
             break;
@@ -95,15 +102,32 @@ pub fn grow(
         points.retain(|e, _| !bad.contains(e));
     }
     let ids = insert_points(t, &points);
+    // a simplex is split only where two of its vertices end a split edge
+    let ends = marks(t.positions.len(), ids.keys().flat_map(|e| [e.0, e.1]));
     for list in [&mut *t.kept, &mut *t.fillable, &mut *t.external] {
-        *list = list.iter().flat_map(|&x| split(x, &ids)).collect();
+        if list.iter().any(|x| touches_two(x, &ends)) {
+            *list = list
+                .iter()
+                .flat_map(|&x| {
+                    if touches_two(&x, &ends) {
+                        split(x, &ids)
+                    } else {
+                        vec![x]
+                    }
+                })
+                .collect();
+        }
     }
-    *t.internal = t
+    let refined: Vec<[u32; 3]> = t
         .internal
         .iter()
-        .flat_map(|&x| split(x, &ids))
-        .map(key3)
+        .copied()
+        .filter(|x| touches_two(x, &ends))
         .collect();
+    for x in refined {
+        t.internal.remove(&x);
+        t.internal.extend(split(x, &ids).into_iter().map(key3));
+    }
     let mut out = Grown {
         points: ids.len() as u64,
         ..Default::default()
@@ -127,6 +151,20 @@ pub fn grow(
     t.external.retain(|x| !moved(x));
     t.kept.extend(taken);
     out
+}
+
+/// Per vertex below `n`, whether it is one of `vertices`.
+fn marks(n: usize, vertices: impl Iterator<Item = u32>) -> Vec<bool> {
+    let mut out = vec![false; n];
+    for v in vertices {
+        out[v as usize] = true;
+    }
+    out
+}
+
+/// Whether at least two vertices of `s` are marked (it may have a split edge).
+fn touches_two<const N: usize>(s: &[u32; N], marked: &[bool]) -> bool {
+    s.iter().filter(|&&v| marked[v as usize]).count() >= 2
 }
 
 /// The split points as new global vertices, each on the planes of both ends of its edge.

@@ -49,19 +49,23 @@ impl SingularStats {
 /// `distance` from the singular simplex (or halfway along shorter edges). A round can expose more
 /// singularities than it resolves (at the split points, where a growth was refused); the state
 /// with the fewest is kept, so growing never leaves ∂K worse than it found it.
+///
+/// `known`: the singular simplices of ∂K now, if known; returns those at the end, if known.
 pub fn resolve(
     t: &mut Triangulation,
     rounds: usize,
     distance: f64,
     edge_gaps: EdgeGaps,
-) -> SingularStats {
+    mut known: Option<super::assembly::Sets>,
+) -> (SingularStats, Option<super::assembly::Sets>) {
     let mut stats = SingularStats::default();
     // (count, the state then — unless it is the last one —, the stats then)
     let mut best: Option<(u64, Option<Snapshot>, SingularStats)> = None;
     let mut best_is_current = false;
     for round in 0..=rounds {
-        let boundary = super::assembly::boundary_of(t.kept);
-        let (edges, vertices) = super::fill::singular_simplices(&boundary);
+        let (edges, vertices) = known.take().unwrap_or_else(|| {
+            super::fill::singular_simplices(&super::assembly::boundary_of(t.kept))
+        });
         stats
             .per_round
             .push((edges.len() as u64, vertices.len() as u64));
@@ -73,6 +77,8 @@ pub fn resolve(
             best = Some((count, snapshot, stats.clone()));
         }
         if last {
+            // the state is the one just counted
+            known = Some((edges, vertices));
             break;
         }
         if !grow_round(t, &edges, &vertices, distance, edge_gaps, &mut stats) {
@@ -81,6 +87,7 @@ pub fn resolve(
         }
     }
     if !best_is_current {
+        known = None;
         if let Some((_, Some(snapshot), at_best)) = best {
             snapshot.restore(t);
             stats = SingularStats {
@@ -89,7 +96,7 @@ pub fn resolve(
             };
         }
     }
-    stats
+    (stats, known)
 }
 
 /// One round of growth at the given singular edges and vertices; false when nothing grew.
@@ -189,15 +196,24 @@ fn around<K: std::hash::Hash + Eq + Copy>(
     t: &Triangulation,
     wanted: &FxHashSet<K>,
     keys: impl Fn(&[u32; 4]) -> SmallVec<[K; 6]>,
+    vertices: impl Fn(&K) -> SmallVec<[u32; 2]>,
 ) -> FxHashMap<K, Vec<([u32; 4], bool)>> {
     let mut map: FxHashMap<K, Vec<([u32; 4], bool)>> = FxHashMap::default();
+    // a wanted simplex has one of the wanted vertices: skip tetrahedra without any
+    let mut marked = vec![false; t.positions.len()];
+    for v in wanted.iter().flat_map(vertices) {
+        marked[v as usize] = true;
+    }
     let lists = [
         (&*t.kept, true),
         (&*t.fillable, false),
         (&*t.external, false),
     ];
     for (list, kept) in lists {
-        for tet in list {
+        for tet in list
+            .iter()
+            .filter(|x| x.iter().any(|&v| marked[v as usize]))
+        {
             for k in keys(tet) {
                 if wanted.contains(&k) {
                     map.entry(k).or_default().push((*tet, kept));
@@ -263,12 +279,17 @@ fn components_through(items: &[[u32; 4]]) -> Vec<Vec<usize>> {
 /// them if the largest may not).
 fn edge_gaps(t: &Triangulation, edges: &[(u32, u32)], how: EdgeGaps) -> Vec<Vec<Growth>> {
     let wanted: FxHashSet<(u32, u32)> = edges.iter().copied().collect();
-    let ring = around(t, &wanted, |tet| {
-        super::complex::TET_EDGES
-            .iter()
-            .map(|&(i, j)| edge(tet[i], tet[j]))
-            .collect()
-    });
+    let ring = around(
+        t,
+        &wanted,
+        |tet| {
+            super::complex::TET_EDGES
+                .iter()
+                .map(|&(i, j)| edge(tet[i], tet[j]))
+                .collect()
+        },
+        |e| [e.0].into_iter().collect(),
+    );
     let mut out = Vec::new();
     for e in edges {
         let Some(ring) = ring.get(e) else { continue };
@@ -348,7 +369,12 @@ fn all_but_largest(
 /// of one kept component but the largest.
 fn vertex_gaps(t: &Triangulation, vertices: &[u32]) -> Vec<Vec<Growth>> {
     let wanted: FxHashSet<u32> = vertices.iter().copied().collect();
-    let star = around(t, &wanted, |tet| tet.iter().copied().collect());
+    let star = around(
+        t,
+        &wanted,
+        |tet| tet.iter().copied().collect(),
+        |&v| [v].into_iter().collect(),
+    );
     let mut out = Vec::new();
     for v in vertices {
         let Some(star) = star.get(v) else { continue };
@@ -517,7 +543,7 @@ mod tests {
             external: &mut external,
             internal: &mut internal,
         };
-        let s = resolve(&mut t, 4, 0.1, EdgeGaps::Whole);
+        let (s, _) = resolve(&mut t, 4, 0.1, EdgeGaps::Whole, None);
         (s, kept, positions)
     }
 
@@ -564,7 +590,7 @@ mod tests {
             external: &mut external,
             internal: &mut internal,
         };
-        let s = resolve(&mut t, 4, 0.1, EdgeGaps::Whole);
+        let (s, _) = resolve(&mut t, 4, 0.1, EdgeGaps::Whole, None);
         assert_eq!(s.edge_gaps, 1, "{s:?}");
         // the gap may be kept whole: no new points
         assert_eq!((s.tets, s.points), (1, 0));

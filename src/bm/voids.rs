@@ -10,8 +10,9 @@
 //! section witnesses the empty space: a hole, the outside of a contour) or has no tetrahedron on
 //! its other side (the region reaches the space outside every cell's triangulation, or a face the
 //! two cells triangulate differently: conservative).
+use super::faces::FaceTable;
 use super::refine::{key3, on_a_plane, Triangulation};
-use crate::fxhash::FxHashMap;
+use crate::mesh::Stars;
 
 /// What filling did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -28,24 +29,35 @@ pub fn fill(k: &mut Triangulation) -> VoidStats {
         .chain(k.external.iter())
         .copied()
         .collect();
-    let regions = regions(&unkept);
-    let kept_faces = faces_of(k.kept);
+    let faces = FaceTable::new(&unkept);
+    let regions = regions(&unkept, &faces);
+    // kept tetrahedra by vertex: is there one on the other side of a face?
+    let kept_star = Stars::<u32>::new(k.positions.len(), k.kept);
+    let kept_on = |f: &[u32; 3]| {
+        kept_star[f[0] as usize]
+            .iter()
+            .any(|&t| f[1..].iter().all(|v| k.kept[t as usize].contains(v)))
+    };
     let mut open = vec![false; regions.count];
-    let face_owners = faces_of(&unkept);
-    for (face, owners) in &face_owners {
-        let r = regions.of[owners[0] as usize] as usize;
+    faces.for_each_face(|codes| {
+        let first = (codes[0] >> 2) as usize;
+        let r = regions.of[first] as usize;
         if open[r] {
-            continue;
+            return;
         }
-        open[r] = match owners.len() {
+        let face = key3(super::complex::outward_face(
+            &unkept[first],
+            (codes[0] & 3) as usize,
+        ));
+        open[r] = match codes.len() {
             // a face with two unkept sides: witnessed when it lies on a plane outside its section
-            2 => on_a_plane(k.planes, face) && !k.internal.contains(face),
+            2 => on_a_plane(k.planes, &face) && !k.internal.contains(&face),
             // a face of one unkept tetrahedron: enclosed only when a kept one is on its other side
-            1 => !kept_faces.contains_key(face),
+            1 => !kept_on(&face),
             // overlapping tetrahedra where two cells triangulate a face differently
             _ => true,
         };
-    }
+    });
     let mut stats = VoidStats::default();
     let mut counted = vec![false; regions.count];
     let mut fill = vec![false; unkept.len()];
@@ -78,28 +90,13 @@ pub fn fill(k: &mut Triangulation) -> VoidStats {
     stats
 }
 
-/// Every face (sorted key) with the tetrahedra of `tets` that have it.
-fn faces_of(tets: &[[u32; 4]]) -> FxHashMap<[u32; 3], smallvec::SmallVec<[u32; 2]>> {
-    let mut faces: FxHashMap<[u32; 3], smallvec::SmallVec<[u32; 2]>> = FxHashMap::default();
-    faces.reserve(tets.len() * 2);
-    for (ti, t) in tets.iter().enumerate() {
-        for i in 0..4 {
-            faces
-                .entry(key3(super::complex::outward_face(t, i)))
-                .or_default()
-                .push(ti as u32);
-        }
-    }
-    faces
-}
-
 /// Connected components of `tets` across shared faces.
 struct Regions {
     of: Vec<u32>,
     count: usize,
 }
 
-fn regions(tets: &[[u32; 4]]) -> Regions {
+fn regions(tets: &[[u32; 4]], faces: &FaceTable) -> Regions {
     let mut parent: Vec<u32> = (0..tets.len() as u32).collect();
     fn find(parent: &mut [u32], mut x: u32) -> u32 {
         while parent[x as usize] != x {
@@ -108,14 +105,14 @@ fn regions(tets: &[[u32; 4]]) -> Regions {
         }
         x
     }
-    for owners in faces_of(tets).values() {
-        if let [a, b] = owners[..] {
-            let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+    faces.for_each_face(|codes| {
+        if let [a, b] = codes {
+            let (ra, rb) = (find(&mut parent, a >> 2), find(&mut parent, b >> 2));
             if ra != rb {
                 parent[ra.max(rb) as usize] = ra.min(rb);
             }
         }
-    }
+    });
     let mut id = vec![u32::MAX; tets.len()];
     let mut count = 0;
     let of = (0..tets.len() as u32)
