@@ -47,11 +47,17 @@ pub struct Assembled {
     pub folds_closed: super::manifold::ToggleStats,
     /// Enclosed voids that no section witnesses, taken into K (`voids`).
     pub voids: super::voids::VoidStats,
+    /// Pinched vertices left by growth and toggles whose smaller cones lost their tips (`carve`).
+    pub carved: super::carve::CarveStats,
 }
 
 /// Thickness of a flat zone's slab, relative to the bounding-box diagonal (less where the apex
 /// of its tetrahedron is nearer: half its height).
 pub const SLAB_THICKNESS: f64 = 1e-3;
+
+/// How far from a pinched vertex a carved cone ends, relative to the bounding-box diagonal (at
+/// most a quarter of each edge): the growth's distance, far below the sampling of real sections.
+pub const CARVE_DISTANCE: f64 = 1e-3;
 
 /// Global ids per cell: pool ids, and fresh ids (appended to `positions`) for cell-local vertices.
 pub(super) fn global_maps(
@@ -147,6 +153,7 @@ pub fn assemble(
     }
     let nonconforming = nonconforming_vertices(&faces);
     resolve_singularities(&mut k, &nonconforming, diag, &mut out);
+    out.carved = super::carve::carve_pinches(&mut k, &nonconforming, CARVE_DISTANCE * diag);
     if fill_voids {
         let again = super::voids::fill(&mut k);
         out.voids.voids_filled += again.voids_filled;

@@ -31,6 +31,7 @@
 //! engine reads environment variables: every switch is a typed option.
 pub mod assembly;
 pub mod branching;
+pub mod carve;
 pub mod cell;
 pub mod cell_input;
 pub mod chains;
@@ -481,6 +482,9 @@ fn assemble_cells(
     report.count("singular_toggles_removed", k.toggled.removed);
     report.count("flat_fold_toggles_added", k.folds_closed.added);
     report.count("flat_fold_toggles_removed", k.folds_closed.removed);
+    report.count("pinches_carved", k.carved.vertices);
+    report.count("pinch_tips_removed", k.carved.tips);
+    report.count("pinches_not_carved", k.carved.refused);
     report.count("voids_filled", k.voids.voids_filled);
     report.count("void_tets_filled", k.voids.tets_filled);
     report.count("singular_edges", k.singular_edges);

@@ -1,0 +1,289 @@
+//! Singular edges and pinched vertices that growth and toggles leave where two or more *cones*
+//! of K (kept tetrahedra containing the edge or vertex, connected through faces that contain it)
+//! meet there only: every cone but the largest loses its part near the edge or vertex, by
+//! refinement, never by moving a vertex.
+//!
+//! The edges from the core (the singular edge's ends, or the vertex) to the other vertices of a
+//! carved cone are split at a point near the core (`refine::grow` with no growth: every
+//! tetrahedron around a split edge is split with it, so the triangulation stays conforming); the
+//! children of the cone's tetrahedra with no vertex but the core and split points (the tips)
+//! leave K (they become fillable). The cone then ends in a small cap instead of at the core.
+//! The sections stay R ∩ P = A: a tip face on a plane is a section triangle, and the cone is
+//! carved only when the tetrahedron on the other side of each such face is kept (the face stays
+//! in R). A vertex is carved only when that strictly lowers the number of singular simplices of
+//! ∂K; otherwise the triangulation is restored.
+use super::assembly::boundary_of;
+use super::fill::singular_simplices;
+use super::refine::{edge, grow, key3, key4, on_a_plane, split, Triangulation};
+use super::singular::Snapshot;
+use crate::fxhash::{FxHashMap, FxHashSet};
+
+/// What the carving did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CarveStats {
+    /// Singular edges and pinched vertices whose smaller cones were carved.
+    pub vertices: u64,
+    /// Tip tetrahedra taken out of K.
+    pub tips: u64,
+    /// Singular simplices tried and left (no tip without a section face exposed, or no gain).
+    pub refused: u64,
+}
+
+/// Carve the smaller cones at every singular edge and pinched vertex of ∂K (not at
+/// `nonconforming` vertices), the split points `distance` from the edge or vertex (at most a
+/// quarter of each edge).
+pub fn carve_pinches(
+    t: &mut Triangulation,
+    nonconforming: &FxHashSet<u32>,
+    distance: f64,
+) -> CarveStats {
+    let mut stats = CarveStats::default();
+    let (edges, vertices) = singular_simplices(&boundary_of(t.kept));
+    let mut count = edges.len() + vertices.len();
+    let cores = edges
+        .iter()
+        .map(|&(a, b)| vec![a, b])
+        .chain(vertices.iter().map(|&v| vec![v]));
+    for core in cores {
+        if core.iter().any(|v| nonconforming.contains(v)) {
+            continue;
+        }
+        // keep the largest cone and carve the others; where that is refused (a section face
+        // of theirs would be exposed), keep the next one instead
+        let n_cones = cones_at(t.kept, &core).len();
+        let mut done = false;
+        'tries: for keep in 0..n_cones.min(MAX_CONES) {
+            for d in [distance, 0.1 * distance] {
+                let start = Snapshot::of(t);
+                let mut tips = carve_core(t, &core, keep, d);
+                let (mut e, mut w) = singular_simplices(&boundary_of(t.kept));
+                // an edge carved away can leave one of its ends pinched: carve that too
+                if tips > 0 && core.len() == 2 && e.len() + w.len() >= count {
+                    for &v in core.iter().filter(|v| w.contains(v)) {
+                        tips += (0..MAX_CONES)
+                            .map(|k| carve_core(t, &[v], k, d))
+                            .find(|&n| n > 0)
+                            .unwrap_or(0);
+                    }
+                    (e, w) = singular_simplices(&boundary_of(t.kept));
+                }
+                if tips > 0 && e.len() + w.len() < count {
+                    count = e.len() + w.len();
+                    stats.vertices += 1;
+                    stats.tips += tips;
+                    done = true;
+                    break 'tries;
+                }
+                start.restore(t);
+            }
+        }
+        stats.refused += u64::from(!done && n_cones > 1);
+    }
+    stats
+}
+
+/// Most cones tried as the one kept at a singular simplex.
+const MAX_CONES: usize = 4;
+
+/// The kept tetrahedra containing `core` (a vertex or an edge), grouped into cones (connected
+/// through faces containing the core), largest first.
+fn cones_at(kept: &[[u32; 4]], core: &[u32]) -> Vec<Vec<[u32; 4]>> {
+    let star: Vec<[u32; 4]> = kept
+        .iter()
+        .copied()
+        .filter(|t| core.iter().all(|v| t.contains(v)))
+        .collect();
+    let mut parent: Vec<usize> = (0..star.len()).collect();
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    let mut by_face: FxHashMap<[u32; 3], usize> = FxHashMap::default();
+    for (i, t) in star.iter().enumerate() {
+        for w in t.iter().filter(|w| !core.contains(w)) {
+            let others: Vec<u32> = t.iter().copied().filter(|&x| x != *w).collect();
+            let f = key3([others[0], others[1], others[2]]);
+            if let Some(&j) = by_face.get(&f) {
+                let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+                parent[a] = b;
+            } else {
+                by_face.insert(f, i);
+            }
+        }
+    }
+    let mut groups: FxHashMap<usize, Vec<[u32; 4]>> = FxHashMap::default();
+    for (i, t) in star.iter().enumerate() {
+        let r = find(&mut parent, i);
+        groups.entry(r).or_default().push(*t);
+    }
+    let mut cones: Vec<Vec<[u32; 4]>> = groups.into_values().collect();
+    // largest first; ties by the smallest tetrahedron, so the order is deterministic
+    for c in &mut cones {
+        c.sort_unstable_by_key(|t| key4(*t));
+    }
+    cones.sort_by(|a, b| {
+        b.len()
+            .cmp(&a.len())
+            .then_with(|| key4(a[0]).cmp(&key4(b[0])))
+    });
+    cones
+}
+
+/// Split the edges from `core` into every cone but the `keep`-th and take the parts near the core
+/// out of K; the number of tetrahedra taken (0: nothing to carve, a split was refused, or a
+/// section face would be exposed; the caller restores).
+fn carve_core(t: &mut Triangulation, core: &[u32], keep: usize, distance: f64) -> u64 {
+    let cones = cones_at(t.kept, core);
+    if cones.len() < 2 {
+        return 0;
+    }
+    let carved: Vec<[u32; 4]> = (cones.iter().enumerate())
+        .filter(|&(i, _)| i != keep)
+        .flat_map(|(_, c)| c.iter().copied())
+        .collect();
+    let mut points: FxHashMap<(u32, u32), [f64; 3]> = FxHashMap::default();
+    for tet in &carved {
+        for &v in core {
+            let pv = t.positions[v as usize];
+            for &w in tet.iter().filter(|w| !core.contains(w)) {
+                let pw = t.positions[w as usize];
+                let d = [pw[0] - pv[0], pw[1] - pv[1], pw[2] - pv[2]];
+                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let s = (distance / len).min(0.25);
+                points.insert(
+                    edge(v, w),
+                    [pv[0] + s * d[0], pv[1] + s * d[1], pv[2] + s * d[2]],
+                );
+            }
+        }
+    }
+    let first_new = t.positions.len();
+    grow(t, &[], points.clone());
+    let id_of: FxHashMap<[u64; 3], u32> = t.positions[first_new..]
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.map(f64::to_bits), (first_new + i) as u32))
+        .collect();
+    let mut ids: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+    for (e, p) in &points {
+        match id_of.get(&p.map(f64::to_bits)) {
+            Some(&id) => ids.insert(*e, id),
+            None => return 0, // a split refused (it would flip a neighbour)
+        };
+    }
+    let tips: Vec<[u32; 4]> = carved
+        .iter()
+        .flat_map(|&tet| split(tet, &ids))
+        .filter(|c| {
+            c.iter()
+                .all(|v| core.contains(v) || *v as usize >= first_new)
+        })
+        .collect();
+    take_tips(t, core, &tips)
+}
+
+/// Move `tips` (children of kept tetrahedra near `core`) from K to the fillable ones, when each
+/// tip face that lies on a plane has a kept tetrahedron on its other side; else 0.
+fn take_tips(t: &mut Triangulation, core: &[u32], tips: &[[u32; 4]]) -> u64 {
+    let tip_keys: FxHashSet<[u32; 4]> = tips.iter().map(|&x| key4(x)).collect();
+    let mut on_plane: FxHashSet<[u32; 3]> = FxHashSet::default();
+    for tip in tips {
+        for i in 0..4 {
+            let f = super::complex::outward_face(tip, i);
+            if f.iter().any(|v| core.contains(v)) && on_a_plane(t.planes, &f) {
+                on_plane.insert(key3(f));
+            }
+        }
+    }
+    // every section face of a tip must stay covered by a kept tetrahedron that is not a tip
+    let mut covered: FxHashSet<[u32; 3]> = FxHashSet::default();
+    for tet in t.kept.iter().filter(|x| !tip_keys.contains(&key4(**x))) {
+        for i in 0..4 {
+            let f = key3(super::complex::outward_face(tet, i));
+            if on_plane.contains(&f) {
+                covered.insert(f);
+            }
+        }
+    }
+    let in_kept = t
+        .kept
+        .iter()
+        .filter(|x| tip_keys.contains(&key4(**x)))
+        .count();
+    if tips.is_empty() || covered.len() < on_plane.len() || in_kept < tips.len() {
+        return 0;
+    }
+    t.kept.retain(|x| !tip_keys.contains(&key4(*x)));
+    t.fillable.extend(tips.iter().copied());
+    tips.len() as u64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bm::refine::Planes;
+
+    /// Two tetrahedra meeting at the origin only (a pinched vertex): the smaller cone loses its
+    /// tip, the boundary becomes two closed surfaces without a singular vertex.
+    #[test]
+    fn two_cones_touching_at_a_vertex_are_separated() {
+        let mut positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, -1.0],
+            [-1.0, -1.0, -1.0],
+        ];
+        let mut planes: Vec<Planes> = vec![Planes::new(); positions.len()];
+        // positively oriented in robust's convention, one cone of one tet, one of two
+        let orient = |p: &[[f64; 3]], t: [u32; 4]| {
+            let c = |v: u32| {
+                let q = p[v as usize];
+                robust::Coord3D {
+                    x: q[0],
+                    y: q[1],
+                    z: q[2],
+                }
+            };
+            robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
+        };
+        let fix = |p: &[[f64; 3]], t: [u32; 4]| {
+            if orient(p, t) > 0.0 {
+                t
+            } else {
+                [t[0], t[1], t[3], t[2]]
+            }
+        };
+        let mut kept = vec![
+            fix(&positions, [0, 1, 2, 3]),
+            fix(&positions, [0, 4, 5, 6]),
+            fix(&positions, [4, 5, 6, 7]),
+        ];
+        let (mut fillable, mut external) = (Vec::new(), Vec::new());
+        let mut internal = FxHashSet::default();
+        let mut t = Triangulation {
+            positions: &mut positions,
+            planes: &mut planes,
+            kept: &mut kept,
+            fillable: &mut fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        assert_eq!(singular_simplices(&boundary_of(t.kept)).1, vec![0]);
+        let stats = carve_pinches(&mut t, &FxHashSet::default(), 0.1);
+        assert_eq!((stats.vertices, stats.tips, stats.refused), (1, 1, 0));
+        let (e, w) = singular_simplices(&boundary_of(t.kept));
+        assert!(e.is_empty() && w.is_empty(), "{e:?} {w:?}");
+        // equal cones: the one with the smaller tetrahedron stays, the other no longer reaches
+        // the origin
+        let at_origin: Vec<_> = t.kept.iter().filter(|x| x.contains(&0)).collect();
+        assert_eq!(at_origin.len(), 1);
+        assert_eq!(key4(*at_origin[0]), [0, 1, 2, 3]);
+    }
+}
