@@ -242,6 +242,7 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
             &loops_now(arr, &splits),
             sampling,
             &mut results,
+            &mut timing,
         )?
     } else {
         SharingCounts::default()
@@ -290,13 +291,14 @@ const MAX_SHARING_ROUNDS: usize = 6;
 
 /// Make every cell's diagram samples (and their Steiner points) pool vertices and run again every
 /// cell with such points on a face, inserting those of both sides (`shared_samples`), until no
-/// cell adds a point of its own.
+/// cell adds a point of its own. The reruns' times are added to `timing`.
 fn share_samples(
     arr: &Arrangement,
     pool: &mut crate::arrangement::VertexPool,
     loops: &[Vec<Vec<u32>>],
     sampling: Sampling,
     results: &mut [Option<CellResult>],
+    timing: &mut CellTiming,
 ) -> Result<SharingCounts> {
     let mut shared = shared_samples::SharedSamples::default();
     let mut counts = SharingCounts::default();
@@ -336,6 +338,7 @@ fn share_samples(
         for (c, r) in out {
             let Some(mut r) = r? else { continue };
             counts.cells_rerun += 1;
+            timing.add(&r.timing);
             if !r.missing.is_empty() {
                 // the other side's samples took a contour edge away: keep a finished run without
                 // them if there is one, else this one (its section then misses that edge)
