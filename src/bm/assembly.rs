@@ -152,8 +152,8 @@ pub fn assemble(
         out.voids = super::voids::fill(&mut k);
     }
     let nonconforming = nonconforming_vertices(&faces);
-    resolve_singularities(&mut k, &nonconforming, diag, &mut out);
-    out.carved = super::carve::carve_pinches(&mut k, &nonconforming, CARVE_DISTANCE * diag);
+    let left = resolve_singularities(&mut k, &nonconforming, diag, &mut out);
+    out.carved = super::carve::carve_pinches(&mut k, left, &nonconforming, CARVE_DISTANCE * diag);
     if fill_voids {
         let again = super::voids::fill(&mut k);
         out.voids.voids_filled += again.voids_filled;
@@ -174,13 +174,13 @@ pub fn assemble(
 }
 
 /// Singular edges and pinched vertices of ∂K: filled with whole step-1 survivors where a gap of
-/// them closes one (`fill`), then grown into near them (`singular`).
+/// them closes one (`fill`), then grown into near them (`singular`); the ones left.
 fn resolve_singularities(
     k: &mut Triangulation,
     nonconforming: &FxHashSet<u32>,
     diag: f64,
     out: &mut Assembled,
-) {
+) -> Sets {
     let (filled, (edges, vertices)) = super::fill::fill_and_drop(k.kept, k.fillable, FILL_ROUNDS);
     out.tets_filled = filled;
     out.singular_edges_found = edges.len() as u64;
@@ -221,14 +221,15 @@ fn resolve_singularities(
             whole_first
         }
     };
-    let (_, grown, toggled) = kept;
+    let (_, grown, toggled, left) = kept;
     out.grown = grown;
     out.toggled.added += toggled.added;
     out.toggled.removed += toggled.removed;
+    left
 }
 
 /// Growth at the singular simplices in the two ways of `order`, then the toggles; with
-/// (singular simplices left, points added) and what each did.
+/// (singular simplices left, points added), what each did, and the singular simplices left.
 /// `sets`: the singular simplices of ∂K now.
 fn grow_then_toggle(
     k: &mut Triangulation,
@@ -237,7 +238,7 @@ fn grow_then_toggle(
     nonconforming: &FxHashSet<u32>,
     diag: f64,
     max_toggles: usize,
-) -> ((u64, u64), SingularStats, ToggleStats) {
+) -> ((u64, u64), SingularStats, ToggleStats, Sets) {
     let mut grown = SingularStats::default();
     let mut known = Some(sets);
     for how in order {
@@ -246,9 +247,9 @@ fn grow_then_toggle(
         grown.add(&stats);
         known = now;
     }
-    let (toggled, (edges, vertices)) = super::manifold::resolve(k, nonconforming, max_toggles);
-    let left = (edges.len() + vertices.len()) as u64;
-    ((left, grown.points), grown, toggled)
+    let (toggled, left) = super::manifold::resolve(k, nonconforming, max_toggles);
+    let count = (left.0.len() + left.1.len()) as u64;
+    ((count, grown.points), grown, toggled, left)
 }
 
 /// Singular edges and pinched vertices of ∂K (`fill::singular_simplices`).

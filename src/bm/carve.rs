@@ -12,7 +12,7 @@
 //! carved only when the tetrahedron on the other side of each such face is kept (the face stays
 //! in R). A vertex is carved only when that strictly lowers the number of singular simplices of
 //! ∂K; otherwise the triangulation is restored.
-use super::assembly::boundary_of;
+use super::assembly::{boundary_of, Sets};
 use super::fill::singular_simplices;
 use super::refine::{edge, grow, key3, key4, on_a_plane, split, Triangulation};
 use super::singular::Snapshot;
@@ -29,16 +29,17 @@ pub struct CarveStats {
     pub refused: u64,
 }
 
-/// Carve the smaller cones at every singular edge and pinched vertex of ∂K (not at
-/// `nonconforming` vertices), the split points `distance` from the edge or vertex (at most a
-/// quarter of each edge).
+/// Carve the smaller cones at every singular edge and pinched vertex of ∂K, `singular` (as
+/// `fill::singular_simplices` gives them), not at `nonconforming` vertices, the split points
+/// `distance` from the edge or vertex (at most a quarter of each edge).
 pub fn carve_pinches(
     t: &mut Triangulation,
+    singular: Sets,
     nonconforming: &FxHashSet<u32>,
     distance: f64,
 ) -> CarveStats {
     let mut stats = CarveStats::default();
-    let (edges, vertices) = singular_simplices(&boundary_of(t.kept));
+    let (edges, vertices) = singular;
     let mut count = edges.len() + vertices.len();
     let cores = edges
         .iter()
@@ -224,6 +225,7 @@ fn take_tips(t: &mut Triangulation, core: &[u32], tips: &[[u32; 4]]) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bm::refine::test_support::positive;
     use crate::bm::refine::Planes;
 
     /// Two tetrahedra meeting at the origin only (a pinched vertex): the smaller cone loses its
@@ -241,29 +243,11 @@ mod tests {
             [-1.0, -1.0, -1.0],
         ];
         let mut planes: Vec<Planes> = vec![Planes::new(); positions.len()];
-        // positively oriented in robust's convention, one cone of one tet, one of two
-        let orient = |p: &[[f64; 3]], t: [u32; 4]| {
-            let c = |v: u32| {
-                let q = p[v as usize];
-                robust::Coord3D {
-                    x: q[0],
-                    y: q[1],
-                    z: q[2],
-                }
-            };
-            robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
-        };
-        let fix = |p: &[[f64; 3]], t: [u32; 4]| {
-            if orient(p, t) > 0.0 {
-                t
-            } else {
-                [t[0], t[1], t[3], t[2]]
-            }
-        };
+        // one cone at the origin of one tet, the other of one tet and one beyond it
         let mut kept = vec![
-            fix(&positions, [0, 1, 2, 3]),
-            fix(&positions, [0, 4, 5, 6]),
-            fix(&positions, [4, 5, 6, 7]),
+            positive(&positions, [0, 1, 2, 3]),
+            positive(&positions, [0, 4, 5, 6]),
+            positive(&positions, [4, 5, 6, 7]),
         ];
         let (mut fillable, mut external) = (Vec::new(), Vec::new());
         let mut internal = FxHashSet::default();
@@ -275,8 +259,9 @@ mod tests {
             external: &mut external,
             internal: &mut internal,
         };
-        assert_eq!(singular_simplices(&boundary_of(t.kept)).1, vec![0]);
-        let stats = carve_pinches(&mut t, &FxHashSet::default(), 0.1);
+        let singular = singular_simplices(&boundary_of(t.kept));
+        assert_eq!(singular.1, vec![0]);
+        let stats = carve_pinches(&mut t, singular, &FxHashSet::default(), 0.1);
         assert_eq!((stats.vertices, stats.tips, stats.refused), (1, 1, 0));
         let (e, w) = singular_simplices(&boundary_of(t.kept));
         assert!(e.is_empty() && w.is_empty(), "{e:?} {w:?}");

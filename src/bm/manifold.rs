@@ -768,22 +768,7 @@ mod tests {
         (s, e.len() + v.len())
     }
 
-    /// Positively oriented (robust orient3d > 0, as K's tetrahedra are).
-    fn oriented(p: &[[f64; 3]], t: [u32; 4]) -> [u32; 4] {
-        let c = |v: u32| {
-            let q = p[v as usize];
-            robust::Coord3D {
-                x: q[0],
-                y: q[1],
-                z: q[2],
-            }
-        };
-        if robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3])) > 0.0 {
-            t
-        } else {
-            [t[1], t[0], t[2], t[3]]
-        }
-    }
+    use crate::bm::refine::test_support::positive as oriented;
 
     /// A triangle a b c with d `height` above a point inside it: the tetrahedron a b c d, unkept,
     /// between two kept ones, a b d p above and a b c q below. Flat (1e-13), its faces a b d and

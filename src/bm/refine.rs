@@ -315,6 +315,29 @@ pub fn split<const N: usize>(s: [u32; N], points: &FxHashMap<(u32, u32), u32>) -
     out
 }
 
+/// Tetrahedra for the tests of the modules that refine K.
+#[cfg(test)]
+pub(crate) mod test_support {
+    /// robust's orient3d of `t` (K's tetrahedra are positive).
+    pub fn orient(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
+        let c = |v: u32| robust::Coord3D {
+            x: p[v as usize][0],
+            y: p[v as usize][1],
+            z: p[v as usize][2],
+        };
+        robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
+    }
+
+    /// `t`, its last two vertices swapped where that makes it positive.
+    pub fn positive(p: &[[f64; 3]], t: [u32; 4]) -> [u32; 4] {
+        if orient(p, t) > 0.0 {
+            t
+        } else {
+            [t[0], t[1], t[3], t[2]]
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -371,22 +394,7 @@ mod tests {
         (positions, planes)
     }
 
-    fn orient(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
-        let c = |v: u32| robust::Coord3D {
-            x: p[v as usize][0],
-            y: p[v as usize][1],
-            z: p[v as usize][2],
-        };
-        robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
-    }
-
-    fn positive(p: &[[f64; 3]], t: [u32; 4]) -> [u32; 4] {
-        if orient(p, t) > 0.0 {
-            t
-        } else {
-            [t[0], t[1], t[3], t[2]]
-        }
-    }
+    use super::test_support::{orient, positive};
 
     #[test]
     fn growing_into_a_gap_at_an_edge_joins_its_two_sectors() {

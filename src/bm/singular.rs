@@ -481,22 +481,7 @@ mod tests {
     use super::*;
     use crate::bm::assembly::{boundary_of, singularities};
 
-    fn orient(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
-        let c = |v: u32| robust::Coord3D {
-            x: p[v as usize][0],
-            y: p[v as usize][1],
-            z: p[v as usize][2],
-        };
-        robust::orient3d(c(t[0]), c(t[1]), c(t[2]), c(t[3]))
-    }
-
-    fn positive(p: &[[f64; 3]], t: [u32; 4]) -> [u32; 4] {
-        if orient(p, t) > 0.0 {
-            t
-        } else {
-            [t[0], t[1], t[3], t[2]]
-        }
-    }
+    use crate::bm::refine::test_support::{orient, positive};
 
     /// Eight tetrahedra around the vertex 0 (the octants of an octahedron with apexes ±x, ±y,
     /// ±z), `kept` of them in K.
