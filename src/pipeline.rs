@@ -35,7 +35,7 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
     }
     let selected = sections.select_label(options.label)?;
     let (selected, trims) = crate::validate::reconcile_common_lines(
-        &selected,
+        selected,
         options.arrangement.snap_tolerance,
         options.arrangement.line_strip,
     )?;

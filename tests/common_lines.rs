@@ -26,7 +26,7 @@ fn squares_and_an_empty_plane() -> Sections {
 #[test]
 fn material_on_a_line_the_other_plane_leaves_empty_is_removed() {
     let s = squares_and_an_empty_plane();
-    let (out, trims) = reconcile_common_lines(&s, SNAP, LINE_STRIP_RELATIVE).unwrap();
+    let (out, trims) = reconcile_common_lines(s.clone(), SNAP, LINE_STRIP_RELATIVE).unwrap();
     assert_eq!(trims.trimmed, 2, "{:?}", trims.warnings);
     assert!(
         (trims.max_length - 4.0).abs() < 1e-12,
@@ -72,7 +72,7 @@ fn material_on_a_line_the_other_plane_leaves_empty_is_removed() {
 #[test]
 fn no_strip_leaves_the_sections_as_they_are() {
     let s = squares_and_an_empty_plane();
-    let (out, trims) = reconcile_common_lines(&s, SNAP, 0.0).unwrap();
+    let (out, trims) = reconcile_common_lines(s.clone(), SNAP, 0.0).unwrap();
     assert_eq!(trims.trimmed, 0);
     assert_eq!(out, s);
 }
@@ -85,7 +85,7 @@ fn sections_that_agree_are_not_touched() {
         let text = std::fs::read_to_string(&path).unwrap();
         let s = parse_csl(&text, stem).unwrap();
         let s = s.select_label(None).unwrap();
-        let (out, trims) = reconcile_common_lines(&s, SNAP, LINE_STRIP_RELATIVE).unwrap();
+        let (out, trims) = reconcile_common_lines(s.clone(), SNAP, LINE_STRIP_RELATIVE).unwrap();
         assert_eq!(trims.trimmed, 0, "{stem}: {:?}", trims.warnings);
         assert_eq!(out, s, "{stem}");
     }
@@ -97,7 +97,7 @@ fn sections_that_agree_are_not_touched() {
 fn odd072_is_reconciled() {
     let path = shared_dir().join("data/odd/odd072.json");
     let s = parse_json(&std::fs::read_to_string(&path).unwrap(), "odd072.json").unwrap();
-    let (out, trims) = reconcile_common_lines(&s, SNAP, LINE_STRIP_RELATIVE).unwrap();
+    let (out, trims) = reconcile_common_lines(s.clone(), SNAP, LINE_STRIP_RELATIVE).unwrap();
     assert_eq!(trims.trimmed, 5, "{:?}", trims.warnings);
     assert!(
         (trims.max_length - 0.8979).abs() < 1e-4,

@@ -42,11 +42,6 @@ pub struct LineTrims {
     pub max_length: f64,
 }
 
-/// The common line of two planes, parametrised by arc length `s = dir · x`.
-struct Line {
-    dir: [f64; 3],
-}
-
 /// A stretch [s0, s1] of line (i, j) to clear of section `owner`'s material.
 struct Trim {
     owner: usize,
@@ -60,27 +55,30 @@ struct Trim {
 /// Apply the rule of the module docs to every pair of non-parallel planes. `snap_relative` is the
 /// arrangement's snap tolerance, `strip_relative` the strip's half-width (0: nothing is changed).
 pub fn reconcile_common_lines(
-    sections: &Sections,
+    mut sections: Sections,
     snap_relative: f64,
     strip_relative: f64,
 ) -> Result<(Sections, LineTrims)> {
-    let mut out = sections.clone();
     let mut log = LineTrims::default();
-    let diag = model_diagonal(sections);
+    let diag = model_diagonal(&sections);
     if strip_relative <= 0.0 || diag <= 0.0 {
-        return Ok((out, log));
+        return Ok((sections, log));
     }
     let (tol, strip) = (snap_relative * diag, strip_relative * diag);
     let boxes: Vec<Option<([f64; 3], [f64; 3])>> =
         sections.sections.iter().map(section_box).collect();
     let n = sections.sections.len();
+    let input = &sections;
     let trims: Vec<Trim> = (0..n)
         .into_par_iter()
         .flat_map_iter(|i| {
             let boxes = &boxes;
-            (i + 1..n).flat_map(move |j| pair_trims(sections, boxes, i, j, tol))
+            (i + 1..n).flat_map(move |j| pair_trims(input, boxes, i, j, tol))
         })
         .collect();
+    // planes and file indices stay as they are; only regions are trimmed
+    let planes: Vec<Plane> = sections.sections.iter().map(|s| s.plane).collect();
+    let index: Vec<usize> = sections.sections.iter().map(|s| s.source_index).collect();
     let mut per_section: Vec<Vec<&Trim>> = (0..n).map(|_| Vec::new()).collect();
     for t in &trims {
         per_section[t.owner].push(t);
@@ -90,13 +88,10 @@ pub fn reconcile_common_lines(
         if list.is_empty() {
             continue;
         }
-        let sec = &mut out.sections[i];
+        let sec = &mut sections.sections[i];
         let rects: Vec<Vec<[f64; 2]>> = list
             .iter()
-            .map(|t| {
-                let other = &sections.sections[t.other].plane;
-                strip_rectangle(&sec.plane, other, t.s0, t.s1, strip)
-            })
+            .map(|t| strip_rectangle(&sec.plane, &planes[t.other], t.s0, t.s1, strip))
             .collect();
         let before = sec.area();
         trim_section(sec, &rects, strip, NUDGE_RELATIVE * diag);
@@ -105,12 +100,12 @@ pub fn reconcile_common_lines(
         for t in list {
             log.warnings.push(format!(
                 "planes {} and {} disagree along their common line: plane {} has material over {:.3e} of it where plane {} has none; plane {}'s material within {strip:.1e} of the line removed there (material only where both sections have it)",
-                sections.sections[t.owner].source_index.min(sections.sections[t.other].source_index),
-                sections.sections[t.owner].source_index.max(sections.sections[t.other].source_index),
-                sections.sections[t.owner].source_index,
+                index[t.owner].min(index[t.other]),
+                index[t.owner].max(index[t.other]),
+                index[t.owner],
                 t.material,
-                sections.sections[t.other].source_index,
-                sections.sections[t.owner].source_index,
+                index[t.other],
+                index[t.owner],
             ));
         }
         log.warnings.push(format!(
@@ -119,7 +114,7 @@ pub fn reconcile_common_lines(
             list.len()
         ));
     }
-    Ok((out, log))
+    Ok((sections, log))
 }
 
 fn section_box(sec: &Section) -> Option<([f64; 3], [f64; 3])> {
@@ -167,9 +162,8 @@ fn pair_trims(
     if l < PARALLEL {
         return Vec::new();
     }
-    let line = Line {
-        dir: [d[0] / l, d[1] / l, d[2] / l],
-    };
+    // the common line, parametrised by arc length s = dir · x
+    let dir = [d[0] / l, d[1] / l, d[2] / l];
     let meets = |a: usize, b: usize| {
         boxes[a]
             .as_ref()
@@ -181,7 +175,7 @@ fn pair_trims(
     }
     let on_line = |a: usize, b: usize, m: bool| {
         if m {
-            material_on_line(&sections.sections[a], &sections.sections[b].plane, &line)
+            material_on_line(&sections.sections[a], &sections.sections[b].plane, dir)
         } else {
             Vec::new()
         }
@@ -202,10 +196,10 @@ fn pair_trims(
     out
 }
 
-/// The intervals of the line (sorted, disjoint) where `sec` has material: between consecutive
-/// crossings of its contours with `other` (validated contours are disjoint and nested, so parity
-/// is material). A vertex on the other plane counts as on its positive side.
-fn material_on_line(sec: &Section, other: &Plane, line: &Line) -> Vec<(f64, f64)> {
+/// The intervals of the line along `dir` (arc length `dir · x`; sorted, disjoint) where `sec` has
+/// material: between consecutive crossings of its contours with `other` (validated contours are
+/// disjoint and nested, so parity is material). A vertex on the other plane counts as on its positive side.
+fn material_on_line(sec: &Section, other: &Plane, dir: [f64; 3]) -> Vec<(f64, f64)> {
     let mut s = Vec::new();
     for c in sec
         .regions
@@ -226,7 +220,7 @@ fn material_on_line(sec: &Section, other: &Plane, line: &Line) -> Vec<(f64, f64)
                 a[1] + t * (b[1] - a[1]),
                 a[2] + t * (b[2] - a[2]),
             ];
-            s.push(dot(line.dir, x));
+            s.push(dot(dir, x));
         }
     }
     s.sort_by(f64::total_cmp);
