@@ -27,7 +27,7 @@ impl Default for Sampling {
         }
     }
 }
-use super::chains::{conform_pairs, DiagramSample, Kind, SamplePair};
+use super::chains::{conform_pairs, Chains, DiagramSample, Kind, SamplePair};
 use super::complex::{outward_face, Complex};
 use super::prune::{prune, PruneCounts};
 use super::shared_samples::SharedSamples;
@@ -45,9 +45,23 @@ pub struct FaceSide {
     pub apexes: Vec<u32>,
 }
 
+/// The start of a cell's run that every rerun with shared samples repeats exactly (it depends on
+/// the cell's contour points only): their Delaunay triangulation and the first round's diagram
+/// samples. Kept from the first run so that the reruns skip it.
+#[derive(Clone, Debug)]
+pub struct RunStart {
+    points: Vec<[f64; 3]>,
+    dt: crate::delaunay::Delaunay,
+    tagged: bool,
+    branching: Chains,
+    cutting: Chains,
+}
+
 #[derive(Clone, Debug, Default)]
 pub struct CellResult {
     pub input: Option<CellInput>,
+    /// The first run's start, for the reruns with shared samples (`RunStart`).
+    pub start: Option<Box<RunStart>>,
     /// Contour edges (global ids) that are not edges of this cell's section triangulation.
     pub missing: Vec<(u32, u32)>,
     pub kept: Vec<[u32; 4]>,
@@ -241,7 +255,14 @@ pub fn run_cell(input: CellInput, sampling: Sampling, check_only: bool) -> Resul
     } else {
         Stop::Never
     };
-    run_cell_with(input, sampling, stop, SAMPLE_PAIR_ROUNDS, None)
+    run_cell_with(
+        input,
+        sampling,
+        stop,
+        SAMPLE_PAIR_ROUNDS,
+        None,
+        Start::Compute,
+    )
 }
 
 /// Run the cell up to its conformity check: its diagram samples (in `input`, cell-local) and the
@@ -253,20 +274,39 @@ pub fn run_cell_samples(input: CellInput, sampling: Sampling) -> Result<CellResu
         Stop::AtConformity,
         SAMPLE_PAIR_ROUNDS,
         None,
+        Start::Keep,
     )
 }
 
 /// [`run_cell`] inserting, besides its own diagram samples, every sample of `shared` on its faces
 /// (its own get their global ids from there too; see `shared_samples`); without `split_pairs`, its
 /// consecutive samples that are not edges stay so (counted), and it adds no point of its own.
+/// `start`: the first run's (`RunStart`), used where the contour points are still the same, and
+/// handed on in the result.
 pub fn run_cell_sharing(
     input: CellInput,
     sampling: Sampling,
     shared: &SharedSamples,
     split_pairs: bool,
+    start: Option<Box<RunStart>>,
 ) -> Result<CellResult> {
     let rounds = if split_pairs { SAMPLE_PAIR_ROUNDS } else { 0 };
-    run_cell_with(input, sampling, Stop::Never, rounds, Some(shared))
+    let how = match &start {
+        Some(st) if st.points == input.points => Start::Reuse(st),
+        _ => Start::Compute,
+    };
+    let mut r = run_cell_with(input, sampling, Stop::Never, rounds, Some(shared), how)?;
+    r.start = start;
+    Ok(r)
+}
+
+/// Where a run's start (`RunStart`) comes from.
+#[derive(Clone, Copy)]
+enum Start<'a> {
+    Compute,
+    /// Compute it and keep it in the result.
+    Keep,
+    Reuse(&'a RunStart),
 }
 
 /// Per slot of `input`: the position key → global id of the shared samples on its face.
@@ -293,6 +333,7 @@ fn run_cell_with(
     stop: Stop,
     pair_rounds: usize,
     shared: Option<&SharedSamples>,
+    start: Start,
 ) -> Result<CellResult> {
     let all = input.mask.iter().fold(!0u128, |a, &m| a & m);
     if all != 0 || input.points.len() < 4 {
@@ -308,7 +349,14 @@ fn run_cell_with(
     let mut timing = CellTiming::default();
     let mut clock = std::time::Instant::now();
     let mut tagged = true;
-    let mut dt = cell_delaunay(&input, &mut tagged)?;
+    let mut dt = match start {
+        Start::Reuse(st) => {
+            tagged = st.tagged;
+            st.dt.clone()
+        }
+        _ => cell_delaunay(&input, &mut tagged)?,
+    };
+    let mut kept_start: Option<Box<RunStart>> = None;
     let mut cx = Complex::from_delaunay(input.points.len(), &dt);
     timing.delaunay += lap(&mut clock);
     let mut n_branch = 0;
@@ -322,42 +370,22 @@ fn run_cell_with(
     let mut n_foreign = 0u64;
     if sampling.branching || sampling.cutting {
         for round in 0..BRANCHING_ROUNDS {
-            let ty: Vec<TetType> = cx
-                .tets
-                .iter()
-                .map(|t| {
-                    tet_type([
-                        input.mask[t[0] as usize],
-                        input.mask[t[1] as usize],
-                        input.mask[t[2] as usize],
-                        input.mask[t[3] as usize],
-                    ])
-                    .0
-                })
-                .collect();
-            let mut cl = Classifier::new(&input);
-            let apex = super::branching::apex_triangles(&input, &cx, &ty, &cl);
-            let branch_chains = if sampling.branching {
-                super::branching::sample_chains(&input, &mut cl, &apex)
-            } else {
-                Default::default()
+            let (branch_chains, cut_chains) = match start {
+                Start::Reuse(st) if round == 0 => (st.branching.clone(), st.cutting.clone()),
+                _ => {
+                    let chains = diagram_samples(&input, &cx, sampling, &mut timing, &mut clock);
+                    if round == 0 && matches!(start, Start::Keep) {
+                        kept_start = Some(Box::new(RunStart {
+                            points: input.points.clone(),
+                            dt: dt.clone(),
+                            tagged,
+                            branching: chains.0.clone(),
+                            cutting: chains.1.clone(),
+                        }));
+                    }
+                    chains
+                }
             };
-            timing.branching += lap(&mut clock);
-            // from the same triangulation, kept apart from the branching samples
-            let cut_chains = if sampling.cutting {
-                super::cutting::sample_chains(
-                    &input,
-                    &cx,
-                    &ty,
-                    &mut cl,
-                    &apex,
-                    &branch_chains.samples,
-                )
-            } else {
-                Default::default()
-            };
-            timing.cutting += lap(&mut clock);
-            drop(cl);
             let (n_branch_round, n_cut_round) =
                 (branch_chains.samples.len(), cut_chains.samples.len());
             let has_shared = round == 0 && lookup.iter().any(|m| !m.is_empty());
@@ -505,6 +533,7 @@ fn run_cell_with(
     if stop == Stop::AtConformity || (stop == Stop::AtMissingEdges && !missing.is_empty()) {
         return Ok(CellResult {
             input: Some(input),
+            start: kept_start,
             missing,
             tets: cx.len() as u64,
             timing,
@@ -582,6 +611,7 @@ fn run_cell_with(
     timing.output += lap(&mut clock);
     Ok(CellResult {
         input: Some(input),
+        start: kept_start,
         missing,
         kept,
         fillable,
@@ -604,6 +634,37 @@ fn run_cell_with(
         flat_only: false,
         untagged: !tagged,
     })
+}
+
+/// One round's branching and cutting samples of the triangulation `cx` of `input`.
+fn diagram_samples(
+    input: &CellInput,
+    cx: &Complex,
+    sampling: Sampling,
+    timing: &mut CellTiming,
+    clock: &mut std::time::Instant,
+) -> (Chains, Chains) {
+    let ty: Vec<TetType> = cx
+        .tets
+        .iter()
+        .map(|t| tet_type(t.map(|v| input.mask[v as usize])).0)
+        .collect();
+    let mut cl = Classifier::new(input);
+    let apex = super::branching::apex_triangles(input, cx, &ty, &cl);
+    let branch_chains = if sampling.branching {
+        super::branching::sample_chains(input, &mut cl, &apex)
+    } else {
+        Default::default()
+    };
+    timing.branching += lap(clock);
+    // from the same triangulation, kept apart from the branching samples
+    let cut_chains = if sampling.cutting {
+        super::cutting::sample_chains(input, cx, &ty, &mut cl, &apex, &branch_chains.samples)
+    } else {
+        Default::default()
+    };
+    timing.cutting += lap(clock);
+    (branch_chains, cut_chains)
 }
 
 /// Per slot, its section (the loops, in the slot's (u,v)) triangulated in 2D by a constrained
@@ -701,6 +762,32 @@ mod tests {
             .collect()
     }
 
+    /// A rerun with shared samples that starts from the first run's triangulation and first-round
+    /// samples gives what the whole run gives; a start of other points is not used.
+    #[test]
+    fn a_rerun_from_the_first_runs_start_is_the_whole_run() {
+        let first = run_cell_samples(one_facing_four(), Sampling::default()).unwrap();
+        let start = first.start.expect("a first run keeps its start");
+        assert!(start.branching.samples.len() > 0);
+        let shared = SharedSamples::default();
+        let whole =
+            run_cell_sharing(one_facing_four(), Sampling::default(), &shared, true, None).unwrap();
+        let mut other = start.clone();
+        other.points[0][0] += 1e-3;
+        for given in [Some(start), Some(other)] {
+            let r = run_cell_sharing(one_facing_four(), Sampling::default(), &shared, true, given)
+                .unwrap();
+            assert_eq!(r.kept, whole.kept);
+            assert_eq!(r.external, whole.external);
+            assert_eq!(r.branching_samples, whole.branching_samples);
+            assert_eq!(
+                r.input.unwrap().points,
+                whole.input.as_ref().unwrap().points
+            );
+            assert!(r.start.is_some(), "the start is handed on");
+        }
+    }
+
     #[test]
     fn consecutive_branching_samples_are_section_edges() {
         let r = run_cell(one_facing_four(), Sampling::default(), false).unwrap();
@@ -742,8 +829,15 @@ mod tests {
     /// itself is tested in `chains`).
     #[test]
     fn straight_branches_need_no_splitting() {
-        let r =
-            run_cell_with(one_facing_four(), Sampling::default(), Stop::Never, 0, None).unwrap();
+        let r = run_cell_with(
+            one_facing_four(),
+            Sampling::default(),
+            Stop::Never,
+            0,
+            None,
+            Start::Compute,
+        )
+        .unwrap();
         assert!(r.sample_pairs > 0);
         assert!(pairs_off_triangles(&r).is_empty());
         assert!(r.sample_pairs_not_edges.is_empty());

@@ -324,12 +324,15 @@ fn share_samples(
             }),
         );
         let pool_now = &*pool;
-        let mut out: Vec<(usize, Result<Option<CellResult>>)> = todo
+        let work: Vec<(usize, Option<Box<cell::RunStart>>)> = todo
             .iter()
-            .par_bridge()
-            .map(|&c| {
+            .map(|&c| (c, results[c].as_mut().and_then(|r| r.start.take())))
+            .collect();
+        let mut out: Vec<(usize, Result<Option<CellResult>>)> = work
+            .into_par_iter()
+            .map(|(c, start)| {
                 let r = CellInput::build(arr, pool_now, loops, c as u32)
-                    .map(|input| cell::run_cell_sharing(input, sampling, &shared, split))
+                    .map(|input| cell::run_cell_sharing(input, sampling, &shared, split, start))
                     .transpose();
                 (c, r)
             })
@@ -342,7 +345,8 @@ fn share_samples(
             if !r.missing.is_empty() {
                 // the other side's samples took a contour edge away: keep a finished run without
                 // them if there is one, else this one (its section then misses that edge)
-                if results[c].as_ref().is_some_and(|p| p.pruned) {
+                if let Some(p) = results[c].as_mut().filter(|p| p.pruned) {
+                    p.start = r.start.take();
                     counts.cells_kept_unshared += 1;
                     continue;
                 }
@@ -355,6 +359,7 @@ fn share_samples(
     }
     for r in results.iter_mut().flatten() {
         shared.adopt_ids(r);
+        r.start = None;
     }
     counts.samples = shared.len() as u64;
     counts.one_sided = shared.one_sided(results);
