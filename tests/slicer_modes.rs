@@ -1,0 +1,134 @@
+//! Every acquisition the slicer makes (`slice --mode`: fan, sweep, tilt, parallel, axes, random),
+//! sparse and denser, on shared reference meshes (seed 5, written as CSL and read back like a
+//! user's file). The solid must be a closed oriented manifold with no crossing and no overlapping
+//! triangle pair (exact `check`), every section within `SECTION_BOUND` of the input (or its pin in
+//! `SECTION_PINS`), and the
+//! tetrahedral mesh valid (conforming, nothing inverted or flat) with the surface as its boundary.
+//! Cases that are not clean yet are listed in `KNOWN_UNCLEAN` and asserted still unclean, so the
+//! list cannot go stale.
+mod common;
+use slice2solid::eval::check::check_mesh;
+use slice2solid::eval::tets::check_tets;
+use slice2solid::io::mesh::read_trimesh;
+use slice2solid::io::{read_sections, write_sections};
+use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
+
+/// Worst relative section difference allowed (today: at most 6.3e-10 over these cases but the
+/// listed ones).
+const SECTION_BOUND: f64 = 1e-9;
+
+/// Cases whose sections are not exact yet, with the bound pinned near today's value (all well
+/// within the 2% a user can tell): cut by axis-aligned planes (x, y, z in turn) at 40 planes
+/// the figure eight misses 6.8e-4 of a section and the balloon dog 5.4e-4; the figure eight by
+/// 30 random planes 1.8e-5.
+const SECTION_PINS: [(&str, SliceMode, usize, f64); 3] = [
+    ("eight_15", SliceMode::Axes, 40, 7e-4),
+    ("balloondog", SliceMode::Axes, 40, 5.6e-4),
+    ("eight_15", SliceMode::Random, 30, 2e-5),
+];
+
+/// (mesh, mode, planes) not clean today, and why: balloondog by 30 random planes: 8 cells fall
+/// back to the untagged kernel (an exact cosphericity across planes its rules cannot decide), the
+/// conformity splitting runs out of rounds, one face is triangulated differently by its two cells
+/// and one singular edge is left (not closed, 4 overlapping pairs).
+const KNOWN_UNCLEAN: [(&str, SliceMode, usize); 1] = [("balloondog", SliceMode::Random, 30)];
+
+/// What is wrong with the reconstruction of `mesh` cut by `planes` planes of `mode` (empty: clean).
+fn problems(mesh: &str, mode: SliceMode, planes: usize) -> Vec<String> {
+    let m = read_trimesh(&common::shared_reference(mesh)).unwrap();
+    let s = slice_mesh(&m, &make_planes(&m, planes, 5, mode)).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(format!("{mesh}_{planes}.csl"));
+    write_sections(&path, &s).unwrap();
+    let sections = read_sections(&path).unwrap();
+    let solid = slice2solid::reconstruct(&sections, &Default::default())
+        .unwrap_or_else(|e| panic!("{mesh} {mode:?} {planes}: {e}"));
+    let c = check_mesh(&solid.surface, Some(&sections));
+    let worst = c.worst_section.as_ref().map_or(1.0, |w| w.relative);
+    let tets = solid.tets.as_ref().expect("the complex has tetrahedra");
+    let t = check_tets(tets, Some(&solid.surface));
+    let equal = t
+        .surface
+        .as_ref()
+        .is_some_and(|s| s.boundary_equals_surface);
+    eprintln!(
+        "{mesh} {mode:?} {planes}: closed {} manifold {} crossings {} overlaps {} worst {worst:e} tets valid {} boundary = surface {equal}",
+        c.closed, c.manifold, c.self_intersections, c.overlapping_coplanar_pairs, t.valid
+    );
+    let mut out = Vec::new();
+    if !(c.closed && c.manifold && c.oriented) {
+        out.push(format!(
+            "closed {} manifold {} oriented {}",
+            c.closed, c.manifold, c.oriented
+        ));
+    }
+    if c.self_intersections + c.overlapping_coplanar_pairs > 0 {
+        out.push(format!(
+            "{} crossing, {} overlapping pairs",
+            c.self_intersections, c.overlapping_coplanar_pairs
+        ));
+    }
+    let bound = SECTION_PINS
+        .iter()
+        .find(|p| (p.0, p.1, p.2) == (mesh, mode, planes))
+        .map_or(SECTION_BOUND, |p| p.3);
+    if worst > bound {
+        out.push(format!("worst section {worst:e}"));
+    }
+    if !t.valid || !equal {
+        out.push(format!("tets valid {} boundary = surface {equal}", t.valid));
+    }
+    out
+}
+
+fn run(cases: &[(&str, SliceMode, usize)]) {
+    let mut failures = Vec::new();
+    for &(mesh, mode, planes) in cases {
+        let p = problems(mesh, mode, planes);
+        let known = KNOWN_UNCLEAN.contains(&(mesh, mode, planes));
+        match (p.is_empty(), known) {
+            (false, false) => failures.push(format!("{mesh} {mode:?} {planes}: {p:?}")),
+            (true, true) => failures.push(format!(
+                "{mesh} {mode:?} {planes} is clean now: take it off KNOWN_UNCLEAN"
+            )),
+            _ => {}
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+const MODES: [SliceMode; 5] = [
+    SliceMode::Fan,
+    SliceMode::Sweep,
+    SliceMode::Tilt,
+    SliceMode::Parallel,
+    SliceMode::Axes,
+];
+
+fn every_mode(mesh: &'static str) -> Vec<(&'static str, SliceMode, usize)> {
+    let mut cases: Vec<(&str, SliceMode, usize)> = MODES
+        .iter()
+        .flat_map(|&m| [(mesh, m, 16), (mesh, m, 40)])
+        .collect();
+    cases.extend([(mesh, SliceMode::Random, 10), (mesh, SliceMode::Random, 30)]);
+    cases
+}
+
+#[test]
+fn the_figure_eight_under_every_mode() {
+    run(&every_mode("eight_15"));
+}
+
+#[test]
+fn the_balloon_dog_under_every_mode() {
+    run(&every_mode("balloondog"));
+}
+
+#[test]
+fn the_hand_under_the_probe_modes() {
+    run(&[
+        ("hand", SliceMode::Fan, 40),
+        ("hand", SliceMode::Sweep, 40),
+        ("hand", SliceMode::Tilt, 40),
+    ]);
+}
