@@ -14,9 +14,12 @@
 //! the solid.
 //!
 //! An edge whose two ends share a plane lies on that plane (on the cell's boundary, in a section
-//! or outside it) and is not split: then no split point lies on a plane, every slab face other
-//! than Z has a split point, and no slab face lies on a plane: every section keeps R ∩ P = A.
-//! Where Z borders a line of the arrangement, its slab tapers to that line.
+//! or outside it) and is not split at first: then no split point lies on a plane, every slab face
+//! other than Z has a split point, and no slab face lies on a plane: every section keeps R ∩ P = A.
+//! Where Z borders a line of the arrangement, its slab tapers to that line. A zone left without a
+//! slab that way (every edge to its apex on a plane: a cell corner on two planes, as between
+//! axis-aligned planes) is tried once more with those edges split too; `refine::grow` then keeps
+//! a slab only where its faces on a plane lie inside that plane's section.
 use super::refine::{edge, grow, key3, key4, Growth, Planes, Triangulation};
 use crate::fxhash::{FxHashMap, FxHashSet};
 /// A section triangle as one cell has it: global ids, outward from the cell, whether a kept
@@ -60,45 +63,66 @@ pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> Sl
     };
     // first every zone triangle's preferred parent; where refused (a split would flip a rounded
     // neighbour), the next side's, if that tetrahedron is still unsplit
-    let mut pending: Vec<&[Parent]> = candidates.iter().map(|c| &c[..]).collect();
+    let mut pending: Vec<(&[Parent], &[Parent])> =
+        candidates.iter().map(|c| (&c[..], &c[..])).collect();
+    let mut left: Vec<&[Parent]> = Vec::new();
     while !pending.is_empty() {
-        let parents: Vec<&Parent> = pending.iter().map(|c| &c[0]).collect();
-        let refused = grow_slabs(t, &parents, thickness, &mut stats);
-        let existing: FxHashSet<[u32; 4]> = t
-            .kept
-            .iter()
-            .chain(t.fillable.iter())
-            .chain(t.external.iter())
-            .map(|&x| key4(x))
-            .collect();
+        let parents: Vec<&Parent> = pending.iter().map(|c| &c.0[0]).collect();
+        let refused = grow_slabs(t, &parents, thickness, false, &mut stats);
+        let existing = existing_tets(t);
         pending = refused
             .into_iter()
             .filter_map(|i| {
-                let rest = &pending[i][1..];
+                let (rest, all) = (&pending[i].0[1..], pending[i].1);
                 let usable = rest
                     .first()
                     .is_some_and(|p| existing.contains(&key4(p.tet)));
                 if !usable {
-                    stats.left += 1;
+                    left.push(all);
                 }
-                usable.then_some(rest)
+                usable.then_some((rest, all))
             })
             .collect();
     }
+    // a zone whose parents' edges all lie on planes (a cell corner on two planes, as cells between
+    // axis-aligned planes have) gets its slab from splits on those planes where their sections
+    // allow the slab's faces there
+    let existing = existing_tets(t);
+    let last: Vec<&Parent> = left
+        .iter()
+        .filter_map(|all| all.iter().find(|p| existing.contains(&key4(p.tet))))
+        .collect();
+    let unusable = left.len() - last.len();
+    stats.left += (unusable + grow_slabs(t, &last, thickness, true, &mut stats).len()) as u64;
     if stats.points == 0 {
         stats.min_thickness = 0.0;
     }
     stats
 }
 
-/// Grow the slabs of `parents`; returns the indices of those refused.
+/// The tetrahedra of the triangulation now (sorted keys).
+fn existing_tets(t: &Triangulation) -> FxHashSet<[u32; 4]> {
+    t.kept
+        .iter()
+        .chain(t.fillable.iter())
+        .chain(t.external.iter())
+        .map(|&x| key4(x))
+        .collect()
+}
+
+/// Grow the slabs of `parents` (with `on_planes`, splitting edges that lie on a plane too);
+/// returns the indices of those refused.
 fn grow_slabs(
     t: &mut Triangulation,
     parents: &[&Parent],
     thickness: f64,
+    on_planes: bool,
     stats: &mut SlabStats,
 ) -> Vec<usize> {
-    let points = split_points(t.positions, t.planes, parents, thickness);
+    if parents.is_empty() {
+        return Vec::new();
+    }
+    let points = split_points(t.positions, t.planes, parents, thickness, on_planes);
     let min_thickness = points.values().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let groups: Vec<Vec<Growth>> = parents
         .iter()
@@ -278,6 +302,7 @@ fn split_points(
     planes: &[Planes],
     parents: &[&Parent],
     thickness: f64,
+    on_planes: bool,
 ) -> FxHashMap<(u32, u32), ([f64; 3], f64)> {
     use crate::sections::{cross, dot};
     let on_a_plane = |a: u32, b: u32| {
@@ -297,7 +322,7 @@ fn split_points(
         }
         let s = (thickness / h).min(0.5);
         for (&v, &pv) in p.zone.iter().zip(&z) {
-            if on_a_plane(v, p.tet[3]) {
+            if !on_planes && on_a_plane(v, p.tet[3]) {
                 continue;
             }
             let d = sub(apex, pv);
@@ -401,7 +426,34 @@ mod tests {
     }
 
     #[test]
+    fn a_zone_at_a_corner_of_two_planes_gets_a_slab_where_their_sections_allow_it() {
+        // as below, but the tetrahedron's faces on planes 1 and 2 are inside their sections: the
+        // second try splits the edges on the planes and keeps the whole prism
+        let (mut positions, faces) = standing();
+        positions[3] = [0.0, 0.0, 1.0];
+        let mut pl = planes(&[&[0, 1, 2], &[0, 1], &[0, 2], &[1, 2]]);
+        let mut kept = Vec::new();
+        let mut external = Vec::new();
+        let mut fillable = Vec::new();
+        let mut internal: FxHashSet<[u32; 3]> =
+            [[0, 1, 2], [0, 1, 3], [0, 2, 3]].into_iter().collect();
+        let mut t = Triangulation {
+            positions: &mut positions,
+            planes: &mut pl,
+            kept: &mut kept,
+            fillable: &mut fillable,
+            external: &mut external,
+            internal: &mut internal,
+        };
+        let s = thicken(&mut t, &faces, 0.01);
+        assert_eq!((s.thickened, s.left, s.tets, s.points), (1, 0, 3, 3));
+        assert_eq!(singularities(&boundary_of(&kept)), (0, 0));
+        assert!(positions[4..].iter().all(|p| (p[2] - 0.01).abs() < 1e-12));
+    }
+
+    #[test]
     fn a_zone_whose_apex_edges_all_lie_on_planes_is_left_flat() {
+        // (where the planes' sections do not hold the slab's faces on them)
         let (mut positions, faces) = standing();
         positions[3] = [0.0, 0.0, 1.0];
         // 3 on plane 1 with 0 and 1, and on plane 2 with 2 and 0
