@@ -45,6 +45,37 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
     let mut alive: Vec<bool> = (0..n)
         .map(|t| r1[t] && matches!(cl.ty[t], TetType::Vf | TetType::Ee))
         .collect();
+    counts.step2_removed += eliminate_by_pivots(cx, cl, &mut alive);
+    let pivoted: Vec<bool> = (0..n)
+        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Vf | TetType::Ee) && !alive[t])
+        .collect();
+    remove_vf_groups_without_ee(cx, cl, &mut alive, &mut counts);
+    // Step 3
+    counts.step3_added += readd_by_shared_faces(cx, cl, &r1, &mut alive);
+    fill_voids_and_pinches(cx, cl, &r1, &mut alive, &mut counts);
+    let why = (0..n)
+        .map(|t| {
+            if alive[t] {
+                0
+            } else if !r1[t] {
+                1
+            } else if pivoted[t] {
+                2
+            } else if cl.ty[t] == TetType::Vf || cl.ty[t] == TetType::Ee {
+                3
+            } else {
+                4
+            }
+        })
+        .collect();
+    (alive, counts, why)
+}
+
+/// Step 2's pivots: from every eliminated tet (and the hull) around each grounded edge through the
+/// `Ee` tets of `alive`, eliminating those oriented both ways. Returns how many were eliminated.
+fn eliminate_by_pivots(cx: &Complex, cl: &Classified, alive: &mut [bool]) -> u64 {
+    let n = cx.len();
+    let mut removed = 0;
     let mut flags = vec![0u8; n];
     let mut el: Vec<u32> = Vec::new();
     for t in 0..n {
@@ -60,13 +91,13 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
             for x in [o0, o1] {
                 let nb = cx.nbr[t][x];
                 if nb == NONE || !alive[nb as usize] {
-                    pivot(cx, cl, &mut alive, &mut flags, &mut el, t as u32, x, (a, b));
+                    pivot(cx, cl, alive, &mut flags, &mut el, t as u32, x, (a, b));
                 }
             }
         }
     }
     while let Some(t) = el.pop() {
-        counts.step2_removed += 1;
+        removed += 1;
         let tv = cx.tets[t as usize];
         for (k, &(i, j)) in TET_EDGES.iter().enumerate() {
             if cl.grounded_edges[t as usize] >> k & 1 == 0 {
@@ -77,24 +108,22 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
                 let nb = cx.nbr[t as usize][x];
                 if nb != NONE && alive[nb as usize] {
                     let back = cx.back_index(nb, t);
-                    pivot(
-                        cx,
-                        cl,
-                        &mut alive,
-                        &mut flags,
-                        &mut el,
-                        nb,
-                        back,
-                        (tv[i], tv[j]),
-                    );
+                    pivot(cx, cl, alive, &mut flags, &mut el, nb, back, (tv[i], tv[j]));
                 }
             }
         }
     }
-    let pivoted: Vec<bool> = (0..n)
-        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Vf | TetType::Ee) && !alive[t])
-        .collect();
-    // Vf groups sharing no face with a kept Ee tet
+    removed
+}
+
+/// End of step 2: face-connected groups of `Vf` tets sharing no face with a kept `Ee` tet go.
+fn remove_vf_groups_without_ee(
+    cx: &Complex,
+    cl: &Classified,
+    alive: &mut [bool],
+    counts: &mut PruneCounts,
+) {
+    let n = cx.len();
     let mut seen = vec![false; n];
     for s in 0..n {
         if seen[s] || !alive[s] || cl.ty[s] != TetType::Vf {
@@ -129,7 +158,13 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
             }
         }
     }
-    // Step 3
+}
+
+/// Step 3's face rule: re-add the candidates (`Evv`/`Vvvv`/`Ee` of step 1's result `r1`) that
+/// `can_add` accepts, until none can be. Returns how many were added.
+fn readd_by_shared_faces(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> u64 {
+    let n = cx.len();
+    let mut added = 0;
     let cand: Vec<bool> = (0..n)
         .map(|t| r1[t] && matches!(cl.ty[t], TetType::Evv | TetType::Vvvv | TetType::Ee))
         .collect();
@@ -143,9 +178,9 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
         if alive[t as usize] {
             continue;
         }
-        if can_add(cx, cl, &alive, t, false) {
+        if can_add(cx, cl, alive, t, false) {
             alive[t as usize] = true;
-            counts.step3_added += 1;
+            added += 1;
             for &nb in &cx.nbr[t as usize] {
                 if nb != NONE && cand[nb as usize] && !alive[nb as usize] && !queued[nb as usize] {
                     queued[nb as usize] = true;
@@ -154,42 +189,36 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
             }
         }
     }
-    // Cavities: face-connected groups of removed (non-external, non-flat) tets enclosed by the
-    // complex and the section: every face of the group is shared with a kept tet, with the group, or
-    // is a grounded triangle (on the hull or against a flat sliver; grounded triangles of tets that
-    // survived step 1 are internal, inside the section). Such a group is a void of the solid: its
-    // intersection with the complex and the section is its whole boundary. Step 2 may leave these
-    // behind — an `Ee` tet between two `Evv` tets is disconnected from the ground in R2, and step 3
-    // then re-adds the `Evv` tets around it — and they surface as inverted closed components, so
-    // they are filled whatever their type.
+    added
+}
+
+/// Cavities: face-connected groups of removed (non-external, non-flat) tets enclosed by the
+/// complex and the section: every face of the group is shared with a kept tet, with the group, or
+/// is a grounded triangle (on the hull or against a flat sliver; grounded triangles of tets that
+/// survived step 1 are internal, inside the section). Such a group is a void of the solid: its
+/// intersection with the complex and the section is its whole boundary. Step 2 may leave these
+/// behind — an `Ee` tet between two `Evv` tets is disconnected from the ground in R2, and step 3
+/// then re-adds the `Evv` tets around it — and they surface as inverted closed components, so
+/// they are filled whatever their type.
+fn fill_voids_and_pinches(
+    cx: &Complex,
+    cl: &Classified,
+    r1: &[bool],
+    alive: &mut [bool],
+    counts: &mut PruneCounts,
+) {
     // Filling a notch at a pinch can close a void and the reverse: alternate until neither acts.
     for _ in 0..4 {
-        let (groups, tets) = fill_cavities(cx, cl, &r1, &mut alive);
+        let (groups, tets) = fill_cavities(cx, cl, r1, alive);
         counts.step3_cavities_filled += groups;
         counts.step3_added += tets;
-        let (pinches, tets2) = fill_pinches(cx, cl, &r1, &mut alive);
+        let (pinches, tets2) = fill_pinches(cx, cl, r1, alive);
         counts.pinches_filled += pinches;
         counts.step3_added += tets2;
         if tets + tets2 == 0 {
             break;
         }
     }
-    let why = (0..n)
-        .map(|t| {
-            if alive[t] {
-                0
-            } else if !r1[t] {
-                1
-            } else if pivoted[t] {
-                2
-            } else if cl.ty[t] == TetType::Vf || cl.ty[t] == TetType::Ee {
-                3
-            } else {
-                4
-            }
-        })
-        .collect();
-    (alive, counts, why)
 }
 
 /// Fills the voids of the complex `alive`: face-connected groups of tets of `r1` (step 1's result)
