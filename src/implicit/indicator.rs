@@ -55,6 +55,9 @@ pub struct CellEval {
     pub constant: Option<f64>,
 }
 
+/// The planes bounding a cell, each with the side (±1) the cell is on.
+type HalfSpaces = Vec<(Plane, f64)>;
+
 /// The indicator function of the whole box: `eval(x)` in [−1, 1], positive inside.
 #[derive(Clone, Debug)]
 pub struct Indicator {
@@ -66,7 +69,7 @@ pub struct Indicator {
     /// Distance below which a point counts as lying on a face's plane.
     on_plane_eps: f64,
     /// Interior point per cell (fallback location).
-    cell_halfspaces: Vec<Vec<(Plane, f64)>>,
+    cell_halfspaces: Vec<HalfSpaces>,
 }
 
 impl Indicator {
@@ -301,7 +304,7 @@ fn cell_key_and_halfspaces(
     ci: usize,
     c: &crate::arrangement::Cell,
     input_planes: &[Plane],
-) -> Result<(Vec<u64>, Vec<(Plane, f64)>)> {
+) -> Result<(Vec<u64>, HalfSpaces)> {
     let words = arr.n_input.div_ceil(64).max(1);
     let mut sum = [0.0; 3];
     let mut n = 0usize;
