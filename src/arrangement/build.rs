@@ -20,6 +20,56 @@ fn eq_of(p: &Plane) -> [f64; 4] {
 
 pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result<Arrangement> {
     let n_input = sections.sections.len();
+    let (lo, hi, diag) = bounding_box_and_diagonal(sections)?;
+    let input_eq = checked_input_equations(sections)?;
+    let (blo, bhi, walls) = box_walls(lo, hi, options.margin.max(0.0) * diag, diag, &input_eq);
+    let mut planes: Vec<ArrPlane> = sections
+        .sections
+        .iter()
+        .enumerate()
+        .map(|(i, s)| ArrPlane {
+            plane: s.plane,
+            section: Some(i),
+        })
+        .collect();
+    for w in &walls {
+        planes.push(ArrPlane {
+            plane: *w,
+            section: None,
+        });
+    }
+    let builder = cut_box(sections, &planes, diag, options)?;
+    let CellsAndFaces {
+        faces,
+        cells,
+        mut cell_sign,
+    } = shared_faces(&builder)?;
+    let pool = arrangement_vertex_pool(&builder, &planes);
+
+    let mut arr = Arrangement {
+        planes,
+        n_input,
+        pool,
+        faces,
+        cells,
+        bbox: (blo, bhi),
+        scope: options.scope,
+        max_disagreement: 0.0,
+        warnings: Vec::new(),
+    };
+    // The vertices of the cells not built (`CellScope::Sections`) go.
+    super::empty_cells::drop_unused_vertices(&mut arr);
+    // Vertices that only rounding keeps apart (planes nearly through one point): one vertex.
+    super::merge::merge_close_vertices(&mut arr, &mut cell_sign, options.merge_tolerance * diag);
+    super::pieces::build_pieces(&mut arr, sections, &cell_sign, diag, options)?;
+    if options.scope == CellScope::Sections {
+        super::empty_cells::drop_cells_without_pieces(&mut arr);
+    }
+    Ok(arr)
+}
+
+/// The contour vertices' bounding box and its (finite) diagonal.
+fn bounding_box_and_diagonal(sections: &Sections) -> Result<([f64; 3], [f64; 3], f64)> {
     let (lo, hi) = sections.bounding_box().ok_or_else(|| {
         Error::input(
             "sections",
@@ -30,6 +80,12 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
     if !diag.is_finite() {
         return Err(Error::input("sections", "non-finite bounding box"));
     }
+    Ok((lo, hi, diag))
+}
+
+/// The input planes' equations: finite, and no two the same plane.
+fn checked_input_equations(sections: &Sections) -> Result<Vec<[f64; 4]>> {
+    let n_input = sections.sections.len();
     let input_eq: Vec<[f64; 4]> = sections.sections.iter().map(|s| eq_of(&s.plane)).collect();
     for (i, e) in input_eq.iter().enumerate() {
         if e.iter().any(|x| !x.is_finite()) {
@@ -53,12 +109,21 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
             }
         }
     }
-    // Box: padded by margin·diag (at least a tiny absolute pad for a degenerate bbox); grown until
-    // no input plane coincides with a wall (only possible for planes with an empty section).
-    let mut pad = (options.margin.max(0.0) * diag)
-        .max(1e-9 * (1.0 + diag))
-        .max(f64::MIN_POSITIVE);
-    let (blo, bhi, walls) = loop {
+    Ok(input_eq)
+}
+
+/// Box: padded by `margin` (at least a tiny absolute pad for a degenerate bbox); grown until no
+/// input plane coincides with a wall (only possible for planes with an empty section). Returns
+/// its corners and its six walls (−x, +x, −y, +y, −z, +z).
+fn box_walls(
+    lo: [f64; 3],
+    hi: [f64; 3],
+    margin: f64,
+    diag: f64,
+    input_eq: &[[f64; 4]],
+) -> ([f64; 3], [f64; 3], Vec<Plane>) {
+    let mut pad = margin.max(1e-9 * (1.0 + diag)).max(f64::MIN_POSITIVE);
+    loop {
         let blo = [lo[0] - pad, lo[1] - pad, lo[2] - pad];
         let bhi = [hi[0] + pad, hi[1] + pad, hi[2] + pad];
         let mut walls = Vec::with_capacity(6);
@@ -73,25 +138,21 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
             .iter()
             .any(|w| input_eq.iter().any(|e| same_plane(*e, eq_of(w))));
         if !clash {
-            break (blo, bhi, walls);
+            return (blo, bhi, walls);
         }
         pad *= 1.5;
-    };
-    let mut planes: Vec<ArrPlane> = sections
-        .sections
-        .iter()
-        .enumerate()
-        .map(|(i, s)| ArrPlane {
-            plane: s.plane,
-            section: Some(i),
-        })
-        .collect();
-    for w in &walls {
-        planes.push(ArrPlane {
-            plane: *w,
-            section: None,
-        });
     }
+}
+
+/// The box (the planes after the inputs) cut by every input plane, keeping the cells `scope` asks
+/// for, with complete sign vectors.
+fn cut_box(
+    sections: &Sections,
+    planes: &[ArrPlane],
+    diag: f64,
+    options: &ArrangementOptions,
+) -> Result<CellBuilder> {
+    let n_input = sections.sections.len();
     let eq: Vec<[f64; 4]> = planes.iter().map(|p| eq_of(&p.plane)).collect();
     let wall_ids: [u32; 6] = std::array::from_fn(|k| (n_input + k) as u32);
     let mut builder = CellBuilder::new_box(eq, wall_ids);
@@ -108,8 +169,12 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
             .map_err(|e| Error::Geometry(format!("arrangement: {e}")))?;
     }
     builder.complete_signs();
+    Ok(builder)
+}
 
-    // Shared faces: identical (plane, vertex set) from both sides.
+/// The cells with their faces, each face shared by the cells on its two sides (identical plane and
+/// vertex set), and each cell's sign vector.
+fn shared_faces(builder: &CellBuilder) -> Result<CellsAndFaces> {
     let mut faces: Vec<Face> = Vec::new();
     let mut face_index: HashMap<(u32, Vec<u32>), u32> = HashMap::default();
     let mut cells: Vec<Cell> = Vec::with_capacity(builder.cells.len());
@@ -117,20 +182,8 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
     for (c, bc) in builder.cells.iter().enumerate() {
         let c = c as u32;
         let mut cfaces = Vec::with_capacity(bc.faces.len());
-        let mut volume = 0.0;
-        let origin = builder.pos[bc.faces[0].poly[0] as usize];
+        let volume = cell_volume(builder, bc);
         for bf in &bc.faces {
-            let p: Vec<[f64; 3]> = bf
-                .poly
-                .iter()
-                .map(|&v| {
-                    let x = builder.pos[v as usize];
-                    [x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]]
-                })
-                .collect();
-            for i in 1..p.len() - 1 {
-                volume += det3(p[0], p[i], p[i + 1]) / 6.0;
-            }
             let mut key_v = bf.poly.clone();
             key_v.sort_unstable();
             let key = (bf.plane, key_v);
@@ -178,8 +231,42 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
         });
         cell_sign.push(bc.sign.clone());
     }
+    Ok(CellsAndFaces {
+        faces,
+        cells,
+        cell_sign,
+    })
+}
 
-    // Pool: the arrangement vertices first (ids = builder vertex ids).
+struct CellsAndFaces {
+    faces: Vec<Face>,
+    cells: Vec<Cell>,
+    cell_sign: Vec<Vec<i8>>,
+}
+
+/// Volume of a cell: its faces fanned from the first face's first vertex (positions taken
+/// relative to it).
+fn cell_volume(builder: &CellBuilder, bc: &super::cells::BCell) -> f64 {
+    let mut volume = 0.0;
+    let origin = builder.pos[bc.faces[0].poly[0] as usize];
+    for bf in &bc.faces {
+        let p: Vec<[f64; 3]> = bf
+            .poly
+            .iter()
+            .map(|&v| {
+                let x = builder.pos[v as usize];
+                [x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]]
+            })
+            .collect();
+        for i in 1..p.len() - 1 {
+            volume += det3(p[0], p[i], p[i + 1]) / 6.0;
+        }
+    }
+    volume
+}
+
+/// Pool: the arrangement vertices first (ids = builder vertex ids).
+fn arrangement_vertex_pool(builder: &CellBuilder, planes: &[ArrPlane]) -> VertexPool {
     let mut pool = VertexPool::default();
     for v in 0..builder.pos.len() {
         let pos = builder.pos[v];
@@ -192,27 +279,7 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
         pool.tags.push(tags);
         pool.uv.push(uv);
     }
-
-    let mut arr = Arrangement {
-        planes,
-        n_input,
-        pool,
-        faces,
-        cells,
-        bbox: (blo, bhi),
-        scope: options.scope,
-        max_disagreement: 0.0,
-        warnings: Vec::new(),
-    };
-    // The vertices of the cells not built (`CellScope::Sections`) go.
-    super::empty_cells::drop_unused_vertices(&mut arr);
-    // Vertices that only rounding keeps apart (planes nearly through one point): one vertex.
-    super::merge::merge_close_vertices(&mut arr, &mut cell_sign, options.merge_tolerance * diag);
-    super::pieces::build_pieces(&mut arr, sections, &cell_sign, diag, options)?;
-    if options.scope == CellScope::Sections {
-        super::empty_cells::drop_cells_without_pieces(&mut arr);
-    }
-    Ok(arr)
+    pool
 }
 
 fn det3(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {

@@ -11,14 +11,17 @@
 //! edge lying on `P_j` goes to the face on its left, where the region is). Inside a face the pieces are
 //! traced: contour runs, joined along the face boundary (counter-clockwise, through corners and every
 //! section point on the boundary) from where a run leaves the face to where the next one enters.
+//! The tracing inside a face is module `trace`.
 use super::exact::{dot_plus, sign_dot_plus};
-use super::{polygon_area, Arrangement, ArrangementOptions, PlaneTags, SectionPiece, VertexId};
+use super::{Arrangement, ArrangementOptions, PlaneTags, VertexId};
 use crate::error::Result;
 use crate::fxhash::FxHashMap as HashMap;
-use crate::geom::segment_distance_2d;
 use crate::sections::{Contour, Region, Sections};
 use smallvec::SmallVec;
 use std::cmp::Ordering;
+
+mod trace;
+use trace::{assemble, trace_face};
 
 struct Pt {
     id: VertexId,
@@ -303,6 +306,95 @@ fn cmp_crossings(
     }
 }
 
+/// Exact sides of contour points with respect to the planes of the arrangement, as seen from plane
+/// `i`: decided for the representative planes, the others follow from them (`Effect`).
+struct SideModel<'e> {
+    i: u32,
+    eq: Vec<[f64; 4]>,
+    eff: &'e [Effect],
+}
+
+impl<'e> SideModel<'e> {
+    fn new(ctx: &Ctx, i: u32, eff: &'e [Effect]) -> Self {
+        let eq = ctx
+            .arr
+            .planes
+            .iter()
+            .map(|p| {
+                [
+                    p.plane.normal[0],
+                    p.plane.normal[1],
+                    p.plane.normal[2],
+                    p.plane.offset,
+                ]
+            })
+            .collect();
+        SideModel { i, eq, eff }
+    }
+
+    fn n_planes(&self) -> usize {
+        self.eq.len()
+    }
+
+    fn is_rep(&self, j: usize) -> bool {
+        self.eff[j] == Effect::Rep(j as u32, 1)
+    }
+
+    /// The full sign vector from the signs `r` with respect to the representatives.
+    fn expand(&self, r: &[i8]) -> Vec<i8> {
+        (0..self.n_planes())
+            .map(|j| match self.eff[j] {
+                Effect::Own => 0,
+                Effect::Const(s) => s,
+                Effect::Rep(rep, f) => f * r[rep as usize],
+            })
+            .collect()
+    }
+
+    /// Exact signs of `p` with respect to the representative planes (0 for the others).
+    fn rep_signs(&self, p: [f64; 3]) -> Vec<i8> {
+        (0..self.n_planes())
+            .map(|j| {
+                if self.is_rep(j) {
+                    let e = self.eq[j];
+                    sign_dot_plus([e[0], e[1], e[2]], p, e[3])
+                } else {
+                    0
+                }
+            })
+            .collect()
+    }
+
+    /// The other planes a point with sign vector `s` lies on.
+    fn zeros_of(&self, s: &[i8]) -> Vec<u32> {
+        (0..self.n_planes() as u32)
+            .filter(|&j| j != self.i && s[j as usize] == 0)
+            .collect()
+    }
+}
+
+/// The arrangement vertex of a point of plane `i` on the planes `zeros`, if it is one; otherwise
+/// a new pool vertex tagged with them (built by `make`: position and uv).
+fn section_point_id(
+    ctx: &mut Ctx,
+    i: u32,
+    zeros: &[u32],
+    make: impl FnOnce(&Ctx) -> ([f64; 3], [f64; 2]),
+) -> VertexId {
+    let id = if zeros.len() >= 2 {
+        ctx.arrangement_vertex(i, zeros)
+    } else {
+        None
+    };
+    id.unwrap_or_else(|| {
+        let (pos, uv) = make(ctx);
+        let mut tags: PlaneTags = zeros.iter().copied().collect();
+        tags.push(i);
+        tags.sort_unstable();
+        ctx.add_pool(pos, tags, i, uv)
+    })
+}
+
 fn split_contour(
     ctx: &mut Ctx,
     i: u32,
@@ -315,177 +407,109 @@ fn split_contour(
     if n < 3 {
         return;
     }
-    let np = ctx.arr.planes.len();
-    let eq: Vec<[f64; 4]> = ctx
-        .arr
-        .planes
-        .iter()
-        .map(|p| {
-            [
-                p.plane.normal[0],
-                p.plane.normal[1],
-                p.plane.normal[2],
-                p.plane.offset,
-            ]
-        })
-        .collect();
-    let is_rep = |j: usize| eff[j] == Effect::Rep(j as u32, 1);
-    // Exact sides with respect to the representative planes; the others follow from them.
-    let expand = |r: &[i8]| -> Vec<i8> {
-        (0..np)
-            .map(|j| match eff[j] {
-                Effect::Own => 0,
-                Effect::Const(s) => s,
-                Effect::Rep(rep, f) => f * r[rep as usize],
-            })
-            .collect()
-    };
-    let rsv: Vec<Vec<i8>> = c
-        .points3
-        .iter()
-        .map(|&p| {
-            (0..np)
-                .map(|j| {
-                    if is_rep(j) {
-                        let e = eq[j];
-                        sign_dot_plus([e[0], e[1], e[2]], p, e[3])
-                    } else {
-                        0
-                    }
-                })
-                .collect()
-        })
-        .collect();
-    let sv: Vec<Vec<i8>> = rsv.iter().map(|r| expand(r)).collect();
-    let zeros_of = |s: &[i8]| -> Vec<u32> {
-        (0..np as u32)
-            .filter(|&j| j != i && s[j as usize] == 0)
-            .collect()
-    };
-    let mut pts: Vec<Pt> = Vec::with_capacity(n * 2);
+    let model = SideModel::new(ctx, i, eff);
+    let rsv: Vec<Vec<i8>> = c.points3.iter().map(|&p| model.rep_signs(p)).collect();
+    let sv: Vec<Vec<i8>> = rsv.iter().map(|r| model.expand(r)).collect();
     // Pool ids of the contour vertices.
     let mut vid = Vec::with_capacity(n);
     for (k, svk) in sv.iter().enumerate() {
-        let z = zeros_of(svk);
-        let id = if z.len() >= 2 {
-            ctx.arrangement_vertex(i, &z)
-        } else {
-            None
-        };
-        let id = id.unwrap_or_else(|| {
-            let mut tags: PlaneTags = z.iter().copied().collect();
-            tags.push(i);
-            tags.sort_unstable();
-            ctx.add_pool(c.points3[k], tags, i, c.points2[k])
-        });
-        vid.push(id);
+        let z = model.zeros_of(svk);
+        vid.push(section_point_id(ctx, i, &z, |_| {
+            (c.points3[k], c.points2[k])
+        }));
     }
+    let mut pts: Vec<Pt> = Vec::with_capacity(n * 2);
     for k in 0..n {
         let (a, b) = (k, (k + 1) % n);
         pts.push(Pt {
             id: vid[a],
             sv: sv[a].clone(),
         });
-        let (p3, q3) = (c.points3[a], c.points3[b]);
-        let mut cross: Vec<u32> = (0..np as u32)
-            .filter(|&j| rsv[a][j as usize] * rsv[b][j as usize] < 0)
-            .collect();
-        if cross.is_empty() {
-            continue;
-        }
-        let cmp = |x: u32, y: u32| {
-            cmp_crossings(
-                eq[x as usize],
-                eq[y as usize],
-                p3,
-                q3,
-                rsv[a][x as usize],
-                rsv[a][y as usize],
-            )
-        };
-        cross.sort_by(|&x, &y| cmp(x, y));
-        let mut g = 0;
-        while g < cross.len() {
-            let mut e = g + 1;
-            while e < cross.len() && cmp(cross[g], cross[e]) == Ordering::Equal {
-                e += 1;
-            }
-            let group = &cross[g..e];
-            let j0 = group[0];
-            let rs: Vec<i8> = (0..np as u32)
-                .map(|m| {
-                    let (sp, sq) = (rsv[a][m as usize], rsv[b][m as usize]);
-                    if !is_rep(m as usize) || group.contains(&m) {
-                        0
-                    } else if sp * sq < 0 {
-                        match cmp(m, j0) {
-                            Ordering::Less => sq,
-                            Ordering::Greater => sp,
-                            Ordering::Equal => 0,
-                        }
-                    } else if sp != 0 {
-                        sp
-                    } else {
-                        sq
-                    }
-                })
-                .collect();
-            let s = expand(&rs);
-            let z = zeros_of(&s);
-            let id = if z.len() >= 2 {
-                ctx.arrangement_vertex(i, &z)
-            } else {
-                None
-            };
-            let id = id.unwrap_or_else(|| {
-                let e0 = eq[j0 as usize];
-                let vp = e0[0] * p3[0] + e0[1] * p3[1] + e0[2] * p3[2] + e0[3];
-                let vq = e0[0] * q3[0] + e0[1] * q3[1] + e0[2] * q3[2] + e0[3];
-                let t = (vp / (vp - vq)).clamp(0.0, 1.0);
-                let (p2, q2) = (c.points2[a], c.points2[b]);
-                let uv = [p2[0] + t * (q2[0] - p2[0]), p2[1] + t * (q2[1] - p2[1])];
-                let pos = ctx.arr.planes[i as usize].plane.to_3d(uv);
-                let mut tags: PlaneTags = z.iter().copied().collect();
-                tags.push(i);
-                tags.sort_unstable();
-                ctx.add_pool(pos, tags, i, uv)
-            });
-            pts.push(Pt { id, sv: s });
-            g = e;
-        }
+        push_edge_crossings(ctx, c, &model, (a, b), (&rsv[a], &rsv[b]), &mut pts);
     }
-    // Face of every stretch between consecutive points.
+    let fe = stretch_faces(ctx, i, &pts, face_key);
+    hand_out_stretches(ctx, &pts, &fe, work);
+}
+
+/// The points where contour edge `ab` (representative signs `ra`, `rb`) strictly crosses planes,
+/// in order along it; planes crossed at the same point make one point.
+fn push_edge_crossings(
+    ctx: &mut Ctx,
+    c: &Contour,
+    model: &SideModel,
+    (a, b): (usize, usize),
+    (ra, rb): (&[i8], &[i8]),
+    pts: &mut Vec<Pt>,
+) {
+    let i = model.i;
+    let np = model.n_planes();
+    let eq = &model.eq;
+    let (p3, q3) = (c.points3[a], c.points3[b]);
+    let mut cross: Vec<u32> = (0..np as u32)
+        .filter(|&j| ra[j as usize] * rb[j as usize] < 0)
+        .collect();
+    if cross.is_empty() {
+        return;
+    }
+    let cmp = |x: u32, y: u32| {
+        cmp_crossings(
+            eq[x as usize],
+            eq[y as usize],
+            p3,
+            q3,
+            ra[x as usize],
+            ra[y as usize],
+        )
+    };
+    cross.sort_by(|&x, &y| cmp(x, y));
+    let mut g = 0;
+    while g < cross.len() {
+        let mut e = g + 1;
+        while e < cross.len() && cmp(cross[g], cross[e]) == Ordering::Equal {
+            e += 1;
+        }
+        let group = &cross[g..e];
+        let j0 = group[0];
+        let rs: Vec<i8> = (0..np as u32)
+            .map(|m| {
+                let (sp, sq) = (ra[m as usize], rb[m as usize]);
+                if !model.is_rep(m as usize) || group.contains(&m) {
+                    0
+                } else if sp * sq < 0 {
+                    match cmp(m, j0) {
+                        Ordering::Less => sq,
+                        Ordering::Greater => sp,
+                        Ordering::Equal => 0,
+                    }
+                } else if sp != 0 {
+                    sp
+                } else {
+                    sq
+                }
+            })
+            .collect();
+        let s = model.expand(&rs);
+        let z = model.zeros_of(&s);
+        let id = section_point_id(ctx, i, &z, |ctx| {
+            let e0 = eq[j0 as usize];
+            let vp = e0[0] * p3[0] + e0[1] * p3[1] + e0[2] * p3[2] + e0[3];
+            let vq = e0[0] * q3[0] + e0[1] * q3[1] + e0[2] * q3[2] + e0[3];
+            let t = (vp / (vp - vq)).clamp(0.0, 1.0);
+            let (p2, q2) = (c.points2[a], c.points2[b]);
+            let uv = [p2[0] + t * (q2[0] - p2[0]), p2[1] + t * (q2[1] - p2[1])];
+            (ctx.arr.planes[i as usize].plane.to_3d(uv), uv)
+        });
+        pts.push(Pt { id, sv: s });
+        g = e;
+    }
+}
+
+/// Face of every stretch between consecutive points of the split contour.
+fn stretch_faces(ctx: &mut Ctx, i: u32, pts: &[Pt], face_key: &HashMap<Vec<i8>, u32>) -> Vec<u32> {
     let m = pts.len();
-    let plane_i = ctx.arr.planes[i as usize].plane;
     let mut fe = Vec::with_capacity(m);
     for k in 0..m {
-        let (a, b) = (&pts[k], &pts[(k + 1) % m]);
-        let mut s = Vec::with_capacity(np);
-        for j in 0..np {
-            let v = if j as u32 == i {
-                0
-            } else if a.sv[j] != 0 {
-                a.sv[j]
-            } else if b.sv[j] != 0 {
-                b.sv[j]
-            } else {
-                // The stretch lies on P_j: it belongs to the face on its left (the region's side).
-                let pj = &ctx.arr.planes[j].plane;
-                let g = [
-                    crate::sections::dot(pj.normal, plane_i.u),
-                    crate::sections::dot(pj.normal, plane_i.v),
-                ];
-                let (ua, ub) = (ctx.uv(a.id, i), ctx.uv(b.id, i));
-                let d = [ub[0] - ua[0], ub[1] - ua[1]];
-                let x = -d[1] * g[0] + d[0] * g[1];
-                if x < 0.0 {
-                    -1
-                } else {
-                    1
-                }
-            };
-            s.push(v);
-        }
+        let s = stretch_signs(ctx, i, &pts[k], &pts[(k + 1) % m]);
         let f = match face_key.get(&s) {
             Some(&f) => f,
             None => {
@@ -506,6 +530,46 @@ fn split_contour(
         };
         fe.push(f);
     }
+    fe
+}
+
+/// Sign vector of the stretch from `a` to `b` (0 for plane `i` itself).
+fn stretch_signs(ctx: &Ctx, i: u32, a: &Pt, b: &Pt) -> Vec<i8> {
+    let np = ctx.arr.planes.len();
+    let plane_i = ctx.arr.planes[i as usize].plane;
+    let mut s = Vec::with_capacity(np);
+    for j in 0..np {
+        let v = if j as u32 == i {
+            0
+        } else if a.sv[j] != 0 {
+            a.sv[j]
+        } else if b.sv[j] != 0 {
+            b.sv[j]
+        } else {
+            // The stretch lies on P_j: it belongs to the face on its left (the region's side).
+            let pj = &ctx.arr.planes[j].plane;
+            let g = [
+                crate::sections::dot(pj.normal, plane_i.u),
+                crate::sections::dot(pj.normal, plane_i.v),
+            ];
+            let (ua, ub) = (ctx.uv(a.id, i), ctx.uv(b.id, i));
+            let d = [ub[0] - ua[0], ub[1] - ua[1]];
+            let x = -d[1] * g[0] + d[0] * g[1];
+            if x < 0.0 {
+                -1
+            } else {
+                1
+            }
+        };
+        s.push(v);
+    }
+    s
+}
+
+/// Give each face its boundary points and its runs of the contour (or the whole contour, closed,
+/// when it stays in one face).
+fn hand_out_stretches(ctx: &Ctx, pts: &[Pt], fe: &[u32], work: &mut HashMap<u32, FaceWork>) {
+    let m = pts.len();
     let on_boundary = |ctx: &Ctx, id: VertexId| ctx.arr.pool.tags[id as usize].len() > 1;
     for k in 0..m {
         let w = work.entry(fe[k]).or_default();
@@ -541,253 +605,4 @@ fn split_contour(
             break;
         }
     }
-}
-
-/// Even-odd point-in-region test in the plane's (u,v) frame.
-fn inside_region(region: &Region, p: [f64; 2]) -> bool {
-    let mut inside = false;
-    for c in std::iter::once(&region.outer).chain(region.holes.iter()) {
-        let q = &c.points2;
-        let n = q.len();
-        for k in 0..n {
-            let (a, b) = (q[k], q[(k + 1) % n]);
-            if (a[1] > p[1]) != (b[1] > p[1]) {
-                let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
-                if p[0] < x {
-                    inside = !inside;
-                }
-            }
-        }
-    }
-    inside
-}
-
-fn trace_face(ctx: &mut Ctx, i: u32, f: u32, w: &FaceWork, region: &Region) -> Vec<Vec<VertexId>> {
-    let poly = ctx.arr.faces[f as usize].polygon.clone();
-    let nc = poly.len();
-    let mut loops: Vec<Vec<VertexId>> = w.closed.clone();
-    // Whether the face's boundary lies in the region when no contour crosses it: test the face's
-    // centroid (strictly inside the face, so on no contour that stays out of the face) and discount
-    // the contours wholly inside the face that surround it.
-    let background_inside = |ctx: &Ctx| -> bool {
-        let c: Vec<[f64; 2]> = poly.iter().map(|&v| ctx.uv(v, i)).collect();
-        let n = c.len() as f64;
-        let g = [
-            c.iter().map(|p| p[0]).sum::<f64>() / n,
-            c.iter().map(|p| p[1]).sum::<f64>() / n,
-        ];
-        let mut inside = inside_region(region, g);
-        for l in &w.closed {
-            let q: Vec<[f64; 2]> = l.iter().map(|&v| ctx.uv(v, i)).collect();
-            if point_in_loop(g, &q) {
-                inside = !inside;
-            }
-        }
-        inside
-    };
-    if w.runs.is_empty() && w.closed.is_empty() && w.bpoints.is_empty() {
-        if background_inside(ctx) {
-            loops.push(poly);
-        }
-        return loops;
-    }
-    // Boundary list: corners and every section point on the boundary, counter-clockwise.
-    let cuv: Vec<[f64; 2]> = poly.iter().map(|&v| ctx.uv(v, i)).collect();
-    let mut entries: Vec<(usize, u8, f64, VertexId)> = Vec::new();
-    for (e, &c) in poly.iter().enumerate() {
-        entries.push((e, 0, 0.0, c));
-    }
-    let mut bp = w.bpoints.clone();
-    bp.sort_unstable();
-    bp.dedup();
-    for &x in &bp {
-        if poly.contains(&x) {
-            continue;
-        }
-        let tags = ctx.arr.pool.tags[x as usize].clone();
-        let xuv = ctx.uv(x, i);
-        let mut found = None;
-        for e in 0..nc {
-            let (a, b) = (poly[e], poly[(e + 1) % nc]);
-            let ta = &ctx.arr.pool.tags[a as usize];
-            let tb = &ctx.arr.pool.tags[b as usize];
-            if tags
-                .iter()
-                .any(|&t| t != i && ta.contains(&t) && tb.contains(&t))
-            {
-                found = Some(e);
-                break;
-            }
-        }
-        let e = match found {
-            Some(e) => e,
-            None => {
-                ctx.warnings.push(format!(
-                    "plane {i}: section point {x} on the boundary of face {f} matches no edge; placed on the nearest"
-                ));
-                (0..nc)
-                    .min_by(|&a, &b| {
-                        segment_distance_2d(xuv, cuv[a], cuv[(a + 1) % nc])
-                            .total_cmp(&segment_distance_2d(xuv, cuv[b], cuv[(b + 1) % nc]))
-                    })
-                    .unwrap_or(0)
-            }
-        };
-        let (a, b) = (cuv[e], cuv[(e + 1) % nc]);
-        let d = [b[0] - a[0], b[1] - a[1]];
-        let len2 = d[0] * d[0] + d[1] * d[1];
-        let t = if len2 > 0.0 {
-            (((xuv[0] - a[0]) * d[0] + (xuv[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        entries.push((e, 1, t, x));
-    }
-    entries.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.total_cmp(&y.2)));
-    let ring: Vec<VertexId> = entries.iter().map(|e| e.3).collect();
-    if w.runs.is_empty() {
-        // No contour crosses the boundary: the boundary is wholly inside or outside the region.
-        if background_inside(ctx) {
-            loops.push(ring);
-        }
-        return loops;
-    }
-    let pos: HashMap<VertexId, usize> = ring.iter().enumerate().map(|(k, &v)| (v, k)).collect();
-    let enter: HashMap<VertexId, usize> = w
-        .runs
-        .iter()
-        .enumerate()
-        .map(|(r, run)| (run[0], r))
-        .collect();
-    let nr = w.runs.len();
-    let mut next = vec![usize::MAX; nr];
-    let mut chain: Vec<Vec<VertexId>> = vec![Vec::new(); nr];
-    for (r, run) in w.runs.iter().enumerate() {
-        let leave = *run.last().unwrap();
-        let Some(&p0) = pos.get(&leave) else {
-            ctx.warnings.push(format!(
-                "plane {i}: face {f}: a contour leaves the face at a point not on its boundary"
-            ));
-            continue;
-        };
-        let mut k = (p0 + 1) % ring.len();
-        let mut steps = 0;
-        while steps < ring.len() {
-            let v = ring[k];
-            if let Some(&r2) = enter.get(&v) {
-                next[r] = r2;
-                break;
-            }
-            chain[r].push(v);
-            k = (k + 1) % ring.len();
-            steps += 1;
-        }
-    }
-    let mut used = vec![false; nr];
-    for r0 in 0..nr {
-        if used[r0] {
-            continue;
-        }
-        let mut lp = Vec::new();
-        let mut r = r0;
-        let mut ok = true;
-        while !used[r] {
-            used[r] = true;
-            let run = &w.runs[r];
-            lp.extend_from_slice(&run[..run.len() - 1]);
-            lp.push(*run.last().unwrap());
-            lp.extend_from_slice(&chain[r]);
-            if next[r] == usize::MAX {
-                ok = false;
-                break;
-            }
-            r = next[r];
-        }
-        if !ok || r != r0 {
-            ctx.warnings.push(format!(
-                "plane {i}: face {f}: inconsistent section boundary (contours touching or crossing); a loop was dropped"
-            ));
-            continue;
-        }
-        loops.push(lp);
-    }
-    loops
-}
-
-fn point_in_loop(p: [f64; 2], q: &[[f64; 2]]) -> bool {
-    let mut inside = false;
-    let n = q.len();
-    for k in 0..n {
-        let (a, b) = (q[k], q[(k + 1) % n]);
-        if (a[1] > p[1]) != (b[1] > p[1]) {
-            let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
-            if p[0] < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
-/// Outer loops (positive area) with the holes (negative area) they contain.
-fn assemble(ctx: &mut Ctx, i: u32, loops: Vec<Vec<VertexId>>, label: i32) -> Vec<SectionPiece> {
-    let mut outers: Vec<(Vec<VertexId>, Vec<[f64; 2]>, f64)> = Vec::new();
-    let mut holes: Vec<(Vec<VertexId>, Vec<[f64; 2]>)> = Vec::new();
-    for lp in loops {
-        // Drop immediate repeats (a point that is both a run end and a chain start).
-        let mut l: Vec<VertexId> = Vec::with_capacity(lp.len());
-        for v in lp {
-            if l.last() != Some(&v) {
-                l.push(v);
-            }
-        }
-        while l.len() > 1 && l.first() == l.last() {
-            l.pop();
-        }
-        if l.len() < 3 {
-            continue;
-        }
-        let uv: Vec<[f64; 2]> = l.iter().map(|&v| ctx.uv(v, i)).collect();
-        let a = polygon_area(&uv);
-        if a > 0.0 {
-            outers.push((l, uv, a));
-        } else if a < 0.0 {
-            holes.push((l, uv));
-        }
-    }
-    let mut pieces: Vec<SectionPiece> = outers
-        .iter()
-        .map(|(l, _, _)| SectionPiece {
-            label,
-            outer: l.clone(),
-            holes: Vec::new(),
-        })
-        .collect();
-    for (h, huv) in holes {
-        let owner = if outers.len() == 1 {
-            Some(0)
-        } else {
-            // Smallest outer containing a vertex of the hole that is not one of its own vertices.
-            let mut best: Option<(usize, f64)> = None;
-            for (k, (ol, ouv, a)) in outers.iter().enumerate() {
-                let probe = h
-                    .iter()
-                    .zip(&huv)
-                    .find(|(v, _)| !ol.contains(v))
-                    .map(|(_, p)| *p);
-                let Some(p) = probe else { continue };
-                if point_in_loop(p, ouv) && best.is_none_or(|(_, ba)| *a < ba) {
-                    best = Some((k, *a));
-                }
-            }
-            best.map(|b| b.0)
-        };
-        match owner {
-            Some(k) => pieces[k].holes.push(h),
-            None => ctx.warnings.push(format!(
-                "plane {i}: a hole of a section piece lies in no outer loop; dropped"
-            )),
-        }
-    }
-    pieces
 }

@@ -34,6 +34,44 @@ pub(super) fn reconcile(
     diag: f64,
     options: &ArrangementOptions,
 ) {
+    let mut lines = points_on_common_lines(arr, line_points, n_arr);
+    let tol = options.snap_tolerance * diag;
+    let mut keys: Vec<(u32, u32)> = lines.keys().copied().collect();
+    keys.sort_unstable();
+    let mut worst = 0.0f64;
+    let mut snaps = Snaps::default();
+    for key in &keys {
+        let lp = lines.get_mut(key).unwrap();
+        let d = snap_line(arr, *key, lp, tol, &mut snaps);
+        worst = worst.max(d);
+    }
+    arr.max_disagreement = worst;
+    let Snaps {
+        merged_into,
+        snapped,
+        max_snap,
+    } = snaps;
+    if snapped > 0 {
+        arr.warnings.push(format!(
+            "sections: {snapped} crossing pairs of two sections snapped to shared vertices (largest gap {max_snap:.3e})"
+        ));
+    }
+    if !merged_into.is_empty() {
+        use_survivors(arr, &mut lines, &merged_into);
+    }
+    insert_line_points(arr, &lines);
+    if !merged_into.is_empty() {
+        compact(arr, &merged_into);
+    }
+}
+
+/// Per pair of section planes (lower first), the section points on their common line and the
+/// arrangement vertices on it (`breaks`, unsorted).
+fn points_on_common_lines(
+    arr: &Arrangement,
+    line_points: &[(u32, VertexId)],
+    n_arr: usize,
+) -> HashMap<(u32, u32), LinePoints> {
     let n = arr.n_input as u32;
     let mut lines: HashMap<(u32, u32), LinePoints> = HashMap::default();
     for &(owner, v) in line_points {
@@ -76,112 +114,122 @@ pub(super) fn reconcile(
             }
         }
     }
-    let tol = options.snap_tolerance * diag;
-    let mut keys: Vec<(u32, u32)> = lines.keys().copied().collect();
-    keys.sort_unstable();
-    let mut worst = 0.0f64;
-    let mut merged_into: HashMap<VertexId, VertexId> = HashMap::default();
-    let mut snapped = 0usize;
-    let mut max_snap = 0.0f64;
-    for key in &keys {
-        let lp = lines.get_mut(key).unwrap();
-        lp.breaks.sort_by(f64::total_cmp);
-        lp.a.sort_by(|x, y| x.0.total_cmp(&y.0));
-        lp.b.sort_by(|x, y| x.0.total_cmp(&y.0));
-        let sa: Vec<f64> = lp.a.iter().map(|x| x.0).collect();
-        let sb: Vec<f64> = lp.b.iter().map(|x| x.0).collect();
-        let d = set_disagreement(&sa, &sb);
-        worst = worst.max(d);
-        if d > tol {
-            arr.warnings.push(format!(
-                "sections {} and {} disagree along their common line by {:.3e} ({} vs {} points); each keeps its own points there",
-                arr.planes[key.0 as usize].section.unwrap_or(usize::MAX),
-                arr.planes[key.1 as usize].section.unwrap_or(usize::MAX),
-                d,
-                sa.len(),
-                sb.len()
-            ));
-        }
-        // Candidate pairs on the same arrangement edge, closest first.
-        let seg = |s: f64| lp.breaks.partition_point(|&b| b < s);
-        let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
-        for (x, &(s, _)) in lp.a.iter().enumerate() {
-            let lo = lp.b.partition_point(|y| y.0 < s - tol);
-            for (y, &(t, _)) in lp.b.iter().enumerate().skip(lo) {
-                if t > s + tol {
-                    break;
-                }
-                if seg(s) == seg(t) {
-                    pairs.push(((s - t).abs(), x, y));
-                }
-            }
-        }
-        pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
-        let mut used_a = vec![false; lp.a.len()];
-        let mut used_b = vec![false; lp.b.len()];
-        let mut keep_b = vec![true; lp.b.len()];
-        for (dist, x, y) in pairs {
-            if used_a[x] || used_b[y] {
-                continue;
-            }
-            let (va, vb) = (lp.a[x].1, lp.b[y].1);
-            if merged_into.contains_key(&va) || merged_into.contains_key(&vb) {
-                continue;
-            }
-            used_a[x] = true;
-            used_b[y] = true;
-            keep_b[y] = false;
-            merge(arr, va, vb, key.1);
-            merged_into.insert(vb, va);
-            snapped += 1;
-            max_snap = max_snap.max(dist);
-        }
-        let kept: Vec<(f64, VertexId)> =
-            lp.b.iter()
-                .zip(&keep_b)
-                .filter(|(_, &k)| k)
-                .map(|(p, _)| *p)
-                .collect();
-        lp.b = kept;
-        let _ = used_b;
-    }
-    arr.max_disagreement = worst;
-    if snapped > 0 {
+    lines
+}
+
+/// What the snapping did so far, over all lines.
+#[derive(Default)]
+struct Snaps {
+    /// Vertex merged away → the vertex it was merged into.
+    merged_into: HashMap<VertexId, VertexId>,
+    snapped: usize,
+    max_snap: f64,
+}
+
+/// Sort the line's points, warn if its two sections disagree beyond `tol`, and snap the close
+/// pairs on one arrangement edge (closest first, one to one; `b`'s point merged into `a`'s and
+/// dropped from `b`). Returns the disagreement.
+fn snap_line(
+    arr: &mut Arrangement,
+    key: (u32, u32),
+    lp: &mut LinePoints,
+    tol: f64,
+    snaps: &mut Snaps,
+) -> f64 {
+    lp.breaks.sort_by(f64::total_cmp);
+    lp.a.sort_by(|x, y| x.0.total_cmp(&y.0));
+    lp.b.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let sa: Vec<f64> = lp.a.iter().map(|x| x.0).collect();
+    let sb: Vec<f64> = lp.b.iter().map(|x| x.0).collect();
+    let d = set_disagreement(&sa, &sb);
+    if d > tol {
         arr.warnings.push(format!(
-            "sections: {snapped} crossing pairs of two sections snapped to shared vertices (largest gap {max_snap:.3e})"
+            "sections {} and {} disagree along their common line by {:.3e} ({} vs {} points); each keeps its own points there",
+            arr.planes[key.0 as usize].section.unwrap_or(usize::MAX),
+            arr.planes[key.1 as usize].section.unwrap_or(usize::MAX),
+            d,
+            sa.len(),
+            sb.len()
         ));
     }
-    // Replace merged vertices in the pieces.
-    if !merged_into.is_empty() {
-        for face in &mut arr.faces {
-            for piece in &mut face.pieces {
-                for l in std::iter::once(&mut piece.outer).chain(piece.holes.iter_mut()) {
-                    for v in l.iter_mut() {
-                        if let Some(&w) = merged_into.get(v) {
-                            *v = w;
-                        }
+    let pairs = close_pairs_on_one_edge(lp, tol);
+    let mut used_a = vec![false; lp.a.len()];
+    let mut used_b = vec![false; lp.b.len()];
+    let mut keep_b = vec![true; lp.b.len()];
+    for (dist, x, y) in pairs {
+        if used_a[x] || used_b[y] {
+            continue;
+        }
+        let (va, vb) = (lp.a[x].1, lp.b[y].1);
+        if snaps.merged_into.contains_key(&va) || snaps.merged_into.contains_key(&vb) {
+            continue;
+        }
+        used_a[x] = true;
+        used_b[y] = true;
+        keep_b[y] = false;
+        merge(arr, va, vb, key.1);
+        snaps.merged_into.insert(vb, va);
+        snaps.snapped += 1;
+        snaps.max_snap = snaps.max_snap.max(dist);
+    }
+    let kept: Vec<(f64, VertexId)> =
+        lp.b.iter()
+            .zip(&keep_b)
+            .filter(|(_, &k)| k)
+            .map(|(p, _)| *p)
+            .collect();
+    lp.b = kept;
+    d
+}
+
+/// Candidate pairs (gap, index in `a`, index in `b`) on the same arrangement edge within `tol`,
+/// closest first (the line's points and breaks sorted).
+fn close_pairs_on_one_edge(lp: &LinePoints, tol: f64) -> Vec<(f64, usize, usize)> {
+    let seg = |s: f64| lp.breaks.partition_point(|&b| b < s);
+    let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
+    for (x, &(s, _)) in lp.a.iter().enumerate() {
+        let lo = lp.b.partition_point(|y| y.0 < s - tol);
+        for (y, &(t, _)) in lp.b.iter().enumerate().skip(lo) {
+            if t > s + tol {
+                break;
+            }
+            if seg(s) == seg(t) {
+                pairs.push(((s - t).abs(), x, y));
+            }
+        }
+    }
+    pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
+    pairs
+}
+
+/// Replace merged vertices by their survivors in the pieces and on every line.
+fn use_survivors(
+    arr: &mut Arrangement,
+    lines: &mut HashMap<(u32, u32), LinePoints>,
+    merged_into: &HashMap<VertexId, VertexId>,
+) {
+    for face in &mut arr.faces {
+        for piece in &mut face.pieces {
+            for l in std::iter::once(&mut piece.outer).chain(piece.holes.iter_mut()) {
+                for v in l.iter_mut() {
+                    if let Some(&w) = merged_into.get(v) {
+                        *v = w;
                     }
                 }
             }
         }
     }
     // Points merged on one line may sit on other lines too (planes sharing a line): use the survivor.
-    if !merged_into.is_empty() {
-        for lp in lines.values_mut() {
-            for list in [&mut lp.a, &mut lp.b] {
-                for p in list.iter_mut() {
-                    if let Some(&w) = merged_into.get(&p.1) {
-                        p.1 = w;
-                    }
+    for lp in lines.values_mut() {
+        for list in [&mut lp.a, &mut lp.b] {
+            for p in list.iter_mut() {
+                if let Some(&w) = merged_into.get(&p.1) {
+                    p.1 = w;
                 }
-                let mut seen = std::collections::HashSet::new();
-                list.retain(|p| seen.insert(p.1));
             }
+            let mut seen = std::collections::HashSet::new();
+            list.retain(|p| seen.insert(p.1));
         }
-    }
-    insert_line_points(arr, &lines);
-    if !merged_into.is_empty() {
-        compact(arr, &merged_into);
     }
 }
 

@@ -161,7 +161,6 @@ pub(super) fn moebius_sites(input: &CellInput, s: usize, n: [f64; 3]) -> Vec<Sit
 fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h: f64) -> Chains {
     let slot = &input.slots[s];
     let bit = 1u128 << s;
-    let plane = slot.geom;
     let diagram = SlotDiagram::new(input, s);
     let sites = &diagram.sites;
     if sites.len() < 2 {
@@ -170,60 +169,157 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
     let on_face: Vec<u32> = (0..input.points.len() as u32)
         .filter(|&v| input.mask[v as usize] & bit != 0)
         .collect();
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    let grid = SampleGrid::over(on_face.iter().map(|&v| slot.uv[v as usize]), h);
+    let search = NearestSite {
+        plane: slot.geom,
+        n,
+        sites,
+        index: &diagram.index,
+    };
+    let minimiser = grid_minimisers(input, s, &grid, &search);
+    let mut thin = Thinning::new(0.5 * h);
     for &v in &on_face {
-        let q = slot.uv[v as usize];
-        for k in 0..2 {
-            lo[k] = lo[k].min(q[k]);
-            hi[k] = hi[k].max(q[k]);
-        }
+        thin.occupy(slot.uv[v as usize]);
     }
-    let nx = (((hi[0] - lo[0]) / h).ceil() as usize).clamp(1, 400);
-    let ny = (((hi[1] - lo[1]) / h).ceil() as usize).clamp(1, 400);
-    let (sx, sy) = ((hi[0] - lo[0]) / nx as f64, (hi[1] - lo[1]) / ny as f64);
-    let at = |i: f64, j: f64| [lo[0] + sx * i, lo[1] + sy * j];
-    let r = |a3: [f64; 3], site: &(u32, [f64; 3], f64)| {
+    let (cands, on_edge) = edge_samples(input, cl, s, h, &grid, &search, &minimiser);
+    // continuity of two sites (cached point location of the segment's midpoint)
+    let mut cont = |a: u32, b: u32| {
+        a == b || (input.mask[a as usize] & input.mask[b as usize] != 0 && !cl.edge_external(a, b))
+    };
+    let squares = squares_with_samples(&grid, &on_edge);
+    let mut links: Vec<(u32, u32)> = Vec::new();
+    for &(j, i) in &squares {
+        link_square(
+            (i, j),
+            &grid,
+            &search,
+            &minimiser,
+            &on_edge,
+            &mut cont,
+            &mut links,
+        );
+    }
+    links.sort_unstable();
+    links.dedup();
+    thin_chains(cands, &links, &mut thin, |x, y| {
+        diagram
+            .between(input, x.uv, y.uv, x.sites, y.sites, &mut cont)
+            .is_some()
+    })
+}
+
+/// The sampling grid of a face: (nx + 1) × (ny + 1) points from `lo`, spacing (sx, sy).
+struct SampleGrid {
+    lo: [f64; 2],
+    sx: f64,
+    sy: f64,
+    nx: usize,
+    ny: usize,
+}
+
+impl SampleGrid {
+    /// Over the bounding box of `uvs`, spacing about `h` (at most 400 steps a side).
+    fn over(uvs: impl Iterator<Item = [f64; 2]>, h: f64) -> Self {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for q in uvs {
+            for k in 0..2 {
+                lo[k] = lo[k].min(q[k]);
+                hi[k] = hi[k].max(q[k]);
+            }
+        }
+        let nx = (((hi[0] - lo[0]) / h).ceil() as usize).clamp(1, 400);
+        let ny = (((hi[1] - lo[1]) / h).ceil() as usize).clamp(1, 400);
+        let (sx, sy) = ((hi[0] - lo[0]) / nx as f64, (hi[1] - lo[1]) / ny as f64);
+        SampleGrid { lo, sx, sy, nx, ny }
+    }
+
+    fn at(&self, i: f64, j: f64) -> [f64; 2] {
+        [self.lo[0] + self.sx * i, self.lo[1] + self.sy * j]
+    }
+
+    /// Points per grid row.
+    fn width(&self) -> usize {
+        self.nx + 1
+    }
+}
+
+/// The minimiser of r_b over a face's sites.
+struct NearestSite<'a> {
+    plane: crate::sections::Plane,
+    /// Unit normal into the cell.
+    n: [f64; 3],
+    sites: &'a [Site],
+    index: &'a SiteIndex,
+}
+
+impl NearestSite<'_> {
+    fn r(&self, a3: [f64; 3], site: &Site) -> f64 {
         // h_b measured from a (a is on the plane up to rounding)
-        let hb = dot(n, sub(site.1, a3));
+        let hb = dot(self.n, sub(site.1, a3));
         if hb <= 0.0 {
             f64::INFINITY
         } else {
             dist2(a3, site.1) / (2.0 * hb)
         }
-    };
-    let index = &diagram.index;
-    // Same answer as a scan of all sites in order (smallest r, first site on ties), visiting only
-    // the sites whose in-plane distance can still beat the best r found (r_b(a) >= that distance).
-    let argmin = |q: [f64; 2]| -> usize {
-        let a3 = plane.to_3d(q);
+    }
+
+    /// Same answer as a scan of all sites in order (smallest r, first site on ties), visiting only
+    /// the sites whose in-plane distance can still beat the best r found (r_b(a) >= that distance).
+    fn argmin(&self, q: [f64; 2]) -> usize {
+        let a3 = self.plane.to_3d(q);
         let mut best = (f64::INFINITY, 0);
-        index.visit(q, |k| {
-            let v = r(a3, &sites[k]);
+        self.index.visit(q, |k| {
+            let v = self.r(a3, &self.sites[k]);
             if v < best.0 || (v == best.0 && v < f64::INFINITY && k < best.1) {
                 best = (v, k);
             }
             best.0
         });
         best.1
-    };
-    let w = nx + 1;
-    let mut minimiser: Vec<Option<usize>> = vec![None; w * (ny + 1)];
-    for j in 0..=ny {
-        for i in 0..=nx {
-            let q = at(i as f64, j as f64);
+    }
+}
+
+/// The minimiser of every grid point inside the section (row-major), `None` outside.
+fn grid_minimisers(
+    input: &CellInput,
+    s: usize,
+    grid: &SampleGrid,
+    search: &NearestSite,
+) -> Vec<Option<usize>> {
+    let slot = &input.slots[s];
+    let w = grid.width();
+    let mut minimiser: Vec<Option<usize>> = vec![None; w * (grid.ny + 1)];
+    for j in 0..=grid.ny {
+        for i in 0..=grid.nx {
+            let q = grid.at(i as f64, j as f64);
             if slot.locator.locate(q) == super::cell_input::Where::Inside {
-                minimiser[j * w + i] = Some(argmin(q));
+                minimiser[j * w + i] = Some(search.argmin(q));
             }
         }
     }
-    let mut thin = Thinning::new(0.5 * h);
-    for &v in &on_face {
-        thin.occupy(slot.uv[v as usize]);
-    }
-    // candidates in grid order; per grid edge (2 (j w + i) + {0: along x, 1: along y}) its
-    // candidate and the candidate's site indices (m0, m1), m0 the minimiser at the edge's start
+    minimiser
+}
+
+/// Per grid edge (2 (j w + i) + {0: along x, 1: along y}) its candidate and the candidate's sites
+/// (smaller first).
+type EdgeSamples = IdMap<usize, (u32, (u32, u32))>;
+
+/// The candidates in grid order, one on every grid edge whose minimisers are discontinuous and
+/// change sign of r_b1 − r_b2 along it (`None` when too close to the section's boundary).
+fn edge_samples(
+    input: &CellInput,
+    cl: &mut Classifier,
+    s: usize,
+    h: f64,
+    grid: &SampleGrid,
+    search: &NearestSite,
+    minimiser: &[Option<usize>],
+) -> (Vec<Option<DiagramSample>>, EdgeSamples) {
+    let slot = &input.slots[s];
+    let sites = search.sites;
+    let (nx, ny, w) = (grid.nx, grid.ny, grid.width());
     let mut cands: Vec<Option<DiagramSample>> = Vec::new();
-    let mut on_edge: IdMap<usize, (u32, (u32, u32))> = IdMap::default();
+    let mut on_edge: EdgeSamples = IdMap::default();
     let mut pairs_checked: IdMap<(usize, usize), bool> = IdMap::default();
     for j in 0..=ny {
         for i in 0..=nx {
@@ -250,27 +346,10 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
                 if !disc {
                     continue;
                 }
-                let (q0, q1) = (at(i as f64, j as f64), at(i1 as f64, j1 as f64));
-                let f = |t: f64| {
-                    let q = [q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1])];
-                    let a3 = plane.to_3d(q);
-                    r(a3, &sites[m0]) - r(a3, &sites[m1])
-                };
-                let (mut a, mut b) = (0.0, 1.0);
-                let fa = f(a);
-                if !(fa <= 0.0 && f(b) >= 0.0) {
+                let (q0, q1) = (grid.at(i as f64, j as f64), grid.at(i1 as f64, j1 as f64));
+                let Some(q) = equal_r_point(search, q0, q1, m0, m1) else {
                     continue;
-                }
-                for _ in 0..50 {
-                    let mid = 0.5 * (a + b);
-                    if f(mid) <= 0.0 {
-                        a = mid;
-                    } else {
-                        b = mid;
-                    }
-                }
-                let t = 0.5 * (a + b);
-                let q = [q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1])];
+                };
                 let inside = slot
                     .locator
                     .locate_clear(q, super::chains::SAMPLE_CLEARANCE * h)
@@ -283,19 +362,50 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
                 cands.push(inside.then(|| DiagramSample {
                     slot: s,
                     uv: q,
-                    p3: plane.to_3d(q),
+                    p3: search.plane.to_3d(q),
                     kind: Kind::Branching,
                     sites: (b0.min(b1), b0.max(b1)),
                 }));
             }
         }
     }
-    // continuity of two sites (cached point location of the segment's midpoint)
-    let mut cont = |a: u32, b: u32| {
-        a == b || (input.mask[a as usize] & input.mask[b as usize] != 0 && !cl.edge_external(a, b))
+    (cands, on_edge)
+}
+
+/// The point of segment q0q1 where r of site m0 equals r of site m1 (bisection), if r_m0 − r_m1
+/// goes from ≤ 0 to ≥ 0 along it.
+fn equal_r_point(
+    search: &NearestSite,
+    q0: [f64; 2],
+    q1: [f64; 2],
+    m0: usize,
+    m1: usize,
+) -> Option<[f64; 2]> {
+    let f = |t: f64| {
+        let q = [q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1])];
+        let a3 = search.plane.to_3d(q);
+        search.r(a3, &search.sites[m0]) - search.r(a3, &search.sites[m1])
     };
-    // marching squares: per grid square with candidates on its edges, those candidates grouped by
-    // branch
+    let (mut a, mut b) = (0.0, 1.0);
+    let fa = f(a);
+    if !(fa <= 0.0 && f(b) >= 0.0) {
+        return None;
+    }
+    for _ in 0..50 {
+        let mid = 0.5 * (a + b);
+        if f(mid) <= 0.0 {
+            a = mid;
+        } else {
+            b = mid;
+        }
+    }
+    let t = 0.5 * (a + b);
+    Some([q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1])])
+}
+
+/// The grid squares (j, i) with a candidate on one of their edges, sorted.
+fn squares_with_samples(grid: &SampleGrid, on_edge: &EdgeSamples) -> Vec<(usize, usize)> {
+    let (nx, ny, w) = (grid.nx, grid.ny, grid.width());
     let mut squares: Vec<(usize, usize)> = Vec::new();
     for &e in on_edge.keys() {
         let (g, dir) = (e / 2, e % 2);
@@ -318,77 +428,81 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
     }
     squares.sort_unstable();
     squares.dedup();
-    let mut links: Vec<(u32, u32)> = Vec::new();
-    {
-        for &(j, i) in &squares {
-            // bottom, right, top, left (counter-clockwise from the corner (i, j))
-            let sides = [
-                2 * (j * w + i),
-                2 * (j * w + i + 1) + 1,
-                2 * ((j + 1) * w + i),
-                2 * (j * w + i) + 1,
-            ];
-            let found: Vec<(usize, u32, (u32, u32))> = sides
-                .iter()
-                .enumerate()
-                .filter_map(|(k, e)| on_edge.get(e).map(|&(c, m)| (k, c, m)))
-                .collect();
-            if found.len() < 2 {
-                continue;
-            }
-            // group the square's samples by branch (site pairs that match up continuously)
-            let mut group: Vec<usize> = (0..found.len()).collect();
-            for a in 0..found.len() {
-                for b in a + 1..found.len() {
-                    if group[b] == b && same_branch(found[a].2, found[b].2, &mut cont) {
-                        group[b] = group[a];
-                    }
-                }
-            }
-            for g0 in 0..found.len() {
-                let g: Vec<(usize, u32)> = (0..found.len())
-                    .filter(|&k| group[k] == g0)
-                    .map(|k| (found[k].0, found[k].1))
-                    .collect();
-                match g.len() {
-                    2 => links.push((g[0].1.min(g[1].1), g[0].1.max(g[1].1))),
-                    4 => {
-                        // saddle: the corners' minimisers alternate between the two sides; the
-                        // segments cut off the two corners not on the centre's side
-                        let (Some(mc), Some(m00)) = (
-                            Some(argmin(at(i as f64 + 0.5, j as f64 + 0.5))),
-                            minimiser[j * w + i],
-                        ) else {
-                            continue;
-                        };
-                        let corner_with_centre = cont(sites[mc].0, sites[m00].0);
-                        let by_side = |k: usize| g.iter().find(|x| x.0 == k).map(|x| x.1);
-                        let (Some(b), Some(rt), Some(t), Some(l)) =
-                            (by_side(0), by_side(1), by_side(2), by_side(3))
-                        else {
-                            continue;
-                        };
-                        let pairs = if !corner_with_centre {
-                            // cut off corner (i, j) (bottom + left) and corner (i+1, j+1)
-                            [(b, l), (rt, t)]
-                        } else {
-                            // cut off corners (i+1, j) (bottom + right) and (i, j+1)
-                            [(b, rt), (t, l)]
-                        };
-                        links.extend(pairs.iter().map(|&(x, y)| (x.min(y), x.max(y))));
-                    }
-                    _ => {}
-                }
+    squares
+}
+
+/// Marching squares on square (i, j): its candidates grouped by branch, two of a branch linked, a
+/// saddle's four linked in two pairs (see `grid_samples`).
+fn link_square(
+    (i, j): (usize, usize),
+    grid: &SampleGrid,
+    search: &NearestSite,
+    minimiser: &[Option<usize>],
+    on_edge: &EdgeSamples,
+    cont: &mut impl FnMut(u32, u32) -> bool,
+    links: &mut Vec<(u32, u32)>,
+) {
+    let w = grid.width();
+    let sites = search.sites;
+    // bottom, right, top, left (counter-clockwise from the corner (i, j))
+    let sides = [
+        2 * (j * w + i),
+        2 * (j * w + i + 1) + 1,
+        2 * ((j + 1) * w + i),
+        2 * (j * w + i) + 1,
+    ];
+    let found: Vec<(usize, u32, (u32, u32))> = sides
+        .iter()
+        .enumerate()
+        .filter_map(|(k, e)| on_edge.get(e).map(|&(c, m)| (k, c, m)))
+        .collect();
+    if found.len() < 2 {
+        return;
+    }
+    // group the square's samples by branch (site pairs that match up continuously)
+    let mut group: Vec<usize> = (0..found.len()).collect();
+    for a in 0..found.len() {
+        for b in a + 1..found.len() {
+            if group[b] == b && same_branch(found[a].2, found[b].2, cont) {
+                group[b] = group[a];
             }
         }
     }
-    links.sort_unstable();
-    links.dedup();
-    thin_chains(cands, &links, &mut thin, |x, y| {
-        diagram
-            .between(input, x.uv, y.uv, x.sites, y.sites, &mut cont)
-            .is_some()
-    })
+    for g0 in 0..found.len() {
+        let g: Vec<(usize, u32)> = (0..found.len())
+            .filter(|&k| group[k] == g0)
+            .map(|k| (found[k].0, found[k].1))
+            .collect();
+        match g.len() {
+            2 => links.push((g[0].1.min(g[1].1), g[0].1.max(g[1].1))),
+            4 => {
+                // saddle: the corners' minimisers alternate between the two sides; the
+                // segments cut off the two corners not on the centre's side
+                let (Some(mc), Some(m00)) = (
+                    Some(search.argmin(grid.at(i as f64 + 0.5, j as f64 + 0.5))),
+                    minimiser[j * w + i],
+                ) else {
+                    continue;
+                };
+                let corner_with_centre = cont(sites[mc].0, sites[m00].0);
+                let by_side = |k: usize| g.iter().find(|x| x.0 == k).map(|x| x.1);
+                let (Some(b), Some(rt), Some(t), Some(l)) =
+                    (by_side(0), by_side(1), by_side(2), by_side(3))
+                else {
+                    continue;
+                };
+                let pairs = if !corner_with_centre {
+                    // cut off corner (i, j) (bottom + left) and corner (i+1, j+1)
+                    [(b, l), (rt, t)]
+                } else {
+                    // cut off corners (i+1, j) (bottom + right) and (i, j+1)
+                    [(b, rt), (t, l)]
+                };
+                links.extend(pairs.iter().map(|&(x, y)| (x.min(y), x.max(y))));
+            }
+            _ => {}
+        }
+    }
 }
 
 /// The sites bucketed by their projection on the face's plane, for the minimiser search of r_b:

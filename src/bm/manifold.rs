@@ -10,11 +10,17 @@
 //! other side (the face stays in R). Tetrahedra lie between the planes, so nothing else of a
 //! section changes. Combinatorial throughout (plane tags, section triangles); no point is added
 //! or moved. What the search cannot lower (a local minimum) is left to growth (`singular`).
+//!
+//! The folds of ∂K at flat tetrahedra are closed with the same toggles in `folds`
+//! ([`close_flat_folds`]).
 use super::faces::FaceTable;
 use super::refine::{key3, on_a_plane, Planes, Triangulation};
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::mesh::Stars;
 use smallvec::SmallVec;
+
+mod folds;
+pub use folds::close_flat_folds;
 
 /// What the search did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -93,118 +99,6 @@ fn twins(faces: &FaceTable, n: usize) -> Vec<[u32; 4]> {
 
 /// Rounds of set moves (each followed by single toggles again).
 const SET_PASSES: usize = 4;
-
-/// Close the cracks and cut the fins of ∂K at flat tetrahedra. Where the tetrahedra around an edge
-/// of ∂K between its two surface triangles, on one side, are all flat (their four vertices within
-/// `tol` of one plane: rounded coplanar points that no plane tag makes flat), the two triangles
-/// fold flat onto each other (a double sheet; a crack when that side is outside K, a fin when it
-/// is inside). Toggling that wedge removes the fold; it is done when the sections allow it and no
-/// singular simplex is added, in passes until none is left or a pass changes nothing. Returns the
-/// toggles done.
-pub fn close_flat_folds(
-    k: &mut Triangulation,
-    nonconforming: &FxHashSet<u32>,
-    tol: f64,
-) -> ToggleStats {
-    let lists: [&[[u32; 4]]; 3] = [k.kept, k.fillable, k.external];
-    let positions = &*k.positions;
-    let flat = Flat {
-        flat: lists
-            .iter()
-            .flat_map(|l| l.iter())
-            .map(|t| flat_height(t.map(|v| positions[v as usize])) <= tol)
-            .collect(),
-        positions,
-    };
-    let mut stats = ToggleStats::default();
-    if !flat.flat.contains(&true) {
-        return stats;
-    }
-    let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
-    for _ in 0..FOLD_PASSES {
-        let before = stats;
-        for w in l.flat_wedges(&flat) {
-            // an earlier toggle of this pass may have changed the wedge's side
-            let side = l.kept[w[0] as usize];
-            if w.iter().all(|&t| l.kept[t as usize] == side) && !l.try_unfold(&w, &flat, &mut stats)
-            {
-                // the fold may move to the flat tetrahedra behind the wedge: all of them at once
-                let blob = l.flat_component(&w, &flat);
-                if blob.len() > w.len() {
-                    l.try_unfold(&blob, &flat, &mut stats);
-                }
-            }
-        }
-        if stats == before {
-            break;
-        }
-    }
-    let (kept, fillable, external) = l.into_lists();
-    (*k.kept, *k.fillable, *k.external) = (kept, fillable, external);
-    stats
-}
-
-/// Passes of [`close_flat_folds`] (each toggle can uncover a fold behind it).
-const FOLD_PASSES: usize = 8;
-
-/// Largest set of flat tetrahedra toggled at once.
-const FLAT_COMPONENT: usize = 256;
-
-/// Which tetrahedra are flat, and where the points are (to tell a fold from a flat continuation).
-struct Flat<'a> {
-    flat: Vec<bool>,
-    positions: &'a [[f64; 3]],
-}
-
-impl Flat<'_> {
-    /// Do `a` and `b` lie on the same side of the line through `e` (in the plane they nearly
-    /// share with it)? Two surface triangles at `e` with such apexes folded onto each other.
-    fn same_side(&self, e: (u32, u32), a: u32, b: u32) -> bool {
-        let p = |v: u32| self.positions[v as usize];
-        let (o, d) = (p(e.0), sub3(p(e.1), p(e.0)));
-        let dd = dot3(d, d);
-        let perp = |q: [f64; 3]| {
-            let w = sub3(q, o);
-            let s = dot3(w, d) / dd;
-            [w[0] - s * d[0], w[1] - s * d[1], w[2] - s * d[2]]
-        };
-        dot3(perp(p(a)), perp(p(b))) > 0.0
-    }
-}
-
-fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Distance of the farthest vertex from the plane of the largest face (float; for a flatness
-/// test far above rounding).
-fn flat_height(p: [[f64; 3]; 4]) -> f64 {
-    let (sub, dot) = (sub3, dot3);
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let (mut best, mut height) = (0.0, f64::INFINITY);
-    for i in 0..4 {
-        // the other three in increasing index
-        let f = [(1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2)][i];
-        let f = [p[f.0], p[f.1], p[f.2]];
-        let n = cross(sub(f[1], f[0]), sub(f[2], f[0]));
-        let len = dot(n, n).sqrt();
-        if len > best {
-            best = len;
-            height = dot(n, sub(p[i], f[0])).abs() / len;
-        }
-    }
-    height
-}
 
 impl<'a> Labelled<'a> {
     /// From the kept, fillable and external tetrahedra.
@@ -321,164 +215,6 @@ impl<'a> Labelled<'a> {
             self.kept[t as usize] ^= true;
         }
         false
-    }
-
-    /// Toggle every tetrahedron of `set` if each is allowed, the folds at their edges get fewer and
-    /// the singular simplices at them no more; else leave them. Toggling changes ∂K only at the
-    /// set's faces, so these local counts are the changes of the global ones.
-    fn try_unfold(&mut self, set: &[u32], flat: &Flat, stats: &mut ToggleStats) -> bool {
-        if !set.iter().all(|&t| self.may_toggle(t)) {
-            return false;
-        }
-        let edges: FxHashSet<(u32, u32)> = set
-            .iter()
-            .flat_map(|&t| {
-                let v = self.tets[t as usize];
-                [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
-                    .map(|(i, j)| super::refine::edge(v[i], v[j]))
-            })
-            .collect();
-        let before = (self.badness(set), self.folds_at(&edges, flat));
-        for &t in set {
-            self.kept[t as usize] ^= true;
-        }
-        let after = (self.badness(set), self.folds_at(&edges, flat));
-        if after.0 > before.0 || after.1 >= before.1 {
-            for &t in set {
-                self.kept[t as usize] ^= true;
-            }
-            return false;
-        }
-        for &t in set {
-            if self.kept[t as usize] {
-                stats.added += 1;
-            } else {
-                stats.removed += 1;
-            }
-        }
-        true
-    }
-
-    /// How many of `edges` are folds of ∂K: a flat wedge on one side between two of its surface
-    /// triangles there.
-    fn folds_at(&self, edges: &FxHashSet<(u32, u32)>, flat: &Flat) -> usize {
-        edges
-            .iter()
-            .filter(|&&(a, b)| {
-                self.surface_at(a)
-                    .iter()
-                    .filter(|f| f.contains(&b))
-                    .any(|f| self.fold_at((a, b), *f, flat))
-            })
-            .count()
-    }
-
-    /// Is surface triangle `f` (sorted key) the start of a flat wedge at its edge `e`, on either
-    /// side?
-    fn fold_at(&self, e: (u32, u32), f: [u32; 3], flat: &Flat) -> bool {
-        self.faces
-            .owners(&f)
-            .any(|t| self.wedge(e, f, t, flat).is_some())
-    }
-
-    /// Every wedge of flat tetrahedra (`flat` per tetrahedron) around an edge of ∂K that fills the
-    /// whole angle on one side between the edge's two surface triangles.
-    fn flat_wedges(&self, flat: &Flat) -> Vec<Vec<u32>> {
-        let mut out = Vec::new();
-        let mut seen: FxHashSet<Vec<u32>> = FxHashSet::default();
-        for (t, &kept) in self.kept.iter().enumerate() {
-            // a wedge starts at t or at a tetrahedron across one of its faces, and is all flat
-            if !kept || !self.near_flat(t as u32, flat) {
-                continue;
-            }
-            let tet = self.tets[t];
-            for i in 0..4 {
-                let f = key3(super::complex::outward_face(&tet, i));
-                if self.other_kept_at(t as u32, i) {
-                    continue;
-                }
-                // f is on ∂K: walk around each of its edges on both sides
-                let outside = self.faces.owners(&f).find(|&o| o != t as u32);
-                for e in [(f[0], f[1]), (f[1], f[2]), (f[0], f[2])] {
-                    for start in [Some(t as u32), outside].into_iter().flatten() {
-                        if let Some(mut w) = self.wedge(e, f, start, flat) {
-                            w.sort_unstable();
-                            if seen.insert(w.clone()) {
-                                out.push(w);
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        out
-    }
-
-    /// Whether `t` or a tetrahedron sharing a face with it is flat.
-    fn near_flat(&self, t: u32, flat: &Flat) -> bool {
-        flat.flat[t as usize]
-            || (0..4).any(|i| match self.twin[t as usize][i] {
-                NONE => false,
-                MANY => {
-                    let f = key3(super::complex::outward_face(&self.tets[t as usize], i));
-                    self.faces.owners(&f).any(|o| flat.flat[o as usize])
-                }
-                o => flat.flat[o as usize],
-            })
-    }
-
-    /// From `start` (a tetrahedron on face `f`, which contains edge `e`), the tetrahedra around `e`
-    /// on `start`'s side of ∂K up to the next surface triangle at `e`, if all are flat.
-    fn wedge(&self, e: (u32, u32), f: [u32; 3], start: u32, flat: &Flat) -> Option<Vec<u32>> {
-        let side = self.kept[start as usize];
-        let (mut t, mut entered) = (start, f);
-        let mut out = Vec::new();
-        let first = *f.iter().find(|&&v| v != e.0 && v != e.1)?;
-        let last = loop {
-            if !flat.flat[t as usize] || out.len() > 64 {
-                return None;
-            }
-            out.push(t);
-            let tet = self.tets[t as usize];
-            // the other face of t at e
-            let apex = *tet
-                .iter()
-                .find(|&&v| v != e.0 && v != e.1 && !entered.contains(&v))?;
-            let next = key3([e.0, e.1, apex]);
-            let beyond = self.faces.owners(&next).find(|&o| o != t);
-            match beyond {
-                Some(n) if self.kept[n as usize] == side => {
-                    if n == start {
-                        return None; // all the way round: no surface at e on this side
-                    }
-                    (t, entered) = (n, next);
-                }
-                // the next surface triangle at e (or the hull, outside everything, for a fin):
-                // a fold if it lies over the first one, not beside it
-                Some(_) => break apex,
-                None if side => break apex,
-                None => return None,
-            }
-        };
-        flat.same_side(e, first, last).then_some(out)
-    }
-
-    /// The flat tetrahedra on the side of `w` (kept or not) connected to `w` through faces, at
-    /// most `FLAT_COMPONENT` of them.
-    fn flat_component(&self, w: &[u32], flat: &Flat) -> Vec<u32> {
-        let side = self.kept[w[0] as usize];
-        let mut out: Vec<u32> = w.to_vec();
-        let mut seen: FxHashSet<u32> = w.iter().copied().collect();
-        let mut i = 0;
-        while i < out.len() && out.len() < FLAT_COMPONENT {
-            for n in self.face_neighbours(out[i]) {
-                if flat.flat[n as usize] && self.kept[n as usize] == side && seen.insert(n) {
-                    out.push(n);
-                }
-            }
-            i += 1;
-        }
-        out
     }
 
     /// Tetrahedra sharing a face with `t`.

@@ -17,6 +17,9 @@
 use super::classify::{Classified, TetType};
 use super::complex::{Complex, NONE, TET_EDGES};
 
+mod cavities;
+pub use cavities::{fill_cavities, fill_pinches};
+
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct PruneCounts {
     pub step1_removed: u64,
@@ -45,6 +48,37 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
     let mut alive: Vec<bool> = (0..n)
         .map(|t| r1[t] && matches!(cl.ty[t], TetType::Vf | TetType::Ee))
         .collect();
+    counts.step2_removed += eliminate_by_pivots(cx, cl, &mut alive);
+    let pivoted: Vec<bool> = (0..n)
+        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Vf | TetType::Ee) && !alive[t])
+        .collect();
+    remove_vf_groups_without_ee(cx, cl, &mut alive, &mut counts);
+    // Step 3
+    counts.step3_added += readd_by_shared_faces(cx, cl, &r1, &mut alive);
+    fill_voids_and_pinches(cx, cl, &r1, &mut alive, &mut counts);
+    let why = (0..n)
+        .map(|t| {
+            if alive[t] {
+                0
+            } else if !r1[t] {
+                1
+            } else if pivoted[t] {
+                2
+            } else if cl.ty[t] == TetType::Vf || cl.ty[t] == TetType::Ee {
+                3
+            } else {
+                4
+            }
+        })
+        .collect();
+    (alive, counts, why)
+}
+
+/// Step 2's pivots: from every eliminated tet (and the hull) around each grounded edge through the
+/// `Ee` tets of `alive`, eliminating those oriented both ways. Returns how many were eliminated.
+fn eliminate_by_pivots(cx: &Complex, cl: &Classified, alive: &mut [bool]) -> u64 {
+    let n = cx.len();
+    let mut removed = 0;
     let mut flags = vec![0u8; n];
     let mut el: Vec<u32> = Vec::new();
     for t in 0..n {
@@ -60,13 +94,13 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
             for x in [o0, o1] {
                 let nb = cx.nbr[t][x];
                 if nb == NONE || !alive[nb as usize] {
-                    pivot(cx, cl, &mut alive, &mut flags, &mut el, t as u32, x, (a, b));
+                    pivot(cx, cl, alive, &mut flags, &mut el, t as u32, x, (a, b));
                 }
             }
         }
     }
     while let Some(t) = el.pop() {
-        counts.step2_removed += 1;
+        removed += 1;
         let tv = cx.tets[t as usize];
         for (k, &(i, j)) in TET_EDGES.iter().enumerate() {
             if cl.grounded_edges[t as usize] >> k & 1 == 0 {
@@ -77,24 +111,22 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
                 let nb = cx.nbr[t as usize][x];
                 if nb != NONE && alive[nb as usize] {
                     let back = cx.back_index(nb, t);
-                    pivot(
-                        cx,
-                        cl,
-                        &mut alive,
-                        &mut flags,
-                        &mut el,
-                        nb,
-                        back,
-                        (tv[i], tv[j]),
-                    );
+                    pivot(cx, cl, alive, &mut flags, &mut el, nb, back, (tv[i], tv[j]));
                 }
             }
         }
     }
-    let pivoted: Vec<bool> = (0..n)
-        .map(|t| r1[t] && matches!(cl.ty[t], TetType::Vf | TetType::Ee) && !alive[t])
-        .collect();
-    // Vf groups sharing no face with a kept Ee tet
+    removed
+}
+
+/// End of step 2: face-connected groups of `Vf` tets sharing no face with a kept `Ee` tet go.
+fn remove_vf_groups_without_ee(
+    cx: &Complex,
+    cl: &Classified,
+    alive: &mut [bool],
+    counts: &mut PruneCounts,
+) {
+    let n = cx.len();
     let mut seen = vec![false; n];
     for s in 0..n {
         if seen[s] || !alive[s] || cl.ty[s] != TetType::Vf {
@@ -129,7 +161,13 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
             }
         }
     }
-    // Step 3
+}
+
+/// Step 3's face rule: re-add the candidates (`Evv`/`Vvvv`/`Ee` of step 1's result `r1`) that
+/// `can_add` accepts, until none can be. Returns how many were added.
+fn readd_by_shared_faces(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> u64 {
+    let n = cx.len();
+    let mut added = 0;
     let cand: Vec<bool> = (0..n)
         .map(|t| r1[t] && matches!(cl.ty[t], TetType::Evv | TetType::Vvvv | TetType::Ee))
         .collect();
@@ -143,9 +181,9 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
         if alive[t as usize] {
             continue;
         }
-        if can_add(cx, cl, &alive, t, false) {
+        if can_add(cx, cl, alive, t, false) {
             alive[t as usize] = true;
-            counts.step3_added += 1;
+            added += 1;
             for &nb in &cx.nbr[t as usize] {
                 if nb != NONE && cand[nb as usize] && !alive[nb as usize] && !queued[nb as usize] {
                     queued[nb as usize] = true;
@@ -154,274 +192,36 @@ pub fn prune_why(cx: &Complex, cl: &Classified) -> (Vec<bool>, PruneCounts, Vec<
             }
         }
     }
-    // Cavities: face-connected groups of removed (non-external, non-flat) tets enclosed by the
-    // complex and the section: every face of the group is shared with a kept tet, with the group, or
-    // is a grounded triangle (on the hull or against a flat sliver; grounded triangles of tets that
-    // survived step 1 are internal, inside the section). Such a group is a void of the solid: its
-    // intersection with the complex and the section is its whole boundary. Step 2 may leave these
-    // behind — an `Ee` tet between two `Evv` tets is disconnected from the ground in R2, and step 3
-    // then re-adds the `Evv` tets around it — and they surface as inverted closed components, so
-    // they are filled whatever their type.
+    added
+}
+
+/// Cavities: face-connected groups of removed (non-external, non-flat) tets enclosed by the
+/// complex and the section: every face of the group is shared with a kept tet, with the group, or
+/// is a grounded triangle (on the hull or against a flat sliver; grounded triangles of tets that
+/// survived step 1 are internal, inside the section). Such a group is a void of the solid: its
+/// intersection with the complex and the section is its whole boundary. Step 2 may leave these
+/// behind — an `Ee` tet between two `Evv` tets is disconnected from the ground in R2, and step 3
+/// then re-adds the `Evv` tets around it — and they surface as inverted closed components, so
+/// they are filled whatever their type.
+fn fill_voids_and_pinches(
+    cx: &Complex,
+    cl: &Classified,
+    r1: &[bool],
+    alive: &mut [bool],
+    counts: &mut PruneCounts,
+) {
     // Filling a notch at a pinch can close a void and the reverse: alternate until neither acts.
     for _ in 0..4 {
-        let (groups, tets) = fill_cavities(cx, cl, &r1, &mut alive);
+        let (groups, tets) = fill_cavities(cx, cl, r1, alive);
         counts.step3_cavities_filled += groups;
         counts.step3_added += tets;
-        let (pinches, tets2) = fill_pinches(cx, cl, &r1, &mut alive);
+        let (pinches, tets2) = fill_pinches(cx, cl, r1, alive);
         counts.pinches_filled += pinches;
         counts.step3_added += tets2;
         if tets + tets2 == 0 {
             break;
         }
     }
-    let why = (0..n)
-        .map(|t| {
-            if alive[t] {
-                0
-            } else if !r1[t] {
-                1
-            } else if pivoted[t] {
-                2
-            } else if cl.ty[t] == TetType::Vf || cl.ty[t] == TetType::Ee {
-                3
-            } else {
-                4
-            }
-        })
-        .collect();
-    (alive, counts, why)
-}
-
-/// Fills the voids of the complex `alive`: face-connected groups of tets of `r1` (step 1's result)
-/// that are not kept, not flat, and whose every face is shared with a kept tet, with the group, or is
-/// a grounded triangle. Returns (groups filled, tets added).
-pub fn fill_cavities(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> (u64, u64) {
-    let voids = enclosed_groups(cx, cl, alive, |t| r1[t] && cl.ty[t] != TetType::Flat);
-    let tets = voids.iter().map(|g| g.len() as u64).sum();
-    for &t in voids.iter().flatten() {
-        alive[t as usize] = true;
-    }
-    (voids.len() as u64, tets)
-}
-
-/// Face-connected groups of tets that are not `alive` but `member`, closed off from everything
-/// else by kept tets and grounded triangles (no face to a non-member removed tet or the hull).
-fn enclosed_groups(
-    cx: &Complex,
-    cl: &Classified,
-    alive: &[bool],
-    member: impl Fn(usize) -> bool,
-) -> Vec<Vec<u32>> {
-    let n = cx.len();
-    let mut seen = vec![false; n];
-    let mut out = Vec::new();
-    for s in 0..n {
-        if seen[s] || alive[s] || !member(s) {
-            continue;
-        }
-        let mut group = vec![s as u32];
-        seen[s] = true;
-        let mut enclosed = true;
-        let mut k = 0;
-        while k < group.len() {
-            let t = group[k] as usize;
-            k += 1;
-            for (i, &nb) in cx.nbr[t].iter().enumerate() {
-                if nb != NONE && alive[nb as usize] {
-                    continue;
-                }
-                if nb != NONE && member(nb as usize) {
-                    if !seen[nb as usize] {
-                        seen[nb as usize] = true;
-                        group.push(nb);
-                    }
-                } else if cl.grounded_faces[t] >> i & 1 == 0 {
-                    enclosed = false;
-                }
-            }
-        }
-        if enclosed {
-            out.push(group);
-        }
-    }
-    out
-}
-
-/// The cell's surface around vertex `v`, as the gluing makes it when the other side of every face
-/// that is not a cap attaches: boundary faces of kept tets that are not grounded, internal section
-/// triangles containing `v` that no kept tet stands on, and on caps the attached triangles instead.
-/// Returns the number of fans (edge-connected groups of those triangles around `v`); more than
-/// one is a pinch of the surface at `v`.
-fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize {
-    let mut tris: Vec<[u32; 2]> = Vec::new();
-    let mut planar: Vec<bool> = Vec::new();
-    for &t in &cx.star[v as usize] {
-        let tu = t as usize;
-        if cl.ty[tu] == TetType::Flat {
-            continue;
-        }
-        let tv = cx.tets[tu];
-        for i in 0..4 {
-            if tv[i] == v {
-                continue;
-            }
-            let nb = cx.nbr[tu][i];
-            let open = nb == NONE || !alive[nb as usize];
-            let on_section = nb == NONE || cl.ty[nb as usize] == TetType::Flat;
-            // on a cap the attached triangles are surface, elsewhere the unattached ones
-            let cap = cl.cap_faces[tu] >> i & 1 == 1;
-            let surface = if alive[tu] {
-                open && (cl.grounded_faces[tu] >> i & 1 == 0 || cap)
-            } else {
-                on_section && cl.section_faces[tu] >> i & 1 == 1 && !cap
-            };
-            if surface {
-                let mut w = [0u32; 2];
-                let mut k = 0;
-                for (j, &x) in tv.iter().enumerate() {
-                    if j != i && x != v {
-                        w[k] = x;
-                        k += 1;
-                    }
-                }
-                tris.push(w);
-                planar.push(cl.grounded_faces[tu] >> i & 1 == 1);
-            }
-        }
-    }
-    if tris.len() < 2 {
-        return tris.len();
-    }
-    let mut parent: Vec<usize> = (0..tris.len()).collect();
-    fn find(p: &mut [usize], mut x: usize) -> usize {
-        while p[x] != x {
-            p[x] = p[p[x]];
-            x = p[x];
-        }
-        x
-    }
-    // Triangles continue each other across an edge (v, w) they alone share; where more meet (a
-    // crease of the solid touching a section along the edge), only planar with planar and
-    // non-planar with non-planar, as the gluing pairs them.
-    let mut by_w: std::collections::HashMap<u32, Vec<usize>> = Default::default();
-    for (k, w) in tris.iter().enumerate() {
-        for &x in w {
-            by_w.entry(x).or_default().push(k);
-        }
-    }
-    for ks in by_w.values() {
-        for x in 0..ks.len() {
-            for y in x + 1..ks.len() {
-                if ks.len() == 2 || planar[ks[x]] == planar[ks[y]] {
-                    let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
-                    parent[a] = b;
-                }
-            }
-        }
-    }
-    (0..tris.len())
-        .filter(|&k| find(&mut parent, k) == k)
-        .count()
-}
-
-/// Where the cell's surface is pinched at a vertex `v` (several fans: the removed regions around
-/// `v` — "notches", groups of removed tets of v's star joined through faces containing v — touch
-/// each other only at v), fill every notch but one when its tets all survived step 1: the paper's
-/// steps leave this case open (a branching sample where two crotches of the sampled branching
-/// diagram meet, or a section vertex where the attached region touches itself), and the gluing
-/// could only split the vertex. The notch kept open is one that cannot be filled, else the largest.
-/// With a single notch on a cap (a crotch between two branches coming down onto a section that
-/// nothing attaches to from the other side, e.g. along the branching diagram: the paper's Fig. 12
-/// case without a thickness), the notch is filled when possible. Vertices of filled tets are
-/// re-examined. Returns (vertices repaired, tets added).
-pub fn fill_pinches(cx: &Complex, cl: &Classified, r1: &[bool], alive: &mut [bool]) -> (u64, u64) {
-    let nv = cx.star.len();
-    let mut queue: Vec<u32> = (0..nv as u32).rev().collect();
-    let mut queued = vec![true; nv];
-    let mut visits = vec![0u8; nv];
-    let (mut fixed, mut added) = (0, 0);
-    while let Some(v) = queue.pop() {
-        queued[v as usize] = false;
-        if surface_fans(cx, cl, alive, v) < 2 || visits[v as usize] >= 3 {
-            continue;
-        }
-        visits[v as usize] += 1;
-        // notches around v
-        let star = &cx.star[v as usize];
-        let mut comp: Vec<usize> = vec![usize::MAX; star.len()];
-        let mut notches: Vec<Vec<u32>> = Vec::new();
-        for s in 0..star.len() {
-            if alive[star[s] as usize] || comp[s] != usize::MAX {
-                continue;
-            }
-            let id = notches.len();
-            comp[s] = id;
-            let mut group = vec![star[s]];
-            let mut k = 0;
-            while k < group.len() {
-                let t = group[k] as usize;
-                k += 1;
-                for (i, &nb) in cx.nbr[t].iter().enumerate() {
-                    if cx.tets[t][i] == v || nb == NONE || alive[nb as usize] {
-                        continue;
-                    }
-                    if let Some(p) = star.iter().position(|&x| x == nb) {
-                        if comp[p] == usize::MAX {
-                            comp[p] = id;
-                            group.push(nb);
-                        }
-                    }
-                }
-            }
-            notches.push(group);
-        }
-        if notches.is_empty() {
-            continue;
-        }
-        let fillable = |g: &Vec<u32>| {
-            g.iter()
-                .all(|&t| r1[t as usize] && cl.ty[t as usize] != TetType::Flat)
-        };
-        let keep = notches
-            .iter()
-            .position(|g| !fillable(g))
-            .unwrap_or_else(|| {
-                (0..notches.len())
-                    .max_by_key(|&k| notches[k].len())
-                    .unwrap_or(0)
-            });
-        // one notch: a crease (crotch between two branches) comes down onto the section at v,
-        // e.g. along the branching diagram on a cap; fill it when possible
-        let on_cap = star.iter().any(|&t| {
-            let tv = cx.tets[t as usize];
-            (0..4).any(|i| tv[i] != v && cl.cap_faces[t as usize] >> i & 1 == 1)
-        });
-        if notches.len() == 1 && !on_cap {
-            continue;
-        }
-        let keep = if notches.len() == 1 { usize::MAX } else { keep };
-        let mut any = false;
-        for (k, g) in notches.iter().enumerate() {
-            if k == keep || !fillable(g) {
-                continue;
-            }
-            any = true;
-            for &t in g {
-                alive[t as usize] = true;
-                added += 1;
-                for &w in &cx.tets[t as usize] {
-                    if !queued[w as usize] {
-                        queued[w as usize] = true;
-                        queue.push(w);
-                    }
-                }
-            }
-        }
-        if any {
-            fixed += 1;
-        }
-    }
-    (fixed, added)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -510,6 +310,7 @@ fn can_add(cx: &Complex, cl: &Classified, alive: &[bool], t: u32, strict: bool) 
 mod tests {
     use super::super::classify::tet_type;
     use super::super::complex::outward_face;
+    use super::cavities::surface_fans;
     use super::*;
 
     fn classified(cx: &Complex, masks: &[u128], external: &[bool]) -> Classified {

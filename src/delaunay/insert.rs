@@ -1,10 +1,12 @@
 //! Incremental construction: the first tetrahedron, the stochastic visibility walk, and
 //! Bowyer–Watson insertion (conflict region grown from the located tetrahedron, then starred from
-//! the new vertex). All ids here are internal vertex ids (insertion order).
+//! the new vertex). All ids here are internal vertex ids (insertion order), except in the public
+//! insertion methods (`insert`, `insert_batch`, ...), which hand out external ids.
 use super::pred::{self, P};
 use super::tags;
 use super::tds::{facet_key, other_two, Tet, ID_MASK, INFINITE, IN_CAVITY, NONE, OUTSIDE};
-use super::Delaunay;
+use super::{key, norm, sort, Delaunay, FastHash, PointTags, VertexId};
+use std::collections::HashMap;
 
 /// Empty slot of the edge table (no edge has both endpoints equal to u32::MAX).
 const EMPTY_EDGE: u64 = u64::MAX;
@@ -607,5 +609,146 @@ impl Delaunay {
             }
         }
         self.edge_table = table;
+    }
+}
+
+/// The public insertion: one point, or a batch in BRIO order with the ids of insertion in order.
+impl Delaunay {
+    /// Inserts a point; returns its new id, or the id of the existing vertex at exactly that position
+    /// (the new id is then recorded in [`Delaunay::duplicates`]). Panics on non-finite coordinates.
+    pub fn insert(&mut self, p: [f64; 3]) -> VertexId {
+        assert!(
+            p.iter().all(|c| c.is_finite()),
+            "Delaunay::insert: non-finite coordinate"
+        );
+        self.insert_tagged_unchecked(p, PointTags::none())
+    }
+
+    /// Inserts a point lying on the planes of `tags` (as [`Delaunay::insert`]; on a triangulation
+    /// built by [`Delaunay::new`] the tags are ignored). Panics on non-finite coordinates or bad tags.
+    /// After it, [`Delaunay::consistent`] says whether the triangulation can be trusted.
+    pub fn insert_tagged(&mut self, p: [f64; 3], tags: &PointTags) -> VertexId {
+        assert!(
+            p.iter().all(|c| c.is_finite()),
+            "Delaunay::insert_tagged: non-finite coordinate"
+        );
+        let t = tags
+            .normalized()
+            .expect("Delaunay::insert_tagged: bad tags");
+        self.insert_tagged_unchecked(p, t)
+    }
+
+    fn insert_tagged_unchecked(&mut self, p: [f64; 3], tags: PointTags) -> VertexId {
+        let e = self.int.len() as u32;
+        self.int.push(NONE);
+        match self.place(e, norm(p), tags) {
+            Some(kept) => {
+                self.dups.push((e, kept));
+                kept
+            }
+            None => e,
+        }
+    }
+
+    /// Inserts the (normalised) point of external id `e`, whose `int` slot exists. Returns the kept
+    /// vertex's external id when a vertex is already at that position (nothing is added then).
+    fn place(&mut self, e: u32, p: P, tags: PointTags) -> Option<VertexId> {
+        let k = self.pts.len() as u32;
+        self.cover(p);
+        self.pts.push(p);
+        if self.tagged {
+            self.tags.push(tags);
+        }
+        self.ext.push(e);
+        self.vtet.push(NONE);
+        self.int[e as usize] = k;
+        let w = if self.dim < 3 {
+            self.add_pending(k)
+        } else {
+            self.insert_vertex(k)
+        };
+        if w == k {
+            return None;
+        }
+        self.pts.pop();
+        self.ext.pop();
+        self.vtet.pop();
+        if self.tagged {
+            self.tags.pop();
+        }
+        self.int[e as usize] = w;
+        Some(self.ext[w as usize])
+    }
+
+    /// Inserts `points` as [`Delaunay::insert`] would one after the other (the same ids, the same
+    /// merged duplicates, the same triangulation: it is unique for a point set under the
+    /// perturbation), but in BRIO order, which for a cell's diagram samples (given row by row of a
+    /// grid) makes fewer and smaller conflict regions. Returns each point's id (the kept vertex's
+    /// for a duplicate). Panics on non-finite coordinates.
+    pub fn insert_batch(&mut self, points: &[[f64; 3]]) -> Vec<VertexId> {
+        self.insert_batch_with(points, None)
+    }
+
+    /// [`Delaunay::insert_batch`] of points lying on the planes of `tags` (one per point; ignored on
+    /// a triangulation built untagged). Panics on non-finite coordinates, a length mismatch or bad
+    /// tags. After it, [`Delaunay::consistent`] says whether the triangulation can be trusted.
+    pub fn insert_batch_tagged(
+        &mut self,
+        points: &[[f64; 3]],
+        tags: &[PointTags],
+    ) -> Vec<VertexId> {
+        assert_eq!(
+            tags.len(),
+            points.len(),
+            "Delaunay::insert_batch_tagged: one tag set per point"
+        );
+        self.insert_batch_with(points, Some(tags))
+    }
+
+    fn insert_batch_with(
+        &mut self,
+        points: &[[f64; 3]],
+        tags: Option<&[PointTags]>,
+    ) -> Vec<VertexId> {
+        assert!(
+            points.iter().all(|p| p.iter().all(|c| c.is_finite())),
+            "Delaunay::insert_batch: non-finite coordinate"
+        );
+        let e0 = self.int.len() as u32;
+        // a repeated position within the batch maps to its first occurrence (as in order)
+        let mut first: HashMap<[u64; 3], u32, FastHash> = HashMap::default();
+        let same_as: Vec<u32> = (0..points.len() as u32)
+            .map(|i| *first.entry(key(norm(points[i as usize]))).or_insert(i))
+            .collect();
+        self.int.resize(e0 as usize + points.len(), NONE);
+        let mut new_dups = Vec::new();
+        for i in sort::brio_order(points) {
+            if same_as[i as usize] != i {
+                continue;
+            }
+            let e = e0 + i;
+            // a kept vertex is an earlier one (never of this batch: those are at distinct positions)
+            let t = match tags {
+                Some(tags) if self.tagged => tags[i as usize]
+                    .normalized()
+                    .expect("Delaunay::insert_batch_tagged: bad tags"),
+                _ => PointTags::none(),
+            };
+            if let Some(kept) = self.place(e, norm(points[i as usize]), t) {
+                new_dups.push((e, kept));
+            }
+        }
+        for (i, &j) in same_as.iter().enumerate() {
+            if j != i as u32 {
+                let w = self.int[(e0 + j) as usize];
+                self.int[e0 as usize + i] = w;
+                new_dups.push((e0 + i as u32, self.ext[w as usize]));
+            }
+        }
+        new_dups.sort_unstable();
+        self.dups.extend(new_dups);
+        (e0..e0 + points.len() as u32)
+            .map(|e| self.canonical(e))
+            .collect()
     }
 }

@@ -6,6 +6,10 @@
 //! points are ordered lexicographically; an exactly cospherical 5-tuple is decided by the
 //! orientation of the tetrahedron in which the largest point is replaced by the query (twice at most);
 //! an exactly coplanar point on a hull facet is decided by the perturbed in-circle test of that facet.
+//!
+//! One file on purpose (it is long, a third of it tests): the static and semi-static filters, the
+//! double-double stage and the exact fallback of each predicate share their error bounds and are
+//! checked against each other, so they are read together.
 use crate::geom::predicates as gp;
 
 pub type P = [f64; 3];

@@ -55,6 +55,9 @@ pub struct CellEval {
     pub constant: Option<f64>,
 }
 
+/// The planes bounding a cell, each with the side (±1) the cell is on.
+type HalfSpaces = Vec<(Plane, f64)>;
+
 /// The indicator function of the whole box: `eval(x)` in [−1, 1], positive inside.
 #[derive(Clone, Debug)]
 pub struct Indicator {
@@ -66,7 +69,7 @@ pub struct Indicator {
     /// Distance below which a point counts as lying on a face's plane.
     on_plane_eps: f64,
     /// Interior point per cell (fallback location).
-    cell_halfspaces: Vec<Vec<(Plane, f64)>>,
+    cell_halfspaces: Vec<HalfSpaces>,
 }
 
 impl Indicator {
@@ -78,143 +81,25 @@ impl Indicator {
                 "the implicit method needs the arrangement of all cells (CellScope::All)".into(),
             ));
         }
-        let pool = &arr.pool;
-        let uv_of = |v: u32, plane_id: u32| -> Result<[f64; 2]> {
-            let v = v as usize;
-            if v >= pool.positions.len() {
-                return Err(Error::Geometry(format!(
-                    "arrangement: vertex {v} out of the pool"
-                )));
-            }
-            if let Some(k) = pool
-                .tags
-                .get(v)
-                .and_then(|t| t.iter().position(|&p| p == plane_id))
-            {
-                if let Some(q) = pool.uv.get(v).and_then(|u| u.get(k)) {
-                    return Ok(*q);
-                }
-            }
-            // Contract says uv is there; fall back to projecting the position.
-            Ok(arr.planes[plane_id as usize].plane.to_2d(pool.positions[v]))
-        };
         let (lo, hi) = arr.bbox;
         let diag = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2))
             .sqrt()
             .max(f64::MIN_POSITIVE);
         let mut faces = Vec::with_capacity(arr.faces.len());
         for (fi, f) in arr.faces.iter().enumerate() {
-            let plane = arr
-                .planes
-                .get(f.plane as usize)
-                .ok_or_else(|| Error::Geometry(format!("face {fi}: no plane {}", f.plane)))?
-                .plane;
-            let polygon: Vec<[f64; 2]> = f
-                .polygon
-                .iter()
-                .map(|&v| uv_of(v, f.plane))
-                .collect::<Result<_>>()?;
-            let face_edges = mvc::loop_edges([polygon.as_slice()]);
-            let mut piece_loops = Vec::new();
-            let mut piece_area = 0.0;
-            for p in &f.pieces {
-                let outer: Vec<[f64; 2]> = p
-                    .outer
-                    .iter()
-                    .map(|&v| uv_of(v, f.plane))
-                    .collect::<Result<_>>()?;
-                piece_area += polygon_signed_area(&outer);
-                piece_loops.push(outer);
-                for h in &p.holes {
-                    let hole: Vec<[f64; 2]> = h
-                        .iter()
-                        .map(|&v| uv_of(v, f.plane))
-                        .collect::<Result<_>>()?;
-                    piece_area += polygon_signed_area(&hole);
-                    piece_loops.push(hole);
-                }
-            }
-            let face_area = polygon_signed_area(&polygon);
-            let kind = if piece_loops.is_empty() {
-                FaceKind::Empty
-            } else if f.pieces.len() == 1
-                && f.pieces[0].holes.is_empty()
-                && (piece_area - face_area).abs() <= 1e-12 * face_area.abs().max(f64::MIN_POSITIVE)
-            {
-                FaceKind::Full
-            } else {
-                FaceKind::Mixed
-            };
-            let piece_edges = mvc::loop_edges(piece_loops.iter().map(|l| l.as_slice()));
-            faces.push(FaceEval {
-                plane,
-                kind,
-                polygon,
-                face_edges,
-                piece_loops,
-                piece_edges,
-            });
+            faces.push(face_eval(arr, fi, f)?);
         }
 
         let input_planes: Vec<Plane> = arr.planes[..arr.n_input].iter().map(|p| p.plane).collect();
-        let words = arr.n_input.div_ceil(64).max(1);
         let mut locator = HashMap::with_capacity(arr.cells.len());
         let mut cells = Vec::with_capacity(arr.cells.len());
         let mut cell_halfspaces = Vec::with_capacity(arr.cells.len());
         for (ci, c) in arr.cells.iter().enumerate() {
-            let mut sum = [0.0; 3];
-            let mut n = 0usize;
-            let mut key = vec![0u64; words];
-            let mut fixed = vec![false; arr.n_input];
-            let mut halfspaces = Vec::new();
-            for cf in &c.faces {
-                let f = arr
-                    .faces
-                    .get(cf.face as usize)
-                    .ok_or_else(|| Error::Geometry(format!("cell {ci}: no face {}", cf.face)))?;
-                for &v in &f.polygon {
-                    let p = pool.positions[v as usize];
-                    for k in 0..3 {
-                        sum[k] += p[k];
-                    }
-                    n += 1;
-                }
-                let p = f.plane as usize;
-                // outward = plane normal ⇒ the cell is on the negative side.
-                let positive = !cf.outward_is_plane_normal;
-                if p < arr.n_input {
-                    fixed[p] = true;
-                    if positive {
-                        key[p / 64] |= 1 << (p % 64);
-                    }
-                }
-                halfspaces.push((arr.planes[p].plane, if positive { 1.0 } else { -1.0 }));
-            }
-            if n == 0 {
-                return Err(Error::Geometry(format!("cell {ci} has no faces")));
-            }
-            let centre = [sum[0] / n as f64, sum[1] / n as f64, sum[2] / n as f64];
-            for (p, plane) in input_planes.iter().enumerate() {
-                if !fixed[p] && plane.signed_distance(centre) > 0.0 {
-                    key[p / 64] |= 1 << (p % 64);
-                }
-            }
+            let (key, halfspaces) = cell_key_and_halfspaces(arr, ci, c, &input_planes)?;
             locator.insert(key.into_boxed_slice(), ci as u32);
-            let kinds: Vec<FaceKind> = c
-                .faces
-                .iter()
-                .map(|cf| faces[cf.face as usize].kind)
-                .collect();
-            let constant = if kinds.iter().all(|&k| k == FaceKind::Full) {
-                Some(1.0)
-            } else if kinds.iter().all(|&k| k == FaceKind::Empty) {
-                Some(-1.0)
-            } else {
-                None
-            };
             cells.push(CellEval {
                 faces: c.faces.iter().map(|cf| cf.face).collect(),
-                constant,
+                constant: constant_value(c, &faces),
             });
             cell_halfspaces.push(halfspaces);
         }
@@ -340,5 +225,139 @@ impl Indicator {
             den += i_face;
         }
         num / den
+    }
+}
+
+/// The (u, v) of pool vertex `v` in the frame of plane `plane_id`.
+fn pool_uv(arr: &Arrangement, v: u32, plane_id: u32) -> Result<[f64; 2]> {
+    let pool = &arr.pool;
+    let v = v as usize;
+    if v >= pool.positions.len() {
+        return Err(Error::Geometry(format!(
+            "arrangement: vertex {v} out of the pool"
+        )));
+    }
+    if let Some(k) = pool
+        .tags
+        .get(v)
+        .and_then(|t| t.iter().position(|&p| p == plane_id))
+    {
+        if let Some(q) = pool.uv.get(v).and_then(|u| u.get(k)) {
+            return Ok(*q);
+        }
+    }
+    // Contract says uv is there; fall back to projecting the position.
+    Ok(arr.planes[plane_id as usize].plane.to_2d(pool.positions[v]))
+}
+
+/// Face `fi` in its plane's frame: polygon, section loops and what its section looks like.
+fn face_eval(arr: &Arrangement, fi: usize, f: &crate::arrangement::Face) -> Result<FaceEval> {
+    let plane = arr
+        .planes
+        .get(f.plane as usize)
+        .ok_or_else(|| Error::Geometry(format!("face {fi}: no plane {}", f.plane)))?
+        .plane;
+    let uv_loop = |l: &[u32]| -> Result<Vec<[f64; 2]>> {
+        l.iter().map(|&v| pool_uv(arr, v, f.plane)).collect()
+    };
+    let polygon: Vec<[f64; 2]> = uv_loop(&f.polygon)?;
+    let face_edges = mvc::loop_edges([polygon.as_slice()]);
+    let mut piece_loops = Vec::new();
+    let mut piece_area = 0.0;
+    for p in &f.pieces {
+        let outer: Vec<[f64; 2]> = uv_loop(&p.outer)?;
+        piece_area += polygon_signed_area(&outer);
+        piece_loops.push(outer);
+        for h in &p.holes {
+            let hole: Vec<[f64; 2]> = uv_loop(h)?;
+            piece_area += polygon_signed_area(&hole);
+            piece_loops.push(hole);
+        }
+    }
+    let face_area = polygon_signed_area(&polygon);
+    let kind = if piece_loops.is_empty() {
+        FaceKind::Empty
+    } else if f.pieces.len() == 1
+        && f.pieces[0].holes.is_empty()
+        && (piece_area - face_area).abs() <= 1e-12 * face_area.abs().max(f64::MIN_POSITIVE)
+    {
+        FaceKind::Full
+    } else {
+        FaceKind::Mixed
+    };
+    let piece_edges = mvc::loop_edges(piece_loops.iter().map(|l| l.as_slice()));
+    Ok(FaceEval {
+        plane,
+        kind,
+        polygon,
+        face_edges,
+        piece_loops,
+        piece_edges,
+    })
+}
+
+/// Cell `ci`'s locator key (one bit per input plane, set on the positive side: from its faces'
+/// planes, for the other planes from the side of the mean of its face vertices) and its bounding
+/// half-spaces (plane, side).
+fn cell_key_and_halfspaces(
+    arr: &Arrangement,
+    ci: usize,
+    c: &crate::arrangement::Cell,
+    input_planes: &[Plane],
+) -> Result<(Vec<u64>, HalfSpaces)> {
+    let words = arr.n_input.div_ceil(64).max(1);
+    let mut sum = [0.0; 3];
+    let mut n = 0usize;
+    let mut key = vec![0u64; words];
+    let mut fixed = vec![false; arr.n_input];
+    let mut halfspaces = Vec::new();
+    for cf in &c.faces {
+        let f = arr
+            .faces
+            .get(cf.face as usize)
+            .ok_or_else(|| Error::Geometry(format!("cell {ci}: no face {}", cf.face)))?;
+        for &v in &f.polygon {
+            let p = arr.pool.positions[v as usize];
+            for k in 0..3 {
+                sum[k] += p[k];
+            }
+            n += 1;
+        }
+        let p = f.plane as usize;
+        // outward = plane normal ⇒ the cell is on the negative side.
+        let positive = !cf.outward_is_plane_normal;
+        if p < arr.n_input {
+            fixed[p] = true;
+            if positive {
+                key[p / 64] |= 1 << (p % 64);
+            }
+        }
+        halfspaces.push((arr.planes[p].plane, if positive { 1.0 } else { -1.0 }));
+    }
+    if n == 0 {
+        return Err(Error::Geometry(format!("cell {ci} has no faces")));
+    }
+    let centre = [sum[0] / n as f64, sum[1] / n as f64, sum[2] / n as f64];
+    for (p, plane) in input_planes.iter().enumerate() {
+        if !fixed[p] && plane.signed_distance(centre) > 0.0 {
+            key[p / 64] |= 1 << (p % 64);
+        }
+    }
+    Ok((key, halfspaces))
+}
+
+/// The cell's value when all its faces are full (1) or all empty (−1).
+fn constant_value(c: &crate::arrangement::Cell, faces: &[FaceEval]) -> Option<f64> {
+    let kinds: Vec<FaceKind> = c
+        .faces
+        .iter()
+        .map(|cf| faces[cf.face as usize].kind)
+        .collect();
+    if kinds.iter().all(|&k| k == FaceKind::Full) {
+        Some(1.0)
+    } else if kinds.iter().all(|&k| k == FaceKind::Empty) {
+        Some(-1.0)
+    } else {
+        None
     }
 }

@@ -254,25 +254,8 @@ impl Field {
             first_level: l0,
             refined: Vec::new(),
         };
-        let mut fine_contour: IntMap<u64, u32> = IntMap::default();
-        for &p in contour_points {
-            *fine_contour
-                .entry(Grid::key(field.grid.cube_of(p)))
-                .or_insert(0) += 1;
-        }
-        let cubes = field.grid.cubes;
-        let mut active: Vec<[u32; 3]> = Vec::new();
-        {
-            let s = 1u32 << (depth - l0);
-            let n: Vec<u32> = (0..3).map(|k| cubes[k].div_ceil(s)).collect();
-            for z in 0..n[2] {
-                for y in 0..n[1] {
-                    for x in 0..n[0] {
-                        active.push([x * s, y * s, z * s]);
-                    }
-                }
-            }
-        }
+        let fine_contour = field.contour_vertices_per_cube(contour_points);
+        let mut active = field.cubes_of_level(l0);
         // Seeds for the finest-level closure inside coarse surface leaves.
         let mut seeds: Vec<[u32; 3]> = Vec::new();
         for l in l0..=depth {
@@ -288,90 +271,129 @@ impl Field {
                 field.refined.push(IntSet::default());
                 break;
             }
-            let mut contour_count: IntMap<u64, u32> = IntMap::default();
-            for (&k, &n) in &fine_contour {
-                let c = Grid::unkey(k);
-                *contour_count
-                    .entry(Grid::key([c[0] / s * s, c[1] / s * s, c[2] / s * s]))
-                    .or_insert(0) += n;
-            }
-            let half = s / 2;
-            // Sign-changing cubes that may stay leaves: check their centre against trilinear.
-            let must = l + refinement.leaf_slack < depth;
-            let mut candidates = Vec::new();
-            let mut refine = Vec::new();
-            for &i in &active {
-                let v = field.corner_values(i, s);
-                let n_in = v.iter().filter(|&&x| is_inside(x)).count();
-                let crossing = n_in != 0 && n_in != 8;
-                let contour = contour_count.get(&Grid::key(i)).copied().unwrap_or(0);
-                if contour >= refinement.contour_vertices || (crossing && must) {
-                    refine.push(i);
-                } else if crossing {
-                    candidates.push(i);
-                }
-            }
-            let centres: Vec<u64> = candidates
-                .iter()
-                .map(|&i| Grid::key([i[0] + half, i[1] + half, i[2] + half]))
-                .collect();
-            field.evaluate(ind, centres.iter().copied());
-            for (&i, ck) in candidates.iter().zip(&centres) {
-                let v = field.corner_values(i, s);
-                let mean = v.iter().sum::<f64>() / 8.0;
-                let (lo, hi) = v
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                        (a.min(x), b.max(x))
-                    });
-                // Zero misplaced by about |error| / slope, slope ≈ (hi − lo) / s finest steps.
-                let err = (field.values[ck] - mean).abs();
-                if err * s as f64 > refinement.tolerance * (hi - lo) {
-                    refine.push(i);
-                } else {
-                    field.coarse_surface_leaves += 1;
-                    // Seed: the finest cube at the zero crossing of each sign-changing cube edge.
-                    for (a, b) in CUBE_EDGES {
-                        let (fa, fb) = (v[a], v[b]);
-                        if is_inside(fa) == is_inside(fb) {
-                            continue;
-                        }
-                        let t = fa / (fa - fb);
-                        let ca = corner(i, s, a);
-                        let cb = corner(i, s, b);
-                        let mut cube = [0u32; 3];
-                        for k in 0..3 {
-                            cube[k] = if ca[k] == cb[k] {
-                                if ca[k] == i[k] {
-                                    i[k]
-                                } else {
-                                    ca[k] - 1
-                                }
-                            } else {
-                                let x = (i[k] as f64 + t * s as f64).floor() as u32;
-                                x.clamp(i[k], i[k] + s - 1)
-                            };
-                            cube[k] = cube[k].min(cubes[k] - 1);
-                        }
-                        seeds.push(cube);
-                    }
-                }
-            }
+            let refine = field.refine_level(ind, &active, l, &fine_contour, refinement, &mut seeds);
             field
                 .refined
                 .push(refine.iter().map(|&i| Grid::key(i)).collect());
-            let mut next = Vec::new();
-            for &i in &refine {
-                for c in 0..8 {
-                    let ch = corner(i, half, c);
-                    if (0..3).all(|k| ch[k] < cubes[k]) {
-                        next.push(ch);
-                    }
+            active = field.children(&refine, s / 2);
+        }
+        field.close_zero_set(active, seeds, progress);
+        field
+    }
+
+    /// Contour vertices per finest cube.
+    fn contour_vertices_per_cube(&self, contour_points: &[[f64; 3]]) -> IntMap<u64, u32> {
+        let mut fine_contour: IntMap<u64, u32> = IntMap::default();
+        for &p in contour_points {
+            *fine_contour
+                .entry(Grid::key(self.grid.cube_of(p)))
+                .or_insert(0) += 1;
+        }
+        fine_contour
+    }
+
+    /// Every cube of level `l` (lower corners, x fastest).
+    fn cubes_of_level(&self, l: u32) -> Vec<[u32; 3]> {
+        let cubes = self.grid.cubes;
+        let s = 1u32 << (self.grid.depth - l);
+        let n: Vec<u32> = (0..3).map(|k| cubes[k].div_ceil(s)).collect();
+        let mut active = Vec::new();
+        for z in 0..n[2] {
+            for y in 0..n[1] {
+                for x in 0..n[0] {
+                    active.push([x * s, y * s, z * s]);
                 }
             }
-            active = next;
         }
-        // Finest level: follow the zero set across cube faces until it closes.
+        active
+    }
+
+    /// The cubes of level `l` (corners evaluated) to refine: those holding contour vertices, those
+    /// with a sign change above `depth − leaf_slack`, and below it those whose centre the trilinear
+    /// interpolation misses. The sign-changing cubes that stay leaves seed the closure.
+    fn refine_level(
+        &mut self,
+        ind: &Indicator,
+        active: &[[u32; 3]],
+        l: u32,
+        fine_contour: &IntMap<u64, u32>,
+        refinement: Refinement,
+        seeds: &mut Vec<[u32; 3]>,
+    ) -> Vec<[u32; 3]> {
+        let depth = self.grid.depth;
+        let s = 1u32 << (depth - l);
+        let mut contour_count: IntMap<u64, u32> = IntMap::default();
+        for (&k, &n) in fine_contour {
+            let c = Grid::unkey(k);
+            *contour_count
+                .entry(Grid::key([c[0] / s * s, c[1] / s * s, c[2] / s * s]))
+                .or_insert(0) += n;
+        }
+        let half = s / 2;
+        // Sign-changing cubes that may stay leaves: check their centre against trilinear.
+        let must = l + refinement.leaf_slack < depth;
+        let mut candidates = Vec::new();
+        let mut refine = Vec::new();
+        for &i in active {
+            let v = self.corner_values(i, s);
+            let n_in = v.iter().filter(|&&x| is_inside(x)).count();
+            let crossing = n_in != 0 && n_in != 8;
+            let contour = contour_count.get(&Grid::key(i)).copied().unwrap_or(0);
+            if contour >= refinement.contour_vertices || (crossing && must) {
+                refine.push(i);
+            } else if crossing {
+                candidates.push(i);
+            }
+        }
+        let centres: Vec<u64> = candidates
+            .iter()
+            .map(|&i| Grid::key([i[0] + half, i[1] + half, i[2] + half]))
+            .collect();
+        self.evaluate(ind, centres.iter().copied());
+        for (&i, ck) in candidates.iter().zip(&centres) {
+            let v = self.corner_values(i, s);
+            let mean = v.iter().sum::<f64>() / 8.0;
+            let (lo, hi) = v
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+            // Zero misplaced by about |error| / slope, slope ≈ (hi − lo) / s finest steps.
+            let err = (self.values[ck] - mean).abs();
+            if err * s as f64 > refinement.tolerance * (hi - lo) {
+                refine.push(i);
+            } else {
+                self.coarse_surface_leaves += 1;
+                push_crossing_seeds(i, s, &v, self.grid.cubes, seeds);
+            }
+        }
+        refine
+    }
+
+    /// The children (side `half`) of the cubes `refine` that lie in the grid.
+    fn children(&self, refine: &[[u32; 3]], half: u32) -> Vec<[u32; 3]> {
+        let cubes = self.grid.cubes;
+        let mut next = Vec::new();
+        for &i in refine {
+            for c in 0..8 {
+                let ch = corner(i, half, c);
+                if (0..3).all(|k| ch[k] < cubes[k]) {
+                    next.push(ch);
+                }
+            }
+        }
+        next
+    }
+
+    /// Finest level: follow the zero set across cube faces from `active` and `seeds` until it
+    /// closes.
+    fn close_zero_set(
+        &mut self,
+        active: Vec<[u32; 3]>,
+        seeds: Vec<[u32; 3]>,
+        progress: &dyn Fn(&str, u64),
+    ) {
+        let cubes = self.grid.cubes;
         let mut visited: IntSet<u64> = IntSet::default();
         let mut frontier = Vec::new();
         for i in active.into_iter().chain(seeds) {
@@ -393,21 +415,21 @@ impl Field {
                 .iter()
                 .flat_map(|&i| (0..8).map(move |c| Grid::key(corner(i, 1, c))))
                 .collect();
-            field.fill(keys.into_iter());
-            field.flood_waves += 1;
+            self.fill(keys.into_iter());
+            self.flood_waves += 1;
             #[allow(clippy::manual_is_multiple_of)] // `is_multiple_of` needs Rust 1.87
-            if field.flood_waves % 16 == 0 {
-                progress("zero-set closure", field.evaluations);
+            if self.flood_waves % 16 == 0 {
+                progress("zero-set closure", self.evaluations);
             }
             let mut next = Vec::new();
             for &i in &frontier {
-                let v = field.corner_values(i, 1);
+                let v = self.corner_values(i, 1);
                 let inside: Vec<bool> = v.iter().map(|&x| is_inside(x)).collect();
                 let n_in = inside.iter().filter(|&&b| b).count();
                 if n_in == 0 || n_in == 8 {
                     continue;
                 }
-                field.surface_cubes.push(i);
+                self.surface_cubes.push(i);
                 for (axis, side, cs) in FACES {
                     let fi = cs.iter().filter(|&&c| inside[c]).count();
                     if fi == 0 || fi == 4 {
@@ -432,7 +454,41 @@ impl Field {
             }
             frontier = next;
         }
-        field
+    }
+}
+
+/// Seeds of a coarse surface leaf (lower corner `i`, side `s`, corner values `v`): the finest cube
+/// at the zero crossing of each sign-changing cube edge.
+fn push_crossing_seeds(
+    i: [u32; 3],
+    s: u32,
+    v: &[f64; 8],
+    cubes: [u32; 3],
+    seeds: &mut Vec<[u32; 3]>,
+) {
+    for (a, b) in CUBE_EDGES {
+        let (fa, fb) = (v[a], v[b]);
+        if is_inside(fa) == is_inside(fb) {
+            continue;
+        }
+        let t = fa / (fa - fb);
+        let ca = corner(i, s, a);
+        let cb = corner(i, s, b);
+        let mut cube = [0u32; 3];
+        for k in 0..3 {
+            cube[k] = if ca[k] == cb[k] {
+                if ca[k] == i[k] {
+                    i[k]
+                } else {
+                    ca[k] - 1
+                }
+            } else {
+                let x = (i[k] as f64 + t * s as f64).floor() as u32;
+                x.clamp(i[k], i[k] + s - 1)
+            };
+            cube[k] = cube[k].min(cubes[k] - 1);
+        }
+        seeds.push(cube);
     }
 }
 

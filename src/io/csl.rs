@@ -144,194 +144,14 @@ pub fn parse_csl(text: &str, file_name: &str) -> Result<Sections> {
 /// Parse CSL text with `options` (`strict`: no repairs, see `ReadOptions`).
 pub fn parse_csl_with(text: &str, file_name: &str, options: &ReadOptions) -> Result<Sections> {
     let mut t = Tokens::new(text);
-    let err =
-        |line, plane, comp, reason: String| Error::input(at(file_name, line, plane, comp), reason);
-
-    match t.next() {
-        (Some("CSLC"), _) => {}
-        (Some(other), l) => {
-            return Err(err(
-                l,
-                None,
-                None,
-                format!(
-                    "not a CSL file: expected header `CSLC`, found `{}`",
-                    clip(other)
-                ),
-            ))
-        }
-        (None, l) => {
-            return Err(err(
-                l,
-                None,
-                None,
-                "empty file: expected header `CSLC`".into(),
-            ))
-        }
-    }
+    expect_header(&mut t, file_name)?;
     let n_planes = uint(&mut t, file_name, None, None, "the number of planes")?;
     let n_labels = uint(&mut t, file_name, None, None, "the number of labels")?;
 
     let mut raw = Vec::new();
     for _ in 0..n_planes {
-        let (first, line) = t.next();
-        let index = match first {
-            Some(tok) => parse_uint(tok).ok_or_else(|| {
-                err(
-                    line,
-                    None,
-                    None,
-                    format!("expected a plane index, found `{}`", clip(tok)),
-                )
-            })?,
-            None => {
-                return Err(err(
-                    line,
-                    None,
-                    None,
-                    format!(
-                        "unexpected end of file: {} plane(s) declared, {} found",
-                        n_planes,
-                        raw.len()
-                    ),
-                ))
-            }
-        };
-        let p = Some(index);
-        let n_vertices = uint(&mut t, file_name, p, None, "the number of vertices")?;
-        let n_components = uint(&mut t, file_name, p, None, "the number of components")?;
-        let mut eq = [0.0; 4];
-        for (k, x) in eq.iter_mut().enumerate() {
-            *x = float(&mut t, file_name, p, ["a", "b", "c", "d"][k])?;
-        }
-        let plane = if eq[..3] == [0.0; 3] {
-            return Err(err(line, p, None, "plane normal (a, b, c) is zero".into()));
-        } else {
-            Plane::from_equation([eq[0], eq[1], eq[2]], eq[3]).ok_or_else(|| {
-                err(
-                    line,
-                    p,
-                    None,
-                    "plane equation cannot be normalised (too large or too small)".into(),
-                )
-            })?
-        };
-        let mut vertices = Vec::new();
-        let mut vertex_lines = Vec::new();
-        for _ in 0..n_vertices {
-            let mut v = [0.0; 3];
-            let mut vline = 0;
-            for (k, x) in v.iter_mut().enumerate() {
-                let (tok, l) = t.next();
-                vline = l;
-                *x = number(tok, l, file_name, p, ["x", "y", "z"][k])?;
-            }
-            vertices.push(v);
-            vertex_lines.push(vline);
-        }
-        let mut components = Vec::new();
-        for c in 0..n_components {
-            let pc = (p, Some(c));
-            let (tok, cline) = t.next();
-            let tok = tok.ok_or_else(|| {
-                err(
-                    cline,
-                    pc.0,
-                    pc.1,
-                    "unexpected end of file: expected a component".into(),
-                )
-            })?;
-            let (count, hole_of) = match tok.split_once(['h', 'H']) {
-                Some((n, parent)) => (parse_uint(n), parse_uint(parent).map(Some)),
-                None => (parse_uint(tok), Some(None)),
-            };
-            let (Some(count), Some(hole_of)) = (count, hole_of) else {
-                return Err(err(
-                    cline,
-                    pc.0,
-                    pc.1,
-                    format!(
-                        "expected a vertex count like `12` or `12h0`, found `{}`",
-                        clip(tok)
-                    ),
-                ));
-            };
-            if let Some(parent) = hole_of {
-                if parent >= n_components || parent == c {
-                    return Err(err(
-                        cline,
-                        pc.0,
-                        pc.1,
-                        format!(
-                            "hole parent {parent} is not another component of this plane (components 0..{})",
-                            n_components
-                        ),
-                    ));
-                }
-            }
-            let (ltok, lline) = t.next();
-            let label = match ltok {
-                Some(s) => s.parse::<i32>().map_err(|_| {
-                    err(
-                        lline,
-                        pc.0,
-                        pc.1,
-                        format!("expected an integer label, found `{}`", clip(s)),
-                    )
-                })?,
-                None => {
-                    return Err(err(
-                        lline,
-                        pc.0,
-                        pc.1,
-                        "unexpected end of file: expected a label".into(),
-                    ))
-                }
-            };
-            let mut indices = Vec::new();
-            for k in 0..count {
-                let (itok, iline) = t.next();
-                let Some(itok) = itok else {
-                    return Err(err(
-                        iline,
-                        pc.0,
-                        pc.1,
-                        format!("unexpected end of file: component declares {count} vertices, {k} found"),
-                    ));
-                };
-                let i = parse_uint(itok).ok_or_else(|| {
-                    err(
-                        iline,
-                        pc.0,
-                        pc.1,
-                        format!("expected a vertex index, found `{}`", clip(itok)),
-                    )
-                })?;
-                if i >= n_vertices {
-                    return Err(err(
-                        iline,
-                        pc.0,
-                        pc.1,
-                        format!("vertex index {i} out of range (the plane has {n_vertices} vertices, 0-based)"),
-                    ));
-                }
-                indices.push(i);
-            }
-            components.push(RawComponent {
-                line: cline,
-                hole_of,
-                label,
-                indices,
-            });
-        }
-        raw.push(RawPlane {
-            index,
-            line,
-            plane,
-            vertices,
-            vertex_lines,
-            components,
-        });
+        let plane = read_plane(&mut t, file_name, n_planes, raw.len())?;
+        raw.push(plane);
     }
     let mut warnings = Vec::new();
     if let (Some(tok), l) = t.next() {
@@ -341,13 +161,261 @@ pub fn parse_csl_with(text: &str, file_name: &str, options: &ReadOptions) -> Res
             clip(tok)
         ));
     }
+    check_holes_of_outers(&raw, file_name)?;
 
-    // Holes may only refer to outer components.
-    for rp in &raw {
+    let (tol, diag) = off_plane_tolerance(&raw);
+    if !options.strict {
+        repair_planes(&mut raw, tol, file_name, &mut warnings);
+    }
+
+    let mut sections = Vec::new();
+    let mut loc = CslLocator {
+        file: file_name,
+        planes: Vec::new(),
+        regions: Vec::new(),
+        component_lines: Vec::new(),
+    };
+    for rp in raw {
+        sections.push(to_section(rp, tol, diag, &mut loc)?);
+    }
+    let sections = Sections {
+        sections,
+        n_labels,
+        warnings,
+        label_names: Default::default(),
+    };
+    validate::validate_with_options(sections, &loc, options)
+}
+
+/// An input error at `FILE:LINE: plane P, component C`.
+fn input_error(
+    file: &str,
+    line: usize,
+    plane: Option<usize>,
+    comp: Option<usize>,
+    reason: String,
+) -> Error {
+    Error::input(at(file, line, plane, comp), reason)
+}
+
+fn expect_header(t: &mut Tokens, file: &str) -> Result<()> {
+    match t.next() {
+        (Some("CSLC"), _) => Ok(()),
+        (Some(other), l) => Err(input_error(
+            file,
+            l,
+            None,
+            None,
+            format!(
+                "not a CSL file: expected header `CSLC`, found `{}`",
+                clip(other)
+            ),
+        )),
+        (None, l) => Err(input_error(
+            file,
+            l,
+            None,
+            None,
+            "empty file: expected header `CSLC`".into(),
+        )),
+    }
+}
+
+/// One plane block: header line, vertices and components. `found` planes were read before it.
+fn read_plane(t: &mut Tokens, file: &str, n_planes: usize, found: usize) -> Result<RawPlane> {
+    let (first, line) = t.next();
+    let index = match first {
+        Some(tok) => parse_uint(tok).ok_or_else(|| {
+            input_error(
+                file,
+                line,
+                None,
+                None,
+                format!("expected a plane index, found `{}`", clip(tok)),
+            )
+        })?,
+        None => {
+            return Err(input_error(
+                file,
+                line,
+                None,
+                None,
+                format!("unexpected end of file: {n_planes} plane(s) declared, {found} found"),
+            ))
+        }
+    };
+    let p = Some(index);
+    let n_vertices = uint(t, file, p, None, "the number of vertices")?;
+    let n_components = uint(t, file, p, None, "the number of components")?;
+    let plane = read_plane_equation(t, file, p, line)?;
+    let (vertices, vertex_lines) = read_vertices(t, file, p, n_vertices)?;
+    let mut components = Vec::new();
+    for c in 0..n_components {
+        components.push(read_component(t, file, p, c, n_components, n_vertices)?);
+    }
+    Ok(RawPlane {
+        index,
+        line,
+        plane,
+        vertices,
+        vertex_lines,
+        components,
+    })
+}
+
+/// The plane's `a b c d`, normalised.
+fn read_plane_equation(t: &mut Tokens, file: &str, p: Option<usize>, line: usize) -> Result<Plane> {
+    let mut eq = [0.0; 4];
+    for (k, x) in eq.iter_mut().enumerate() {
+        *x = float(t, file, p, ["a", "b", "c", "d"][k])?;
+    }
+    if eq[..3] == [0.0; 3] {
+        return Err(input_error(
+            file,
+            line,
+            p,
+            None,
+            "plane normal (a, b, c) is zero".into(),
+        ));
+    }
+    Plane::from_equation([eq[0], eq[1], eq[2]], eq[3]).ok_or_else(|| {
+        input_error(
+            file,
+            line,
+            p,
+            None,
+            "plane equation cannot be normalised (too large or too small)".into(),
+        )
+    })
+}
+
+/// `n_vertices` points and the line each ends on.
+fn read_vertices(
+    t: &mut Tokens,
+    file: &str,
+    p: Option<usize>,
+    n_vertices: usize,
+) -> Result<(Vec<[f64; 3]>, Vec<usize>)> {
+    let mut vertices = Vec::new();
+    let mut vertex_lines = Vec::new();
+    for _ in 0..n_vertices {
+        let mut v = [0.0; 3];
+        let mut vline = 0;
+        for (k, x) in v.iter_mut().enumerate() {
+            let (tok, l) = t.next();
+            vline = l;
+            *x = number(tok, l, file, p, ["x", "y", "z"][k])?;
+        }
+        vertices.push(v);
+        vertex_lines.push(vline);
+    }
+    Ok((vertices, vertex_lines))
+}
+
+/// Component `c` of plane `p`: `count[hP] label i0 i1 ...`.
+fn read_component(
+    t: &mut Tokens,
+    file: &str,
+    p: Option<usize>,
+    c: usize,
+    n_components: usize,
+    n_vertices: usize,
+) -> Result<RawComponent> {
+    let err = |line, reason: String| input_error(file, line, p, Some(c), reason);
+    let (tok, cline) = t.next();
+    let tok =
+        tok.ok_or_else(|| err(cline, "unexpected end of file: expected a component".into()))?;
+    let (count, hole_of) = match tok.split_once(['h', 'H']) {
+        Some((n, parent)) => (parse_uint(n), parse_uint(parent).map(Some)),
+        None => (parse_uint(tok), Some(None)),
+    };
+    let (Some(count), Some(hole_of)) = (count, hole_of) else {
+        return Err(err(
+            cline,
+            format!(
+                "expected a vertex count like `12` or `12h0`, found `{}`",
+                clip(tok)
+            ),
+        ));
+    };
+    if let Some(parent) = hole_of {
+        if parent >= n_components || parent == c {
+            return Err(err(
+                cline,
+                format!(
+                    "hole parent {parent} is not another component of this plane (components 0..{})",
+                    n_components
+                ),
+            ));
+        }
+    }
+    let (ltok, lline) = t.next();
+    let label = match ltok {
+        Some(s) => s.parse::<i32>().map_err(|_| {
+            err(
+                lline,
+                format!("expected an integer label, found `{}`", clip(s)),
+            )
+        })?,
+        None => {
+            return Err(err(
+                lline,
+                "unexpected end of file: expected a label".into(),
+            ))
+        }
+    };
+    let indices = read_indices(t, count, n_vertices, &err)?;
+    Ok(RawComponent {
+        line: cline,
+        hole_of,
+        label,
+        indices,
+    })
+}
+
+/// A component's `count` vertex indices, each below `n_vertices`; `err` places the messages.
+fn read_indices(
+    t: &mut Tokens,
+    count: usize,
+    n_vertices: usize,
+    err: &dyn Fn(usize, String) -> Error,
+) -> Result<Vec<usize>> {
+    let mut indices = Vec::new();
+    for k in 0..count {
+        let (itok, iline) = t.next();
+        let Some(itok) = itok else {
+            return Err(err(
+                iline,
+                format!("unexpected end of file: component declares {count} vertices, {k} found"),
+            ));
+        };
+        let i = parse_uint(itok).ok_or_else(|| {
+            err(
+                iline,
+                format!("expected a vertex index, found `{}`", clip(itok)),
+            )
+        })?;
+        if i >= n_vertices {
+            return Err(err(
+                iline,
+                format!(
+                    "vertex index {i} out of range (the plane has {n_vertices} vertices, 0-based)"
+                ),
+            ));
+        }
+        indices.push(i);
+    }
+    Ok(indices)
+}
+
+/// Holes may only refer to outer components.
+fn check_holes_of_outers(raw: &[RawPlane], file: &str) -> Result<()> {
+    for rp in raw {
         for (c, comp) in rp.components.iter().enumerate() {
             if let Some(parent) = comp.hole_of {
                 if rp.components[parent].hole_of.is_some() {
-                    return Err(err(
+                    return Err(input_error(
+                        file,
                         comp.line,
                         Some(rp.index),
                         Some(c),
@@ -357,8 +425,11 @@ pub fn parse_csl_with(text: &str, file_name: &str, options: &ReadOptions) -> Res
             }
         }
     }
+    Ok(())
+}
 
-    // Snap to the plane; the tolerance is relative to the bounding box of every vertex.
+/// The snapping tolerance and the diagonal it is relative to: the bounding box of every vertex.
+fn off_plane_tolerance(raw: &[RawPlane]) -> (f64, f64) {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for v in raw.iter().flat_map(|r| &r.vertices) {
         for k in 0..3 {
@@ -371,95 +442,86 @@ pub fn parse_csl_with(text: &str, file_name: &str, options: &ReadOptions) -> Res
     } else {
         0.0
     };
-    let tol = OFF_PLANE_RELATIVE_TOLERANCE * diag;
-    if !options.strict {
-        let mut stated: Vec<StatedPlane> = raw
-            .iter()
-            .map(|r| StatedPlane {
-                plane: r.plane,
-                vertices: &r.vertices,
-                loops: r.components.iter().map(|c| &c.indices[..]).collect(),
-                offset_form: true,
-                refittable: true,
-                location: at(file_name, r.line, Some(r.index), None),
-            })
-            .collect();
-        repair_plane_equations(&mut stated, tol, file_name, &mut warnings);
-        let repaired: Vec<Plane> = stated.iter().map(|p| p.plane).collect();
-        for (r, plane) in raw.iter_mut().zip(repaired) {
-            r.plane = plane;
-        }
-    }
+    (OFF_PLANE_RELATIVE_TOLERANCE * diag, diag)
+}
 
-    let mut sections = Vec::new();
-    let mut loc = CslLocator {
-        file: file_name,
-        planes: Vec::new(),
-        regions: Vec::new(),
-        component_lines: Vec::new(),
-    };
-    for rp in raw {
-        let mut max_off: f64 = 0.0;
-        let mut points2 = Vec::with_capacity(rp.vertices.len());
-        for (i, v) in rp.vertices.iter().enumerate() {
-            let off = rp.plane.signed_distance(*v).abs();
-            if off > tol {
-                return Err(err(
-                    rp.vertex_lines[i],
-                    Some(rp.index),
-                    None,
-                    format!(
-                        "vertex {i} is {off:.3e} off its plane; tolerance {tol:.3e} ({OFF_PLANE_RELATIVE_TOLERANCE} x model bounding-box diagonal {diag:.3e})"
-                    ),
-                ));
-            }
-            max_off = max_off.max(off);
-            let q = rp.plane.to_2d(*v);
-            points2.push([
-                check_coordinate(q[0]).unwrap_or(q[0]),
-                check_coordinate(q[1]).unwrap_or(q[1]),
-            ]);
-        }
-        let contour = |comp: &RawComponent| {
-            Contour::from_2d(
-                &rp.plane,
-                comp.indices.iter().map(|&i| points2[i]).collect(),
-            )
-        };
-        let mut regions = Vec::new();
-        let mut region_components = Vec::new();
-        for (c, comp) in rp.components.iter().enumerate() {
-            if comp.hole_of.is_some() {
-                continue;
-            }
-            let holes: Vec<usize> = (0..rp.components.len())
-                .filter(|&h| rp.components[h].hole_of == Some(c))
-                .collect();
-            regions.push(Region {
-                label: comp.label,
-                outer: contour(comp),
-                holes: holes.iter().map(|&h| contour(&rp.components[h])).collect(),
-            });
-            region_components.push((c, holes));
-        }
-        loc.planes.push((rp.index, rp.line));
-        loc.regions.push(region_components);
-        loc.component_lines
-            .push(rp.components.iter().map(|c| c.line).collect());
-        sections.push(Section {
-            plane: rp.plane,
-            regions,
-            source_index: rp.index,
-            max_off_plane: max_off,
-        });
+/// Refit plane equations their vertices do not lie on (see `repair_plane_equations`).
+fn repair_planes(raw: &mut [RawPlane], tol: f64, file: &str, warnings: &mut Vec<String>) {
+    let mut stated: Vec<StatedPlane> = raw
+        .iter()
+        .map(|r| StatedPlane {
+            plane: r.plane,
+            vertices: &r.vertices,
+            loops: r.components.iter().map(|c| &c.indices[..]).collect(),
+            offset_form: true,
+            refittable: true,
+            location: at(file, r.line, Some(r.index), None),
+        })
+        .collect();
+    repair_plane_equations(&mut stated, tol, file, warnings);
+    let repaired: Vec<Plane> = stated.iter().map(|p| p.plane).collect();
+    for (r, plane) in raw.iter_mut().zip(repaired) {
+        r.plane = plane;
     }
-    let sections = Sections {
-        sections,
-        n_labels,
-        warnings,
-        label_names: Default::default(),
+}
+
+/// Project a plane's vertices to 2D (each within `tol` of the plane) and group its components
+/// into regions; `loc` learns where each came from.
+fn to_section(rp: RawPlane, tol: f64, diag: f64, loc: &mut CslLocator) -> Result<Section> {
+    let mut max_off: f64 = 0.0;
+    let mut points2 = Vec::with_capacity(rp.vertices.len());
+    for (i, v) in rp.vertices.iter().enumerate() {
+        let off = rp.plane.signed_distance(*v).abs();
+        if off > tol {
+            return Err(input_error(
+                loc.file,
+                rp.vertex_lines[i],
+                Some(rp.index),
+                None,
+                format!(
+                    "vertex {i} is {off:.3e} off its plane; tolerance {tol:.3e} ({OFF_PLANE_RELATIVE_TOLERANCE} x model bounding-box diagonal {diag:.3e})"
+                ),
+            ));
+        }
+        max_off = max_off.max(off);
+        let q = rp.plane.to_2d(*v);
+        points2.push([
+            check_coordinate(q[0]).unwrap_or(q[0]),
+            check_coordinate(q[1]).unwrap_or(q[1]),
+        ]);
+    }
+    let contour = |comp: &RawComponent| {
+        Contour::from_2d(
+            &rp.plane,
+            comp.indices.iter().map(|&i| points2[i]).collect(),
+        )
     };
-    validate::validate_with_options(sections, &loc, options)
+    let mut regions = Vec::new();
+    let mut region_components = Vec::new();
+    for (c, comp) in rp.components.iter().enumerate() {
+        if comp.hole_of.is_some() {
+            continue;
+        }
+        let holes: Vec<usize> = (0..rp.components.len())
+            .filter(|&h| rp.components[h].hole_of == Some(c))
+            .collect();
+        regions.push(Region {
+            label: comp.label,
+            outer: contour(comp),
+            holes: holes.iter().map(|&h| contour(&rp.components[h])).collect(),
+        });
+        region_components.push((c, holes));
+    }
+    loc.planes.push((rp.index, rp.line));
+    loc.regions.push(region_components);
+    loc.component_lines
+        .push(rp.components.iter().map(|c| c.line).collect());
+    Ok(Section {
+        plane: rp.plane,
+        regions,
+        source_index: rp.index,
+        max_off_plane: max_off,
+    })
 }
 
 fn clip(s: &str) -> String {

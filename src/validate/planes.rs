@@ -13,7 +13,11 @@
 //!    with the stated plane: then the others are misplaced, and the reader rejects them. Not for a
 //!    plane that has contours given in its own frame (JSON `points2d`): those define points of the
 //!    stated plane.
-use crate::sections::{dot, sub, Plane};
+//!
+//! Also the check, for every reader, that no plane is given twice (`check_duplicate_planes`).
+use super::{model_diagonal, Locator, DUPLICATE_PLANE_RELATIVE_TOLERANCE};
+use crate::error::{Error, Result};
+use crate::sections::{dot, sub, Plane, Sections};
 
 /// A plane as a reader found it, with the vertices given in 3D.
 pub struct StatedPlane<'a> {
@@ -148,4 +152,46 @@ fn fit_plane(r: &StatedPlane) -> Option<Plane> {
     }
     let plane = Plane::from_equation(normal, 0.0)?;
     Plane::from_equation(plane.normal, -dot(plane.normal, mean))
+}
+
+/// No two sections lie on the same plane (within `DUPLICATE_PLANE_RELATIVE_TOLERANCE` of the
+/// model's diagonal over its bounding box).
+pub(super) fn check_duplicate_planes(sections: &Sections, loc: &dyn Locator) -> Result<()> {
+    let corners: Vec<[f64; 3]> = match sections.bounding_box() {
+        Some((lo, hi)) => (0..8)
+            .map(|k| {
+                [
+                    if k & 1 == 0 { lo[0] } else { hi[0] },
+                    if k & 2 == 0 { lo[1] } else { hi[1] },
+                    if k & 4 == 0 { lo[2] } else { hi[2] },
+                ]
+            })
+            .collect(),
+        None => vec![[0.0; 3]],
+    };
+    let diag = model_diagonal(sections);
+    let eps = DUPLICATE_PLANE_RELATIVE_TOLERANCE * if diag > 0.0 { diag } else { 1.0 };
+    let planes: Vec<Plane> = sections.sections.iter().map(|s| s.plane).collect();
+    for j in 0..planes.len() {
+        for i in 0..j {
+            let (a, b) = (&planes[i], &planes[j]);
+            let c = dot(a.normal, b.normal);
+            if c.abs() < 1.0 - 1e-6 {
+                continue;
+            }
+            let s = c.signum();
+            let normals_equal = (0..3).all(|k| (a.normal[k] - s * b.normal[k]).abs() <= 1e-12);
+            let same = corners
+                .iter()
+                .all(|&x| (a.signed_distance(x) - s * b.signed_distance(x)).abs() <= eps)
+                && (normals_equal || sections.bounding_box().is_some());
+            if same {
+                return Err(Error::input(
+                    loc.plane(j),
+                    format!("duplicate plane: same plane as {}", loc.plane(i)),
+                ));
+            }
+        }
+    }
+    Ok(())
 }
