@@ -346,147 +346,286 @@ fn run_cell_with(
             ..Default::default()
         });
     }
-    let mut timing = CellTiming::default();
-    let mut clock = std::time::Instant::now();
-    let mut tagged = true;
-    let mut dt = match start {
-        Start::Reuse(st) => {
-            tagged = st.tagged;
-            st.dt.clone()
-        }
-        _ => cell_delaunay(&input, &mut tagged)?,
+    let mut clock = Clock {
+        timing: CellTiming::default(),
+        last: std::time::Instant::now(),
     };
-    let mut kept_start: Option<Box<RunStart>> = None;
-    let mut cx = Complex::from_delaunay(input.points.len(), &dt);
-    timing.delaunay += lap(&mut clock);
-    let mut n_branch = 0;
-    let mut n_cut = 0;
-    let mut cut_ids: Vec<u32> = Vec::new();
-    let mut n_pairs = 0;
-    let mut n_pair_steiner = 0;
-    let mut pairs_not_edges: std::collections::BTreeMap<u32, u64> = Default::default();
-    let mut pair_list: Vec<(usize, u32, u32)> = Vec::new();
-    let lookup = shared_lookup(&input, shared);
-    let mut n_foreign = 0u64;
+    let mut tri = match start {
+        Start::Reuse(st) => Tri {
+            dt: st.dt.clone(),
+            tagged: st.tagged,
+        },
+        _ => {
+            let mut tagged = true;
+            let dt = cell_delaunay(&input, &mut tagged)?;
+            Tri { dt, tagged }
+        }
+    };
+    let mut cx = Complex::from_delaunay(input.points.len(), &tri.dt);
+    clock.lap(|t| &mut t.delaunay);
+    let mut sampled = Sampled::default();
     if sampling.branching || sampling.cutting {
-        for round in 0..BRANCHING_ROUNDS {
-            let (branch_chains, cut_chains) = match start {
-                Start::Reuse(st) if round == 0 => (st.branching.clone(), st.cutting.clone()),
-                _ => {
-                    let chains = diagram_samples(&input, &cx, sampling, &mut timing, &mut clock);
-                    if round == 0 && matches!(start, Start::Keep) {
-                        kept_start = Some(Box::new(RunStart {
-                            points: input.points.clone(),
-                            dt: dt.clone(),
-                            tagged,
-                            branching: chains.0.clone(),
-                            cutting: chains.1.clone(),
-                        }));
-                    }
-                    chains
+        let how = SampleRun {
+            sampling,
+            pair_rounds,
+            shared,
+            start,
+        };
+        sampled = insert_diagram_samples(&mut input, &mut tri, &mut cx, &how, &mut clock)?;
+    }
+    let top = section_triangles(&input, &cx);
+    let missing = missing_contour_edges(&input, &top);
+    clock.lap(|t| &mut t.conformity);
+    if stop == Stop::AtConformity || (stop == Stop::AtMissingEdges && !missing.is_empty()) {
+        return Ok(CellResult {
+            input: Some(input),
+            start: sampled.start,
+            missing,
+            tets: cx.len() as u64,
+            timing: clock.timing,
+            untagged: !tri.tagged,
+            ..Default::default()
+        });
+    }
+    let cl = classify(&input, &cx);
+    let flat_tets = cl.ty.iter().filter(|&&t| t == TetType::Flat).count() as u64;
+    clock.lap(|t| &mut t.classify);
+    let (alive, counts) = prune(&cx, &cl);
+    clock.lap(|t| &mut t.prune);
+    let (kept, fillable, external) = by_fate(&cx, &alive, &cl);
+    let faces = face_sides(&input, &cx, &top, &alive);
+    let (flat_area, cutting_on_flat_border) = flat_zones(&input, &faces, &sampled.cut_ids);
+    clock.lap(|t| &mut t.output);
+    Ok(CellResult {
+        input: Some(input),
+        start: sampled.start,
+        missing,
+        kept,
+        fillable,
+        external,
+        faces,
+        counts,
+        tets: cx.len() as u64,
+        flat_tets,
+        branching_samples: sampled.branching,
+        cutting_samples: sampled.cutting,
+        sample_pairs: sampled.pairs,
+        sample_steiner_points: sampled.pair_steiner,
+        foreign_samples: sampled.foreign,
+        pruned: true,
+        sample_pairs_not_edges: sampled.pairs_not_edges.into_iter().collect(),
+        sample_pair_list: sampled.pair_list,
+        cutting_on_flat_border,
+        flat_area,
+        timing: clock.timing,
+        flat_only: false,
+        untagged: !tri.tagged,
+    })
+}
+
+/// A cell run's CPU time per sub-phase, and when the last lap ended.
+struct Clock {
+    timing: CellTiming,
+    last: std::time::Instant,
+}
+
+impl Clock {
+    /// Add the time since the last lap to the sub-phase `phase` picks.
+    fn lap(&mut self, phase: impl FnOnce(&mut CellTiming) -> &mut f64) {
+        *phase(&mut self.timing) += lap(&mut self.last);
+    }
+}
+
+/// The cell's Delaunay triangulation, and whether the tagged kernel made it.
+struct Tri {
+    dt: crate::delaunay::Delaunay,
+    tagged: bool,
+}
+
+/// How a run takes its diagram samples.
+struct SampleRun<'a> {
+    sampling: Sampling,
+    pair_rounds: usize,
+    shared: Option<&'a SharedSamples>,
+    start: Start<'a>,
+}
+
+/// What the diagram samples added to a cell: counts for the report, the cutting samples' local
+/// ids (ascending) for the flat zones' border, and the run's start if it keeps it.
+#[derive(Default)]
+struct Sampled {
+    branching: u64,
+    cutting: u64,
+    cut_ids: Vec<u32>,
+    pairs: u64,
+    pair_steiner: u64,
+    pairs_not_edges: std::collections::BTreeMap<u32, u64>,
+    pair_list: Vec<(usize, u32, u32)>,
+    foreign: u64,
+    start: Option<Box<RunStart>>,
+}
+
+/// Rounds of diagram samples (and, in the first, the shared samples of the other sides), each
+/// sampled on the triangulation the last round left and inserted into it; `cx` follows `tri`.
+fn insert_diagram_samples(
+    input: &mut CellInput,
+    tri: &mut Tri,
+    cx: &mut Complex,
+    how: &SampleRun,
+    clock: &mut Clock,
+) -> Result<Sampled> {
+    let mut out = Sampled::default();
+    let lookup = shared_lookup(input, how.shared);
+    for round in 0..BRANCHING_ROUNDS {
+        let (branch_chains, cut_chains) = match how.start {
+            Start::Reuse(st) if round == 0 => (st.branching.clone(), st.cutting.clone()),
+            _ => {
+                let chains = diagram_samples(input, cx, how.sampling, clock);
+                if round == 0 && matches!(how.start, Start::Keep) {
+                    out.start = Some(Box::new(RunStart {
+                        points: input.points.clone(),
+                        dt: tri.dt.clone(),
+                        tagged: tri.tagged,
+                        branching: chains.0.clone(),
+                        cutting: chains.1.clone(),
+                    }));
                 }
-            };
-            let (n_branch_round, n_cut_round) =
-                (branch_chains.samples.len(), cut_chains.samples.len());
-            let has_shared = round == 0 && lookup.iter().any(|m| !m.is_empty());
-            if n_branch_round + n_cut_round == 0 && !has_shared {
-                break;
+                chains
             }
-            n_branch += n_branch_round as u64;
-            n_cut += n_cut_round as u64;
-            // inserted into the triangulation we have, in one batch (same result as re-triangulating
-            // everything)
-            let mut chains = branch_chains;
-            chains.extend(cut_chains);
-            let first_cut = input.points.len() + n_branch_round;
-            let first_sample = input.points.len() as u32;
-            let mut batch = Vec::with_capacity(chains.samples.len());
-            for &DiagramSample {
-                slot: s, uv: q, p3, ..
-            } in &chains.samples
-            {
-                if !p3.iter().all(|c| c.is_finite()) {
-                    return Err(crate::Error::input(
-                        format!("cell {} diagram sample", input.cell),
-                        "non-finite coordinate",
-                    ));
-                }
-                let gid = lookup[s]
-                    .get(&super::shared_samples::key(p3))
-                    .copied()
-                    .unwrap_or(u32::MAX);
-                let l = input.add_vertex(s, q, p3, gid);
-                batch.push(p3);
-                if l as usize >= first_cut {
-                    cut_ids.push(l);
-                }
-            }
-            if has_shared {
-                n_foreign += add_foreign_samples(&mut input, shared, &mut batch);
-            }
-            let ids =
-                dt.insert_batch_tagged(&batch, &input.tags[input.points.len() - batch.len()..]);
-            if tagged && dt.consistent().is_err() {
-                dt = cell_delaunay(&input, &mut tagged)?;
-            }
-            // ids in local order (a duplicate gets the earlier vertex's id)
-            let first = input.points.len() - batch.len();
-            debug_assert!(ids
-                .iter()
-                .enumerate()
-                .all(|(i, &id)| id as usize <= first + i));
-            timing.delaunay += lap(&mut clock);
-            // consecutive samples along a diagram become edges (Steiner points on the diagram)
-            let pairs: Vec<SamplePair> = chains
-                .pairs
-                .iter()
-                .map(|&(a, b)| {
-                    let d = &chains.samples[a as usize];
-                    SamplePair {
-                        slot: d.slot,
-                        kind: d.kind,
-                        sites: d.sites,
-                        ends: (first_sample + a, first_sample + b),
-                    }
-                })
-                .collect();
-            n_pairs += pairs.len() as u64;
-            if !pairs.is_empty() {
-                let mut pc = conform_pairs(&mut input, &mut dt, pairs, pair_rounds)?;
-                if tagged && dt.consistent().is_err() {
-                    dt = cell_delaunay(&input, &mut tagged)?;
-                }
-                if shared.is_some() {
-                    let not_edges = std::mem::take(&mut pc.not_edges);
-                    pc.not_edges = super::chains::route_pairs(
-                        &input,
-                        &dt,
-                        &mut pc.pairs,
-                        not_edges,
-                        first_sample,
-                    );
-                }
-                for &(l, kind) in &pc.steiner {
-                    if kind == Kind::Cutting {
-                        cut_ids.push(l);
-                    }
-                }
-                n_pair_steiner += pc.steiner.len() as u64;
-                for p in &pc.not_edges {
-                    *pairs_not_edges.entry(input.slots[p.slot].face).or_default() += 1;
-                }
-                pair_list.extend(pc.pairs.iter().map(|p| (p.slot, p.ends.0, p.ends.1)));
-            }
-            timing.sample_pairs += lap(&mut clock);
-            cx = Complex::from_delaunay(input.points.len(), &dt);
-            timing.delaunay += lap(&mut clock);
+        };
+        let (n_branch_round, n_cut_round) = (branch_chains.samples.len(), cut_chains.samples.len());
+        let has_shared = round == 0 && lookup.iter().any(|m| !m.is_empty());
+        if n_branch_round + n_cut_round == 0 && !has_shared {
+            break;
+        }
+        out.branching += n_branch_round as u64;
+        out.cutting += n_cut_round as u64;
+        // inserted into the triangulation we have, in one batch (same result as re-triangulating
+        // everything)
+        let mut chains = branch_chains;
+        chains.extend(cut_chains);
+        let first_sample = input.points.len() as u32;
+        let first_cut = input.points.len() + n_branch_round;
+        insert_samples(
+            input, tri, &chains, &lookup, first_cut, has_shared, how, &mut out,
+        )?;
+        clock.lap(|t| &mut t.delaunay);
+        join_sample_pairs(input, tri, &chains, first_sample, how, &mut out)?;
+        clock.lap(|t| &mut t.sample_pairs);
+        *cx = Complex::from_delaunay(input.points.len(), &tri.dt);
+        clock.lap(|t| &mut t.delaunay);
+    }
+    Ok(out)
+}
+
+/// Insert one round's samples (with their global ids where `lookup` knows them) and, with
+/// `has_shared`, the other sides' shared samples, in one batch.
+#[allow(clippy::too_many_arguments)]
+fn insert_samples(
+    input: &mut CellInput,
+    tri: &mut Tri,
+    chains: &Chains,
+    lookup: &[IdMap<[u64; 3], u32>],
+    first_cut: usize,
+    has_shared: bool,
+    how: &SampleRun,
+    out: &mut Sampled,
+) -> Result<()> {
+    let mut batch = Vec::with_capacity(chains.samples.len());
+    for &DiagramSample {
+        slot: s, uv: q, p3, ..
+    } in &chains.samples
+    {
+        if !p3.iter().all(|c| c.is_finite()) {
+            return Err(crate::Error::input(
+                format!("cell {} diagram sample", input.cell),
+                "non-finite coordinate",
+            ));
+        }
+        let gid = lookup[s]
+            .get(&super::shared_samples::key(p3))
+            .copied()
+            .unwrap_or(u32::MAX);
+        let l = input.add_vertex(s, q, p3, gid);
+        batch.push(p3);
+        if l as usize >= first_cut {
+            out.cut_ids.push(l);
         }
     }
-    let classifier = Classifier::new(&input);
+    if has_shared {
+        out.foreign += add_foreign_samples(input, how.shared, &mut batch);
+    }
+    let ids = tri
+        .dt
+        .insert_batch_tagged(&batch, &input.tags[input.points.len() - batch.len()..]);
+    if tri.tagged && tri.dt.consistent().is_err() {
+        tri.dt = cell_delaunay(input, &mut tri.tagged)?;
+    }
+    // ids in local order (a duplicate gets the earlier vertex's id)
+    let first = input.points.len() - batch.len();
+    debug_assert!(ids
+        .iter()
+        .enumerate()
+        .all(|(i, &id)| id as usize <= first + i));
+    Ok(())
+}
 
-    // Section triangles per slot: grounded faces of non-flat tets.
-    let n_slots = input.slots.len();
-    let mut top: Vec<SectionTriangles> = vec![IdMap::default(); n_slots];
+/// Consecutive samples along a diagram become edges (Steiner points on the diagram); with shared
+/// samples, a pair the other side's points took away is routed through them.
+fn join_sample_pairs(
+    input: &mut CellInput,
+    tri: &mut Tri,
+    chains: &Chains,
+    first_sample: u32,
+    how: &SampleRun,
+    out: &mut Sampled,
+) -> Result<()> {
+    let pairs: Vec<SamplePair> = chains
+        .pairs
+        .iter()
+        .map(|&(a, b)| {
+            let d = &chains.samples[a as usize];
+            SamplePair {
+                slot: d.slot,
+                kind: d.kind,
+                sites: d.sites,
+                ends: (first_sample + a, first_sample + b),
+            }
+        })
+        .collect();
+    out.pairs += pairs.len() as u64;
+    if pairs.is_empty() {
+        return Ok(());
+    }
+    let mut pc = conform_pairs(input, &mut tri.dt, pairs, how.pair_rounds)?;
+    if tri.tagged && tri.dt.consistent().is_err() {
+        tri.dt = cell_delaunay(input, &mut tri.tagged)?;
+    }
+    if how.shared.is_some() {
+        let not_edges = std::mem::take(&mut pc.not_edges);
+        pc.not_edges =
+            super::chains::route_pairs(input, &tri.dt, &mut pc.pairs, not_edges, first_sample);
+    }
+    for &(l, kind) in &pc.steiner {
+        if kind == Kind::Cutting {
+            out.cut_ids.push(l);
+        }
+    }
+    out.pair_steiner += pc.steiner.len() as u64;
+    for p in &pc.not_edges {
+        *out.pairs_not_edges
+            .entry(input.slots[p.slot].face)
+            .or_default() += 1;
+    }
+    out.pair_list
+        .extend(pc.pairs.iter().map(|p| (p.slot, p.ends.0, p.ends.1)));
+    Ok(())
+}
+
+/// Section triangles per slot: the faces of non-flat tets with all three vertices on the slot
+/// (sorted key → outward face and its tet).
+fn section_triangles(input: &CellInput, cx: &Complex) -> Vec<SectionTriangles> {
+    let mut top: Vec<SectionTriangles> = vec![IdMap::default(); input.slots.len()];
     for (t, tv) in cx.tets.iter().enumerate() {
         // flat: one slot holds all four vertices (classify's `TetType::Flat`)
         if tv
@@ -512,7 +651,11 @@ fn run_cell_with(
             }
         }
     }
-    // Conformity: every contour edge is an edge of a section triangle.
+    top
+}
+
+/// Conformity: the contour edges (global ids, sorted) that are no edge of a section triangle.
+fn missing_contour_edges(input: &CellInput, top: &[SectionTriangles]) -> Vec<(u32, u32)> {
     let mut missing = Vec::new();
     for (s, slot) in input.slots.iter().enumerate() {
         let mut edges: IdSet<(u32, u32)> = IdSet::default();
@@ -529,23 +672,13 @@ fn run_cell_with(
     }
     missing.sort_unstable();
     missing.dedup();
-    timing.conformity += lap(&mut clock);
-    if stop == Stop::AtConformity || (stop == Stop::AtMissingEdges && !missing.is_empty()) {
-        return Ok(CellResult {
-            input: Some(input),
-            start: kept_start,
-            missing,
-            tets: cx.len() as u64,
-            timing,
-            untagged: !tagged,
-            ..Default::default()
-        });
-    }
-    let cl = classify(&input, &cx);
-    let flat_tets = cl.ty.iter().filter(|&&t| t == TetType::Flat).count() as u64;
-    timing.classify += lap(&mut clock);
-    let (alive, counts) = prune(&cx, &cl);
-    timing.prune += lap(&mut clock);
+    missing
+}
+
+/// The cell's tets as kept, fillable (survived step 1) and external, flat ones left out.
+type Fates = (Vec<[u32; 4]>, Vec<[u32; 4]>, Vec<[u32; 4]>);
+
+fn by_fate(cx: &Complex, alive: &[bool], cl: &super::classify::Classified) -> Fates {
     let mut kept = Vec::new();
     let mut fillable = Vec::new();
     let mut external = Vec::new();
@@ -566,7 +699,19 @@ fn run_cell_with(
         }
         kept.push(*tv);
     }
-    let faces: Vec<FaceSide> = (0..n_slots)
+    (kept, fillable, external)
+}
+
+/// Per slot, its internal section triangles, whether a kept tet stands on each, and that tet's
+/// fourth vertex.
+fn face_sides(
+    input: &CellInput,
+    cx: &Complex,
+    top: &[SectionTriangles],
+    alive: &[bool],
+) -> Vec<FaceSide> {
+    let classifier = Classifier::new(input);
+    (0..input.slots.len())
         .map(|s| {
             let mut with_apex: Vec<([u32; 3], bool, u32)> = top[s]
                 .values()
@@ -584,11 +729,15 @@ fn run_cell_with(
                 apexes: with_apex.iter().map(|w| w.2).collect(),
             }
         })
-        .collect();
-    // the paper's flat zones of this cell, and whether the cutting samples ended on their border
+        .collect()
+}
+
+/// The paper's flat zones of this cell (their area), and how many cutting samples (`cut_ids`,
+/// ascending) ended on their border.
+fn flat_zones(input: &CellInput, faces: &[FaceSide], cut_ids: &[u32]) -> (f64, u64) {
     let mut flat_area = 0.0;
     let mut sides: IdMap<u32, (bool, bool)> = IdMap::default();
-    for side in &faces {
+    for side in faces {
         for &(f, attached) in &side.triangles {
             if !attached {
                 let p = f.map(|v| input.points[v as usize]);
@@ -607,33 +756,8 @@ fn run_cell_with(
             }
         }
     }
-    let cutting_on_flat_border = sides.values().filter(|&&(a, f)| a && f).count() as u64;
-    timing.output += lap(&mut clock);
-    Ok(CellResult {
-        input: Some(input),
-        start: kept_start,
-        missing,
-        kept,
-        fillable,
-        external,
-        faces,
-        counts,
-        tets: cx.len() as u64,
-        flat_tets,
-        branching_samples: n_branch,
-        cutting_samples: n_cut,
-        sample_pairs: n_pairs,
-        sample_steiner_points: n_pair_steiner,
-        foreign_samples: n_foreign,
-        pruned: true,
-        sample_pairs_not_edges: pairs_not_edges.into_iter().collect(),
-        sample_pair_list: pair_list,
-        cutting_on_flat_border,
-        flat_area,
-        timing,
-        flat_only: false,
-        untagged: !tagged,
-    })
+    let on_border = sides.values().filter(|&&(a, f)| a && f).count() as u64;
+    (flat_area, on_border)
 }
 
 /// One round's branching and cutting samples of the triangulation `cx` of `input`.
@@ -641,8 +765,7 @@ fn diagram_samples(
     input: &CellInput,
     cx: &Complex,
     sampling: Sampling,
-    timing: &mut CellTiming,
-    clock: &mut std::time::Instant,
+    clock: &mut Clock,
 ) -> (Chains, Chains) {
     let ty: Vec<TetType> = cx
         .tets
@@ -656,14 +779,14 @@ fn diagram_samples(
     } else {
         Default::default()
     };
-    timing.branching += lap(clock);
+    clock.lap(|t| &mut t.branching);
     // from the same triangulation, kept apart from the branching samples
     let cut_chains = if sampling.cutting {
         super::cutting::sample_chains(input, cx, &ty, &mut cl, &apex, &branch_chains.samples)
     } else {
         Default::default()
     };
-    timing.cutting += lap(clock);
+    clock.lap(|t| &mut t.cutting);
     (branch_chains, cut_chains)
 }
 
