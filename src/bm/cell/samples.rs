@@ -1,0 +1,269 @@
+//! A cell's diagram samples: rounds of branching and cutting samples (paper §2.2), each taken on
+//! the triangulation the last round left and inserted into it with the other sides' shared
+//! samples, and consecutive samples joined by Delaunay edges (`chains`).
+use super::{cell_delaunay, Clock, RunStart, Sampling, Start, BRANCHING_ROUNDS};
+use crate::bm::cell_input::{CellInput, IdMap, IdSet};
+use crate::bm::chains::{conform_pairs, Chains, DiagramSample, Kind, SamplePair};
+use crate::bm::classify::{tet_type, Classifier, TetType};
+use crate::bm::complex::Complex;
+use crate::bm::shared_samples::SharedSamples;
+use crate::error::Result;
+
+/// Add to `input` (and `batch`) the shared samples on its faces that it did not sample itself
+/// (those already there by global id). Returns how many.
+fn add_foreign_samples(
+    input: &mut CellInput,
+    shared: Option<&SharedSamples>,
+    batch: &mut Vec<[f64; 3]>,
+) -> u64 {
+    let Some(shared) = shared else { return 0 };
+    let present: IdSet<u32> = input
+        .global
+        .iter()
+        .copied()
+        .filter(|&g| g != u32::MAX)
+        .collect();
+    let mut n = 0;
+    for s in 0..input.slots.len() {
+        for x in shared.on_face(input.slots[s].face) {
+            if !present.contains(&x.gid) {
+                input.add_vertex(s, x.uv, x.p3, x.gid);
+                batch.push(x.p3);
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+/// Per slot of `input`: the position key → global id of the shared samples on its face.
+fn shared_lookup(input: &CellInput, shared: Option<&SharedSamples>) -> Vec<IdMap<[u64; 3], u32>> {
+    input
+        .slots
+        .iter()
+        .map(|slot| {
+            shared.map_or_else(IdMap::default, |sh| {
+                sh.on_face(slot.face)
+                    .iter()
+                    .map(|x| (crate::bm::shared_samples::key(x.p3), x.gid))
+                    .collect()
+            })
+        })
+        .collect()
+}
+
+/// The cell's Delaunay triangulation, and whether the tagged kernel made it.
+pub(super) struct Tri {
+    pub(super) dt: crate::delaunay::Delaunay,
+    pub(super) tagged: bool,
+}
+
+/// How a run takes its diagram samples.
+pub(super) struct SampleRun<'a> {
+    pub(super) sampling: Sampling,
+    pub(super) pair_rounds: usize,
+    pub(super) shared: Option<&'a SharedSamples>,
+    pub(super) start: Start<'a>,
+}
+
+/// What the diagram samples added to a cell: counts for the report, the cutting samples' local
+/// ids (ascending) for the flat zones' border, and the run's start if it keeps it.
+#[derive(Default)]
+pub(super) struct Sampled {
+    pub(super) branching: u64,
+    pub(super) cutting: u64,
+    pub(super) cut_ids: Vec<u32>,
+    pub(super) pairs: u64,
+    pub(super) pair_steiner: u64,
+    pub(super) pairs_not_edges: std::collections::BTreeMap<u32, u64>,
+    pub(super) pair_list: Vec<(usize, u32, u32)>,
+    pub(super) foreign: u64,
+    pub(super) start: Option<Box<RunStart>>,
+}
+
+/// Rounds of diagram samples (and, in the first, the shared samples of the other sides), each
+/// sampled on the triangulation the last round left and inserted into it; `cx` follows `tri`.
+pub(super) fn insert_diagram_samples(
+    input: &mut CellInput,
+    tri: &mut Tri,
+    cx: &mut Complex,
+    how: &SampleRun,
+    clock: &mut Clock,
+) -> Result<Sampled> {
+    let mut out = Sampled::default();
+    let lookup = shared_lookup(input, how.shared);
+    for round in 0..BRANCHING_ROUNDS {
+        let (branch_chains, cut_chains) = match how.start {
+            Start::Reuse(st) if round == 0 => (st.branching.clone(), st.cutting.clone()),
+            _ => {
+                let chains = diagram_samples(input, cx, how.sampling, clock);
+                if round == 0 && matches!(how.start, Start::Keep) {
+                    out.start = Some(Box::new(RunStart {
+                        points: input.points.clone(),
+                        dt: tri.dt.clone(),
+                        tagged: tri.tagged,
+                        branching: chains.0.clone(),
+                        cutting: chains.1.clone(),
+                    }));
+                }
+                chains
+            }
+        };
+        let (n_branch_round, n_cut_round) = (branch_chains.samples.len(), cut_chains.samples.len());
+        let has_shared = round == 0 && lookup.iter().any(|m| !m.is_empty());
+        if n_branch_round + n_cut_round == 0 && !has_shared {
+            break;
+        }
+        out.branching += n_branch_round as u64;
+        out.cutting += n_cut_round as u64;
+        // inserted into the triangulation we have, in one batch (same result as re-triangulating
+        // everything)
+        let mut chains = branch_chains;
+        chains.extend(cut_chains);
+        let first_sample = input.points.len() as u32;
+        let first_cut = input.points.len() + n_branch_round;
+        insert_samples(
+            input, tri, &chains, &lookup, first_cut, has_shared, how, &mut out,
+        )?;
+        clock.lap(|t| &mut t.delaunay);
+        join_sample_pairs(input, tri, &chains, first_sample, how, &mut out)?;
+        clock.lap(|t| &mut t.sample_pairs);
+        *cx = Complex::from_delaunay(input.points.len(), &tri.dt);
+        clock.lap(|t| &mut t.delaunay);
+    }
+    Ok(out)
+}
+
+/// Insert one round's samples (with their global ids where `lookup` knows them) and, with
+/// `has_shared`, the other sides' shared samples, in one batch.
+#[allow(clippy::too_many_arguments)]
+fn insert_samples(
+    input: &mut CellInput,
+    tri: &mut Tri,
+    chains: &Chains,
+    lookup: &[IdMap<[u64; 3], u32>],
+    first_cut: usize,
+    has_shared: bool,
+    how: &SampleRun,
+    out: &mut Sampled,
+) -> Result<()> {
+    let mut batch = Vec::with_capacity(chains.samples.len());
+    for &DiagramSample {
+        slot: s, uv: q, p3, ..
+    } in &chains.samples
+    {
+        if !p3.iter().all(|c| c.is_finite()) {
+            return Err(crate::Error::input(
+                format!("cell {} diagram sample", input.cell),
+                "non-finite coordinate",
+            ));
+        }
+        let gid = lookup[s]
+            .get(&crate::bm::shared_samples::key(p3))
+            .copied()
+            .unwrap_or(u32::MAX);
+        let l = input.add_vertex(s, q, p3, gid);
+        batch.push(p3);
+        if l as usize >= first_cut {
+            out.cut_ids.push(l);
+        }
+    }
+    if has_shared {
+        out.foreign += add_foreign_samples(input, how.shared, &mut batch);
+    }
+    let ids = tri
+        .dt
+        .insert_batch_tagged(&batch, &input.tags[input.points.len() - batch.len()..]);
+    if tri.tagged && tri.dt.consistent().is_err() {
+        tri.dt = cell_delaunay(input, &mut tri.tagged)?;
+    }
+    // ids in local order (a duplicate gets the earlier vertex's id)
+    let first = input.points.len() - batch.len();
+    debug_assert!(ids
+        .iter()
+        .enumerate()
+        .all(|(i, &id)| id as usize <= first + i));
+    Ok(())
+}
+
+/// Consecutive samples along a diagram become edges (Steiner points on the diagram); with shared
+/// samples, a pair the other side's points took away is routed through them.
+fn join_sample_pairs(
+    input: &mut CellInput,
+    tri: &mut Tri,
+    chains: &Chains,
+    first_sample: u32,
+    how: &SampleRun,
+    out: &mut Sampled,
+) -> Result<()> {
+    let pairs: Vec<SamplePair> = chains
+        .pairs
+        .iter()
+        .map(|&(a, b)| {
+            let d = &chains.samples[a as usize];
+            SamplePair {
+                slot: d.slot,
+                kind: d.kind,
+                sites: d.sites,
+                ends: (first_sample + a, first_sample + b),
+            }
+        })
+        .collect();
+    out.pairs += pairs.len() as u64;
+    if pairs.is_empty() {
+        return Ok(());
+    }
+    let mut pc = conform_pairs(input, &mut tri.dt, pairs, how.pair_rounds)?;
+    if tri.tagged && tri.dt.consistent().is_err() {
+        tri.dt = cell_delaunay(input, &mut tri.tagged)?;
+    }
+    if how.shared.is_some() {
+        let not_edges = std::mem::take(&mut pc.not_edges);
+        pc.not_edges =
+            crate::bm::chains::route_pairs(input, &tri.dt, &mut pc.pairs, not_edges, first_sample);
+    }
+    for &(l, kind) in &pc.steiner {
+        if kind == Kind::Cutting {
+            out.cut_ids.push(l);
+        }
+    }
+    out.pair_steiner += pc.steiner.len() as u64;
+    for p in &pc.not_edges {
+        *out.pairs_not_edges
+            .entry(input.slots[p.slot].face)
+            .or_default() += 1;
+    }
+    out.pair_list
+        .extend(pc.pairs.iter().map(|p| (p.slot, p.ends.0, p.ends.1)));
+    Ok(())
+}
+
+/// One round's branching and cutting samples of the triangulation `cx` of `input`.
+fn diagram_samples(
+    input: &CellInput,
+    cx: &Complex,
+    sampling: Sampling,
+    clock: &mut Clock,
+) -> (Chains, Chains) {
+    let ty: Vec<TetType> = cx
+        .tets
+        .iter()
+        .map(|t| tet_type(t.map(|v| input.mask[v as usize])).0)
+        .collect();
+    let mut cl = Classifier::new(input);
+    let apex = crate::bm::branching::apex_triangles(input, cx, &ty, &cl);
+    let branch_chains = if sampling.branching {
+        crate::bm::branching::sample_chains(input, &mut cl, &apex)
+    } else {
+        Default::default()
+    };
+    clock.lap(|t| &mut t.branching);
+    // from the same triangulation, kept apart from the branching samples
+    let cut_chains = if sampling.cutting {
+        crate::bm::cutting::sample_chains(input, cx, &ty, &mut cl, &apex, &branch_chains.samples)
+    } else {
+        Default::default()
+    };
+    clock.lap(|t| &mut t.cutting);
+    (branch_chains, cut_chains)
+}
