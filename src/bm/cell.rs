@@ -634,7 +634,7 @@ mod tests {
     fn a_rerun_from_the_first_runs_start_is_the_whole_run() {
         let first = run_cell_samples(one_facing_four(), Sampling::default()).unwrap();
         let start = first.start.expect("a first run keeps its start");
-        assert!(start.branching.samples.len() > 0);
+        assert!(!start.branching.samples.is_empty());
         let shared = SharedSamples::default();
         let whole =
             run_cell_sharing(one_facing_four(), Sampling::default(), &shared, true, None).unwrap();
