@@ -84,9 +84,9 @@ pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> Sl
             })
             .collect();
     }
-    // a zone whose parents' edges all lie on planes (a cell corner on two planes, as cells between
-    // axis-aligned planes have) gets its slab from splits on those planes where their sections
-    // allow the slab's faces there
+    // a zone still without a slab (mostly one whose parents' edges all lie on planes: a cell corner
+    // on two planes, as cells between axis-aligned planes have) is tried once more with the edges on
+    // planes split too, where those planes' sections hold the slab's faces on them
     let existing = existing_tets(t);
     let last: Vec<&Parent> = left
         .iter()
