@@ -8,21 +8,10 @@ use crate::sections::Region;
 
 /// Even-odd point-in-region test in the plane's (u,v) frame.
 fn inside_region(region: &Region, p: [f64; 2]) -> bool {
-    let mut inside = false;
-    for c in std::iter::once(&region.outer).chain(region.holes.iter()) {
-        let q = &c.points2;
-        let n = q.len();
-        for k in 0..n {
-            let (a, b) = (q[k], q[(k + 1) % n]);
-            if (a[1] > p[1]) != (b[1] > p[1]) {
-                let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
-                if p[0] < x {
-                    inside = !inside;
-                }
-            }
-        }
-    }
-    inside
+    // crossing parity over all loops: the parities of the single loops combined
+    std::iter::once(&region.outer)
+        .chain(region.holes.iter())
+        .fold(false, |inside, c| inside != point_in_loop(p, &c.points2))
 }
 
 pub(super) fn trace_face(
