@@ -179,6 +179,14 @@ pub fn tet_type(m: [Mask; 4]) -> (TetType, u8, u8) {
     }
 }
 
+/// The type of every tetrahedron of `cx` (`tet_type` on its vertices' slot masks).
+pub fn tet_types(input: &CellInput, cx: &Complex) -> Vec<TetType> {
+    cx.tets
+        .iter()
+        .map(|t| tet_type(t.map(|v| input.mask[v as usize])).0)
+        .collect()
+}
+
 pub fn classify(input: &CellInput, cx: &Complex) -> Classified {
     let mut cl = Classifier::new(input);
     let n = cx.len();

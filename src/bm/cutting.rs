@@ -491,7 +491,7 @@ pub(super) mod tests {
     use crate::bm::branching::apex_triangles;
     use crate::bm::cell::delaunay_tets;
     use crate::bm::cell_input::{SectionLocator, Slot};
-    use crate::bm::classify::tet_type;
+    use crate::bm::classify::tet_types;
     use crate::sections::Plane;
 
     /// A closed polygon of `n` vertices on the circle of centre (cx, cy) and radius `r`.
@@ -609,11 +609,7 @@ pub(super) mod tests {
 
     fn run(input: &CellInput) -> (Complex, Vec<TetType>, Vec<DiagramSample>) {
         let cx = Complex::new(input.points.len(), delaunay_tets(&input.points).unwrap());
-        let ty: Vec<TetType> = cx
-            .tets
-            .iter()
-            .map(|t| tet_type(t.map(|v| input.mask[v as usize])).0)
-            .collect();
+        let ty = tet_types(input, &cx);
         let mut cl = Classifier::new(input);
         let apex = apex_triangles(input, &cx, &ty, &cl);
         let samples = sample_chains(input, &cx, &ty, &mut cl, &apex, &[]).samples;

@@ -4,7 +4,7 @@
 use super::{cell_delaunay, Clock, RunStart, Sampling, Start, BRANCHING_ROUNDS};
 use crate::bm::cell_input::{CellInput, IdMap, IdSet};
 use crate::bm::chains::{conform_pairs, Chains, DiagramSample, Kind, SamplePair};
-use crate::bm::classify::{tet_type, Classifier, TetType};
+use crate::bm::classify::{tet_types, Classifier};
 use crate::bm::complex::Complex;
 use crate::bm::shared_samples::SharedSamples;
 use crate::error::Result;
@@ -245,11 +245,7 @@ fn diagram_samples(
     sampling: Sampling,
     clock: &mut Clock,
 ) -> (Chains, Chains) {
-    let ty: Vec<TetType> = cx
-        .tets
-        .iter()
-        .map(|t| tet_type(t.map(|v| input.mask[v as usize])).0)
-        .collect();
+    let ty = tet_types(input, cx);
     let mut cl = Classifier::new(input);
     let apex = crate::bm::branching::apex_triangles(input, cx, &ty, &cl);
     let branch_chains = if sampling.branching {
