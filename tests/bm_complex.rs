@@ -219,9 +219,7 @@ fn a_fan_of_planes_runs_through_the_tagged_kernel() {
 /// vertex is left either, and the surface is still embedded (0 crossing pairs) with exact sections.
 #[test]
 fn generated_planes_leave_no_singular_edge() {
-    use slice2solid::io::mesh::read_trimesh;
-    use slice2solid::io::{read_sections, write_sections};
-    use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
+    use slice2solid::slice::SliceMode;
     // (mesh, mode, planes, pinched vertices at most, worst section at most). Elephant random 50
     // kept 2 overlapping pairs (flat folds) until `manifold::close_flat_folds`, and 37 flat-zone
     // triangles without a slab (0.30% of a section) until a refused slab tried the other side;
@@ -235,12 +233,7 @@ fn generated_planes_leave_no_singular_edge() {
     ];
     let mut failures = Vec::new();
     for (mesh, mode, planes, pinched, bound) in cases {
-        let m = read_trimesh(&common::shared_reference(mesh)).unwrap();
-        let s = slice_mesh(&m, &make_planes(&m, planes, 5, mode)).unwrap();
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join(format!("{mesh}_{planes}.csl"));
-        write_sections(&path, &s).unwrap();
-        let sections = read_sections(&path).unwrap();
+        let sections = common::sliced(mesh, planes, 5, mode);
         let solid = slice2solid::reconstruct(&sections, &options()).unwrap();
         let count = |k: &str| solid.report.counts[k];
         let got = (count("singular_edges"), count("singular_vertices"));

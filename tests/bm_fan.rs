@@ -13,19 +13,12 @@ use slice2solid::arrangement::{Arrangement, ArrangementOptions};
 use slice2solid::bm::{cell_input::CellInput, conform};
 use slice2solid::delaunay::Delaunay;
 use slice2solid::eval::check::check_mesh;
-use slice2solid::io::mesh::read_trimesh;
-use slice2solid::io::{read_sections, write_sections};
-use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
+use slice2solid::slice::SliceMode;
 use slice2solid::{Options, Sections};
 
 /// The mesh cut by `planes` fan planes (seed 5), written as CSL and read back like a user's file.
 fn fan(mesh: &str, planes: usize) -> Sections {
-    let m = read_trimesh(&common::shared_reference(mesh)).unwrap();
-    let s = slice_mesh(&m, &make_planes(&m, planes, 5, SliceMode::Fan)).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(format!("{mesh}_fan{planes}.csl"));
-    write_sections(&path, &s).unwrap();
-    read_sections(&path).unwrap()
+    common::sliced(mesh, planes, 5, SliceMode::Fan)
 }
 
 /// Every point where a contour crosses the axis is ONE pool vertex on every plane of the fan, and

@@ -9,9 +9,7 @@
 mod common;
 use slice2solid::eval::check::check_mesh;
 use slice2solid::eval::tets::check_tets;
-use slice2solid::io::mesh::read_trimesh;
-use slice2solid::io::{read_sections, write_sections};
-use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
+use slice2solid::slice::SliceMode;
 
 /// Worst relative section difference allowed (today: at most 6.3e-10 over these cases but the
 /// listed ones).
@@ -34,12 +32,7 @@ const KNOWN_UNCLEAN: [(&str, SliceMode, usize); 1] = [("balloondog", SliceMode::
 
 /// What is wrong with the reconstruction of `mesh` cut by `planes` planes of `mode` (empty: clean).
 fn problems(mesh: &str, mode: SliceMode, planes: usize) -> Vec<String> {
-    let m = read_trimesh(&common::shared_reference(mesh)).unwrap();
-    let s = slice_mesh(&m, &make_planes(&m, planes, 5, mode)).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(format!("{mesh}_{planes}.csl"));
-    write_sections(&path, &s).unwrap();
-    let sections = read_sections(&path).unwrap();
+    let sections = common::sliced(mesh, planes, 5, mode);
     let solid = slice2solid::reconstruct(&sections, &Default::default())
         .unwrap_or_else(|e| panic!("{mesh} {mode:?} {planes}: {e}"));
     let c = check_mesh(&solid.surface, Some(&sections));

@@ -75,6 +75,25 @@ pub fn shared_reference(name: &str) -> PathBuf {
     p
 }
 
+/// The shared reference mesh `mesh` cut by `planes` planes of `mode` (seed `seed`), written as CSL
+/// and read back like a user's file.
+pub fn sliced(
+    mesh: &str,
+    planes: usize,
+    seed: u64,
+    mode: slice2solid::slice::SliceMode,
+) -> slice2solid::Sections {
+    use slice2solid::slice::{make_planes, slice_mesh};
+    let m = slice2solid::io::mesh::read_trimesh(&shared_reference(mesh)).unwrap();
+    let s = slice_mesh(&m, &make_planes(&m, planes, seed, mode)).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir
+        .path()
+        .join(format!("{mesh}_{mode:?}_{planes}_{seed}.csl"));
+    slice2solid::io::write_sections(&path, &s).unwrap();
+    slice2solid::io::read_sections(&path).unwrap()
+}
+
 /// Every `*.csl` file of the shared data, sorted; exactly the files of [`SHARED_CSL`].
 pub fn shared_csl_files() -> Vec<PathBuf> {
     let dir = shared_dir().join("data/csl");
