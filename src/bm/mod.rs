@@ -32,6 +32,7 @@
 pub mod assembly;
 pub mod branching;
 pub mod carve;
+pub mod collar;
 pub mod cell;
 pub mod cell_input;
 pub mod chains;
@@ -464,7 +465,7 @@ fn assemble_cells(
     let slabs = options.delaunay.thicken_flat_zones;
     let fill_voids = !options.delaunay.keep_topology;
     let k = report.time("assembly", || {
-        assembly::assemble(arr, pool, results, slabs, fill_voids)
+        assembly::assemble(arr, pool, results, slabs, fill_voids, options.delaunay.collar)
     });
     report.count("nonconforming_faces", k.nonconforming_faces);
     report.count("flat_zone_triangles", k.flat_triangles);
@@ -495,6 +496,21 @@ fn assemble_cells(
     report.count("pinches_not_carved", k.carved.refused);
     report.count("voids_filled", k.voids.voids_filled);
     report.count("void_tets_filled", k.voids.tets_filled);
+    report.count("collar_cells", k.collar.cells);
+    report.count("collar_cells_refused", k.collar.cells_refused);
+    report.count("collar_prisms", k.collar.prisms);
+    report
+        .values
+        .insert("collar_min_height".into(), k.collar.min_height);
+    report
+        .values
+        .insert("collar_max_shift".into(), k.collar.max_shift);
+    if k.collar.cells_refused > 0 {
+        report.warnings.push(format!(
+            "collar: {} cells keep their solid as it was (a mapped tetrahedron would flip or leave the cell): sections just off their planes are not protected there",
+            k.collar.cells_refused
+        ));
+    }
     report.count("singular_edges", k.singular_edges);
     report.count("singular_vertices", k.singular_vertices);
     if k.nonconforming_faces > 0 {

@@ -26,6 +26,7 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
             thicken_flat_zones: !args.no_thicken,
             keep_topology: args.keep_topology,
             shared_samples: !args.no_shared_samples,
+            collar: args.collar,
         },
         ..Default::default()
     };

@@ -1,0 +1,409 @@
+//! The collar: near every cutting plane the solid is the prism over its section.
+//!
+//! The pruned complex K meets a plane in exactly its section, but just off the plane its section is
+//! the radial image of the links of K's vertices on the plane. Where such a link folds back (a
+//! crease where two branches part at a cutting-diagram chain, the crevice between two slabs, a fan
+//! whose edges zig-zag in angle), the section a hair off the plane is a tangle of loops at that scale
+//! instead of the contour, and whatever a user computes there (a slice, a voxel, a dose grid) sees it.
+//!
+//! Per cell C, K's tetrahedra in C are mapped by a homothety φ_C (centre c_C, the volume centroid
+//! of C's triangulation, ratio s_C < 1), and the shell between ∂C and φ_C(∂C) is filled over every
+//! kept section triangle t by the prism (t, φ_C(t)), split into three tetrahedra by the global order
+//! of t's vertices (two prisms sharing an edge then share its wall's diagonal). A homothety keeps
+//! orientation and maps the convex C into itself, so K stays a conforming, embedded complex; points
+//! on the planes do not move, so the sections stay exact; and every section within the collar's
+//! height of a plane is the section itself, shrunk by less than that height about c_C. What touched
+//! a plane at an edge or a vertex only (no section triangle) lifts off it by the collar's height.
+//!
+//! Cells are the classes of K's triangulation T under "shares a face not on a plane, or a vertex on
+//! no plane" (within a cell, T is connected through such faces; between cells every face is on one).
+//! A cell whose image fails the checks (a rounded tetrahedron flipped, a point on the wrong side of
+//! one of its planes) keeps K as it was, and is counted.
+use super::complex::outward_face;
+use super::refine::{key3, Planes, Triangulation};
+use crate::arrangement::ArrPlane;
+use crate::fxhash::FxHashMap;
+use crate::geom::predicates::orient3d;
+use petgraph::unionfind::UnionFind;
+
+/// Largest shrink 1 − s_C: a cell whose solid lies within `height / 0.05` of one of its section
+/// planes gets a thinner collar rather than a homothety that moves its far side much.
+pub const MAX_SHRINK: f64 = 0.05;
+
+/// Farthest a homothety may move a point, in collar heights: where a cell is much wider than
+/// deep (a slab between two oblique planes), its collar gets thinner instead.
+pub const MAX_SHIFT_PER_HEIGHT: f64 = 10.0;
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CollarStats {
+    /// Cells whose tetrahedra were mapped and given prisms.
+    pub cells: u64,
+    /// Cells whose image failed a check and kept K as it was.
+    pub cells_refused: u64,
+    /// Section triangles given a prism (three tetrahedra each).
+    pub prisms: u64,
+    /// Thinnest collar (the height of a prism over its base plane), absolute.
+    pub min_height: f64,
+    /// Largest distance a point of K moved, absolute.
+    pub max_shift: f64,
+}
+
+/// The plane shared by the three vertices of `f`, if any.
+fn common_plane(planes: &[Planes], f: [u32; 3]) -> Option<u32> {
+    let [a, b, c] = f.map(|v| &planes[v as usize]);
+    a.iter().copied().find(|p| b.contains(p) && c.contains(p))
+}
+
+/// The cell class of every tetrahedron of `tets` (the roots of a union-find).
+fn cell_classes(tets: &[[u32; 4]], planes: &[Planes]) -> Vec<usize> {
+    let mut uf = UnionFind::<usize>::new(tets.len());
+    let mut open: FxHashMap<[u32; 3], usize> = FxHashMap::default();
+    let mut inner_vertex: FxHashMap<u32, usize> = FxHashMap::default();
+    for (i, t) in tets.iter().enumerate() {
+        for j in 0..4 {
+            let f = key3(outward_face(t, j));
+            if common_plane(planes, f).is_some() {
+                continue;
+            }
+            match open.remove(&f) {
+                Some(o) => {
+                    uf.union(i, o);
+                }
+                None => {
+                    open.insert(f, i);
+                }
+            }
+        }
+        for &v in t {
+            if planes[v as usize].is_empty() {
+                let o = *inner_vertex.entry(v).or_insert(i);
+                uf.union(i, o);
+            }
+        }
+    }
+    (0..tets.len()).map(|i| uf.find_mut(i)).collect()
+}
+
+/// One cell's part of K: its kept tetrahedra (indices into K), the section triangles on its
+/// faces (oriented out of it, with their plane), and the volume centroid of its triangulation.
+#[derive(Default)]
+struct CellPart {
+    kept: Vec<usize>,
+    bases: Vec<([u32; 3], u32)>,
+    moment: [f64; 3],
+    volume: f64,
+}
+
+/// The cells of K's triangulation with a section triangle on a face. Every section triangle
+/// gets a prism on each side whose cell has volume, kept from that side or not: the collar is
+/// the section thickened, and K's tetrahedra on its faces stand on the prisms' tops.
+fn cell_parts(k: &Triangulation) -> Vec<CellPart> {
+    let all: Vec<[u32; 4]> = k
+        .kept
+        .iter()
+        .chain(k.fillable.iter())
+        .chain(k.external.iter())
+        .copied()
+        .collect();
+    let class = cell_classes(&all, k.planes);
+    let mut index: FxHashMap<usize, usize> = FxHashMap::default();
+    let mut parts: Vec<CellPart> = Vec::new();
+    let mut part_of = |root: usize, parts: &mut Vec<CellPart>| {
+        *index.entry(root).or_insert_with(|| {
+            parts.push(CellPart::default());
+            parts.len() - 1
+        })
+    };
+    for (i, t) in all.iter().enumerate() {
+        let p = part_of(class[i], &mut parts);
+        if i < k.kept.len() {
+            parts[p].kept.push(i);
+        }
+        for j in 0..4 {
+            let f = outward_face(t, j);
+            if let Some(plane) = common_plane(k.planes, f) {
+                if i < k.kept.len() || k.internal.contains(&key3(f)) {
+                    parts[p].bases.push((f, plane));
+                }
+            }
+        }
+        let x = t.map(|v| k.positions[v as usize]);
+        let vol = orient3d(x[0], x[1], x[2], x[3]).abs();
+        for d in 0..3 {
+            parts[p].moment[d] += vol * (x[0][d] + x[1][d] + x[2][d] + x[3][d]) / 4.0;
+        }
+        parts[p].volume += vol;
+    }
+    for part in &mut parts {
+        part.bases.sort_unstable_by_key(|b| key3(b.0));
+        part.bases.dedup_by_key(|b| key3(b.0));
+    }
+    parts
+}
+
+fn signed_distance(plane: &ArrPlane, x: [f64; 3]) -> f64 {
+    plane.plane.signed_distance(x)
+}
+
+/// A cell's collar, checked but not yet applied: new positions of its points (`None`: a new
+/// point), its mapped tetrahedra and prisms in those ids.
+struct CellCollar {
+    /// (vertex of K, its image; whether the image is a new point or moves the vertex).
+    images: Vec<(u32, [f64; 3], bool)>,
+    tets: Vec<[u32; 4]>,
+    prisms: Vec<[u32; 4]>,
+    height: f64,
+    shift: f64,
+}
+
+/// An affine contraction x ↦ x − N(x − c) of a cell towards `c` (N small and symmetric, so
+/// that I − N keeps orientation).
+#[derive(Clone, Copy, Debug)]
+struct Contraction {
+    c: [f64; 3],
+    n: [[f64; 3]; 3],
+}
+
+impl Contraction {
+    fn apply(&self, x: [f64; 3]) -> [f64; 3] {
+        let d = [0, 1, 2].map(|i| x[i] - self.c[i]);
+        [0, 1, 2].map(|i| x[i] - (0..3).map(|j| self.n[i][j] * d[j]).sum::<f64>())
+    }
+}
+
+/// The contractions to try for a cell, least distorting first: a squeeze along the mean normal
+/// of its section planes (on parallel planes it moves every point by at most the collar height;
+/// on oblique ones it may fail the checks), then a homothety (uniform height on every face, but
+/// it moves far points more: its shrink is capped so that no point moves more than `max_shift`).
+fn contractions(
+    k: &Triangulation,
+    part: &CellPart,
+    arr_planes: &[ArrPlane],
+    height: f64,
+    max_shift: f64,
+) -> Vec<Contraction> {
+    let c = part.moment.map(|m| m / part.volume);
+    let mut normals: Vec<[f64; 3]> = Vec::new();
+    let mut nearest = f64::INFINITY;
+    for &(_, p) in &part.bases {
+        let plane = &arr_planes[p as usize].plane;
+        nearest = nearest.min(plane.signed_distance(c).abs());
+        let n = plane.normal;
+        let n = match normals.first() {
+            Some(m) if n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < 0.0 => n.map(|x| -x),
+            _ => n,
+        };
+        normals.push(n);
+    }
+    if !(nearest > 0.0) {
+        return Vec::new();
+    }
+    let mut mean = [0.0; 3];
+    for n in &normals {
+        for i in 0..3 {
+            mean[i] += n[i];
+        }
+    }
+    let len = (mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]).sqrt();
+    let mut out = Vec::new();
+    let shrink = (height / nearest).min(MAX_SHRINK);
+    if len > 0.0 {
+        let m = mean.map(|x| x / len);
+        let along = normals
+            .iter()
+            .map(|n| (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]).abs())
+            .fold(1.0, f64::min);
+        if along > 0.5 {
+            let a = shrink / along;
+            out.push(Contraction {
+                c,
+                n: [0, 1, 2].map(|i| [0, 1, 2].map(|j| a * m[i] * m[j])),
+            });
+        }
+    }
+    let reach = part
+        .kept
+        .iter()
+        .flat_map(|&i| k.kept[i])
+        .map(|v| dist(k.positions[v as usize], c))
+        .fold(0.0, f64::max);
+    let shrink = if reach > 0.0 {
+        shrink.min(max_shift / reach)
+    } else {
+        shrink
+    };
+    out.push(Contraction {
+        c,
+        n: [0, 1, 2].map(|i| [0, 1, 2].map(|j| if i == j { shrink } else { 0.0 })),
+    });
+    out
+}
+
+/// The collar of one cell under `phi`, or `Err` where a check fails.
+fn cell_collar(
+    k: &Triangulation,
+    part: &CellPart,
+    arr_planes: &[ArrPlane],
+    phi: Contraction,
+) -> Result<CellCollar, ()> {
+    let c = phi.c;
+    let bases = &part.bases;
+    let phi = |x: [f64; 3]| phi.apply(x);
+    // images: local ids are K's ids for points on no plane, and fresh ids (u32::MAX - n) otherwise,
+    // resolved when applied
+    let mut image: FxHashMap<u32, u32> = FxHashMap::default();
+    let mut images: Vec<(u32, [f64; 3], bool)> = Vec::new();
+    let mut local_pos: FxHashMap<u32, [f64; 3]> = FxHashMap::default();
+    let mut shift = 0.0f64;
+    let mut map_vertex = |v: u32| -> u32 {
+        *image.entry(v).or_insert_with(|| {
+            let x = k.positions[v as usize];
+            let y = phi(x);
+            shift = shift.max(dist(x, y));
+            let on_plane = !k.planes[v as usize].is_empty();
+            let id = if on_plane {
+                u32::MAX - 1 - images.len() as u32
+            } else {
+                v
+            };
+            images.push((v, y, on_plane));
+            local_pos.insert(id, y);
+            id
+        })
+    };
+    let tets: Vec<[u32; 4]> = part
+        .kept
+        .iter()
+        .map(|&i| k.kept[i].map(&mut map_vertex))
+        .collect();
+    let mut prisms = Vec::with_capacity(3 * bases.len());
+    for &(f, _) in bases {
+        let mut base = f;
+        base.sort_unstable();
+        let [x, y, z] = base;
+        let [xt, yt, zt] = base.map(&mut map_vertex);
+        prisms.extend([[x, y, z, zt], [x, y, yt, zt], [x, xt, yt, zt]]);
+    }
+    // a point on no plane is only ever seen mapped; a point on a plane keeps its place as a base
+    let pos = |v: u32| {
+        local_pos
+            .get(&v)
+            .copied()
+            .unwrap_or_else(|| k.positions[v as usize])
+    };
+    let orient = |t: &[u32; 4]| orient3d(pos(t[0]), pos(t[1]), pos(t[2]), pos(t[3]));
+    if tets.iter().any(|t| orient(t) <= 0.0) {
+        return Err(());
+    }
+    for t in &mut prisms {
+        let o = orient(t);
+        if o == 0.0 {
+            return Err(());
+        }
+        if o < 0.0 {
+            t.swap(0, 1);
+        }
+    }
+    // every image on C's side of every plane its points lie on
+    let mut touched: Vec<u32> = images
+        .iter()
+        .flat_map(|&(v, _, _)| k.planes[v as usize].iter().copied())
+        .collect();
+    touched.sort_unstable();
+    touched.dedup();
+    for &p in &touched {
+        let side = signed_distance(&arr_planes[p as usize], c);
+        if images
+            .iter()
+            .any(|&(_, y, _)| signed_distance(&arr_planes[p as usize], y) * side <= 0.0)
+        {
+            return Err(());
+        }
+    }
+    let height = bases
+        .iter()
+        .flat_map(|&(f, p)| f.map(|v| (v, p)))
+        .map(|(v, p)| {
+            let y = pos(image[&v]);
+            signed_distance(&arr_planes[p as usize], y).abs()
+        })
+        .fold(f64::INFINITY, f64::min);
+    Ok(CellCollar {
+        images,
+        tets,
+        prisms,
+        height,
+        shift,
+    })
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// Give K its collar of `height` (absolute), moving no point more than `max_shift` where the
+/// cell's planes are not parallel. The last change to K: the unkept lists are not
+/// updated (they are emptied).
+pub fn build(
+    k: &mut Triangulation,
+    arr_planes: &[ArrPlane],
+    height: f64,
+    max_shift: f64,
+) -> CollarStats {
+    let mut stats = CollarStats {
+        min_height: f64::INFINITY,
+        ..Default::default()
+    };
+    let parts = cell_parts(k);
+    let mut collars = Vec::new();
+    for part in &parts {
+        if part.volume <= 0.0 || part.bases.is_empty() {
+            continue;
+        }
+        let found = contractions(k, part, arr_planes, height, max_shift)
+            .into_iter()
+            .find_map(|phi| cell_collar(k, part, arr_planes, phi).ok());
+        match found {
+            Some(cc) => collars.push((part, cc)),
+            None => stats.cells_refused += 1,
+        }
+    }
+    let mut new_kept: Vec<[u32; 4]> = Vec::with_capacity(k.kept.len() + 3 * k.kept.len() / 2);
+    let mut mapped = vec![false; k.kept.len()];
+    for (part, cc) in collars {
+        let mut fresh: FxHashMap<u32, u32> = FxHashMap::default();
+        for (n, &(v, y, is_new)) in cc.images.iter().enumerate() {
+            if is_new {
+                k.positions.push(y);
+                k.planes.push(Planes::new());
+                fresh.insert(u32::MAX - 1 - n as u32, (k.positions.len() - 1) as u32);
+            } else {
+                k.positions[v as usize] = y;
+            }
+        }
+        let resolve = |t: [u32; 4]| t.map(|v| *fresh.get(&v).unwrap_or(&v));
+        new_kept.extend(cc.tets.into_iter().map(resolve));
+        new_kept.extend(cc.prisms.iter().map(|&t| resolve(t)));
+        for &i in &part.kept {
+            mapped[i] = true;
+        }
+        stats.cells += 1;
+        stats.prisms += cc.prisms.len() as u64 / 3;
+        stats.min_height = stats.min_height.min(cc.height);
+        stats.max_shift = stats.max_shift.max(cc.shift);
+    }
+    new_kept.extend(
+        k.kept
+            .iter()
+            .zip(&mapped)
+            .filter(|(_, &m)| !m)
+            .map(|(t, _)| *t),
+    );
+    *k.kept = new_kept;
+    k.fillable.clear();
+    k.external.clear();
+    if stats.cells == 0 {
+        stats.min_height = 0.0;
+    }
+    stats
+}
