@@ -168,6 +168,8 @@ pub fn assemble(
     if collar > 0.0 {
         let max_shift = super::collar::MAX_SHIFT_PER_HEIGHT * collar * diag;
         out.collar = super::collar::build(&mut k, &arr.planes, collar * diag, max_shift);
+        out.collar.min_height /= diag;
+        out.collar.max_shift /= diag;
     }
     let boundary = boundary_of(&tets);
     let (edges, vertices) = singularities(&boundary);

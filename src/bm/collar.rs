@@ -26,6 +26,8 @@ use crate::fxhash::FxHashMap;
 use crate::geom::predicates::orient3d;
 use petgraph::unionfind::UnionFind;
 
+mod affine;
+
 /// Largest shrink 1 − s_C: a cell whose solid lies within `height / 0.05` of one of its section
 /// planes gets a thinner collar rather than a homothety that moves its far side much.
 pub const MAX_SHRINK: f64 = 0.05;
@@ -42,9 +44,9 @@ pub struct CollarStats {
     pub cells_refused: u64,
     /// Section triangles given a prism (three tetrahedra each).
     pub prisms: u64,
-    /// Thinnest collar (the height of a prism over its base plane), absolute.
+    /// Thinnest collar (the height of a prism over its base plane).
     pub min_height: f64,
-    /// Largest distance a point of K moved, absolute.
+    /// Largest distance a point of K moved.
     pub max_shift: f64,
 }
 
@@ -156,18 +158,19 @@ struct CellCollar {
     shift: f64,
 }
 
-/// An affine contraction x ↦ x − N(x − c) of a cell towards `c` (N small and symmetric, so
-/// that I − N keeps orientation).
+/// An affine map x ↦ x + t + G(x − c) of a cell into itself (G small, so that I + G keeps
+/// orientation).
 #[derive(Clone, Copy, Debug)]
 struct Contraction {
     c: [f64; 3],
-    n: [[f64; 3]; 3],
+    t: [f64; 3],
+    g: [[f64; 3]; 3],
 }
 
 impl Contraction {
     fn apply(&self, x: [f64; 3]) -> [f64; 3] {
         let d = [0, 1, 2].map(|i| x[i] - self.c[i]);
-        [0, 1, 2].map(|i| x[i] - (0..3).map(|j| self.n[i][j] * d[j]).sum::<f64>())
+        [0, 1, 2].map(|i| x[i] + self.t[i] + (0..3).map(|j| self.g[i][j] * d[j]).sum::<f64>())
     }
 }
 
@@ -217,7 +220,8 @@ fn contractions(
             let a = shrink / along;
             out.push(Contraction {
                 c,
-                n: [0, 1, 2].map(|i| [0, 1, 2].map(|j| a * m[i] * m[j])),
+                t: [0.0; 3],
+                g: [0, 1, 2].map(|i| [0, 1, 2].map(|j| -a * m[i] * m[j])),
             });
         }
     }
@@ -234,8 +238,10 @@ fn contractions(
     };
     out.push(Contraction {
         c,
-        n: [0, 1, 2].map(|i| [0, 1, 2].map(|j| if i == j { shrink } else { 0.0 })),
+        t: [0.0; 3],
+        g: [0, 1, 2].map(|i| [0, 1, 2].map(|j| if i == j { -shrink } else { 0.0 })),
     });
+    out.extend(affine::best_affine(k, part, arr_planes, c, height, max_shift));
     out
 }
 
@@ -278,11 +284,7 @@ fn cell_collar(
         .collect();
     let mut prisms = Vec::with_capacity(3 * bases.len());
     for &(f, _) in bases {
-        let mut base = f;
-        base.sort_unstable();
-        let [x, y, z] = base;
-        let [xt, yt, zt] = base.map(&mut map_vertex);
-        prisms.extend([[x, y, z, zt], [x, y, yt, zt], [x, xt, yt, zt]]);
+        prisms.extend(prism(f, &mut map_vertex));
     }
     // a point on no plane is only ever seen mapped; a point on a plane keeps its place as a base
     let pos = |v: u32| {
@@ -295,14 +297,8 @@ fn cell_collar(
     if tets.iter().any(|t| orient(t) <= 0.0) {
         return Err(());
     }
-    for t in &mut prisms {
-        let o = orient(t);
-        if o == 0.0 {
-            return Err(());
-        }
-        if o < 0.0 {
-            t.swap(0, 1);
-        }
+    if prisms.iter().any(|t| orient(t) <= 0.0) {
+        return Err(());
     }
     // every image on C's side of every plane its points lie on
     let mut touched: Vec<u32> = images
@@ -337,6 +333,26 @@ fn cell_collar(
     })
 }
 
+/// The three tetrahedra of the prism between the section triangle `f` (oriented out of the cell)
+/// and its image, positively oriented where the prism is convex. The wall over an edge (a, b),
+/// a < b, gets the diagonal from a to b's image whichever prism it belongs to, so the prisms
+/// of two triangles sharing an edge share their wall's triangles.
+fn prism(f: [u32; 3], mut top: impl FnMut(u32) -> u32) -> [[u32; 4]; 3] {
+    let mut base = f;
+    base.sort_unstable();
+    // sorting by an odd permutation reverses the base's orientation
+    let odd = base != f && base != [f[1], f[2], f[0]] && base != [f[2], f[0], f[1]];
+    let [x, y, z] = base;
+    let [xt, yt, zt] = base.map(&mut top);
+    let mut tets = [[x, y, z, zt], [x, yt, y, zt], [x, xt, yt, zt]];
+    if odd {
+        for t in &mut tets {
+            t.swap(0, 1);
+        }
+    }
+    tets
+}
+
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
@@ -360,9 +376,14 @@ pub fn build(
         if part.volume <= 0.0 || part.bases.is_empty() {
             continue;
         }
+        // the valid candidate with the highest collar (up to `height`), then the smallest move
         let found = contractions(k, part, arr_planes, height, max_shift)
             .into_iter()
-            .find_map(|phi| cell_collar(k, part, arr_planes, phi).ok());
+            .filter_map(|phi| cell_collar(k, part, arr_planes, phi).ok())
+            .min_by(|a, b| {
+                let key = |cc: &CellCollar| (-(cc.height.min(height) / height * 100.0).floor(), cc.shift);
+                key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal)
+            });
         match found {
             Some(cc) => collars.push((part, cc)),
             None => stats.cells_refused += 1,
