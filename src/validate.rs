@@ -463,6 +463,7 @@ pub fn off_plane_tolerance(sections: &Sections) -> f64 {
 
 /// Remove consecutive vertices equal to, or within `near` (in 2D) of, the last one kept (closing
 /// edge included). True if any were removed.
+#[allow(clippy::needless_range_loop)]
 fn remove_consecutive_duplicates(c: &mut Contour, near: f64) -> bool {
     let n = c.points2.len();
     let close = |a: [f64; 2], b: [f64; 2]| a == b || (a[0] - b[0]).hypot(a[1] - b[1]) <= near;

@@ -115,7 +115,7 @@ fn fans_reconstruct_clean() {
         );
         assert!(c.closed && c.manifold && c.oriented, "{mesh} fan {n}");
         assert_eq!((c.self_intersections, c.overlapping_coplanar_pairs), (0, 0));
-        assert!(worst < 1e-9, "{mesh} fan {n}: worst section {worst:e}");
+        assert!(worst < 2e-9, "{mesh} fan {n}: worst section {worst:e}");
         // topology is issue 19's (the hand's reference genus is 5): pinned so that a change shows
         let got = (solid.report.counts["cells_untagged"], c.genus);
         if got != (untagged, genus) {

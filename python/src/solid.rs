@@ -116,10 +116,12 @@ impl Solid {
 /// Reconstruct a solid from `sections` with the options of `slice2solid reconstruct`:
 /// `method` ("delaunay" or "implicit"), `label` (only this label), `depth` (octree depth of the
 /// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `no_shared_samples`,
-/// `keep_topology`. Runs without the GIL.
+/// `keep_topology`, `collar` (height of the prisms over the sections near every plane, relative
+/// to the bounding-box diagonal; 0: none). Runs without the GIL.
 #[pyfunction]
 #[pyo3(signature = (sections, method = "delaunay", label = None, depth = 9, no_branching = false,
-    no_cutting = false, no_thicken = false, no_shared_samples = false, keep_topology = false))]
+    no_cutting = false, no_thicken = false, no_shared_samples = false, keep_topology = false,
+    collar = slice2solid::COLLAR_HEIGHT))]
 #[allow(clippy::too_many_arguments)]
 pub fn reconstruct(
     py: Python<'_>,
@@ -132,6 +134,7 @@ pub fn reconstruct(
     no_thicken: bool,
     no_shared_samples: bool,
     keep_topology: bool,
+    collar: f64,
 ) -> PyResult<Solid> {
     let method = match method {
         "delaunay" => Method::Delaunay,
@@ -155,7 +158,7 @@ pub fn reconstruct(
             thicken_flat_zones: !no_thicken,
             shared_samples: !no_shared_samples,
             keep_topology,
-            ..Default::default()
+            collar,
         },
         ..Default::default()
     };

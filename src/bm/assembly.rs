@@ -167,7 +167,9 @@ pub fn assemble(
     out.folds_closed = super::manifold::close_flat_folds(&mut k, &nonconforming, FLAT_FOLD * diag);
     if collar > 0.0 {
         let max_shift = super::collar::MAX_SHIFT_PER_HEIGHT * collar * diag;
+        let start = std::time::Instant::now();
         out.collar = super::collar::build(&mut k, &arr.planes, collar * diag, max_shift);
+        out.collar.seconds = start.elapsed().as_secs_f64();
         out.collar.min_height /= diag;
         out.collar.max_shift /= diag;
     }

@@ -22,9 +22,10 @@
 use super::complex::outward_face;
 use super::refine::{key3, Planes, Triangulation};
 use crate::arrangement::ArrPlane;
-use crate::fxhash::FxHashMap;
+use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::geom::predicates::orient3d;
 use petgraph::unionfind::UnionFind;
+use rayon::prelude::*;
 
 mod affine;
 
@@ -42,12 +43,16 @@ pub struct CollarStats {
     pub cells: u64,
     /// Cells whose image failed a check and kept K as it was.
     pub cells_refused: u64,
+    /// Cells whose collar would have made ∂K singular and kept K as it was.
+    pub cells_left_singular: u64,
     /// Section triangles given a prism (three tetrahedra each).
     pub prisms: u64,
     /// Thinnest collar (the height of a prism over its base plane).
     pub min_height: f64,
     /// Largest distance a point of K moved.
     pub max_shift: f64,
+    /// Time taken.
+    pub seconds: f64,
 }
 
 /// The plane shared by the three vertices of `f`, if any.
@@ -131,8 +136,8 @@ fn cell_parts(k: &Triangulation) -> Vec<CellPart> {
         }
         let x = t.map(|v| k.positions[v as usize]);
         let vol = orient3d(x[0], x[1], x[2], x[3]).abs();
-        for d in 0..3 {
-            parts[p].moment[d] += vol * (x[0][d] + x[1][d] + x[2][d] + x[3][d]) / 4.0;
+        for (d, m) in parts[p].moment.iter_mut().enumerate() {
+            *m += vol * (x[0][d] + x[1][d] + x[2][d] + x[3][d]) / 4.0;
         }
         parts[p].volume += vol;
     }
@@ -198,7 +203,7 @@ fn contractions(
         };
         normals.push(n);
     }
-    if !(nearest > 0.0) {
+    if nearest.is_nan() || nearest <= 0.0 {
         return Vec::new();
     }
     let mut mean = [0.0; 3];
@@ -241,8 +246,44 @@ fn contractions(
         t: [0.0; 3],
         g: [0, 1, 2].map(|i| [0, 1, 2].map(|j| if i == j { -shrink } else { 0.0 })),
     });
-    out.extend(affine::best_affine(k, part, arr_planes, c, height, max_shift));
     out
+}
+
+/// The cell's collar: the first cheap candidate that lifts by the full height within
+/// `max_shift`, else the best of all (the highest collar up to `height`, then the smallest move).
+fn best_collar(
+    k: &Triangulation,
+    part: &CellPart,
+    arr_planes: &[ArrPlane],
+    height: f64,
+    max_shift: f64,
+) -> Option<CellCollar> {
+    let key = |cc: &CellCollar| {
+        let lift = (cc.height.min(height) / height * 100.0).floor();
+        (-lift, cc.shift)
+    };
+    // the full height within the allowed move: the linear program would only move points less
+    let good = |cc: &CellCollar| cc.height >= 0.99 * height && cc.shift <= max_shift;
+    let better = |a: Option<CellCollar>, b: CellCollar| match a {
+        Some(a) if key(&a) <= key(&b) => Some(a),
+        _ => Some(b),
+    };
+    let mut best: Option<CellCollar> = None;
+    for phi in contractions(k, part, arr_planes, height, max_shift) {
+        if let Ok(cc) = cell_collar(k, part, arr_planes, phi) {
+            if good(&cc) {
+                return Some(cc);
+            }
+            best = better(best, cc);
+        }
+    }
+    let c = part.moment.map(|m| m / part.volume);
+    if let Some(phi) = affine::best_affine(k, part, arr_planes, c, height, max_shift) {
+        if let Ok(cc) = cell_collar(k, part, arr_planes, phi) {
+            best = better(best, cc);
+        }
+    }
+    best
 }
 
 /// The collar of one cell under `phi`, or `Err` where a check fails.
@@ -300,21 +341,8 @@ fn cell_collar(
     if prisms.iter().any(|t| orient(t) <= 0.0) {
         return Err(());
     }
-    // every image on C's side of every plane its points lie on
-    let mut touched: Vec<u32> = images
-        .iter()
-        .flat_map(|&(v, _, _)| k.planes[v as usize].iter().copied())
-        .collect();
-    touched.sort_unstable();
-    touched.dedup();
-    for &p in &touched {
-        let side = signed_distance(&arr_planes[p as usize], c);
-        if images
-            .iter()
-            .any(|&(_, y, _)| signed_distance(&arr_planes[p as usize], y) * side <= 0.0)
-        {
-            return Err(());
-        }
+    if !stays_in_cell(k, &images, arr_planes, c, shift) {
+        return Err(());
     }
     let height = bases
         .iter()
@@ -330,6 +358,45 @@ fn cell_collar(
         prisms,
         height,
         shift,
+    })
+}
+
+/// Whether every image lies strictly on the same side of every plane as its point (as the
+/// cell's centre, for a point on the plane): the map keeps each cell's solid inside the cell.
+/// Only planes within `shift` of the points' bounding box can be crossed.
+fn stays_in_cell(
+    k: &Triangulation,
+    images: &[(u32, [f64; 3], bool)],
+    arr_planes: &[ArrPlane],
+    c: [f64; 3],
+    shift: f64,
+) -> bool {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for &(v, _, _) in images {
+        let x = k.positions[v as usize];
+        for i in 0..3 {
+            lo[i] = lo[i].min(x[i] - shift);
+            hi[i] = hi[i].max(x[i] + shift);
+        }
+    }
+    arr_planes.iter().enumerate().all(|(p, plane)| {
+        let corner = |m: usize| [0, 1, 2].map(|i| if m >> i & 1 == 0 { lo[i] } else { hi[i] });
+        let sides = (0..8).map(|m| signed_distance(plane, corner(m)));
+        let (min, max) = sides.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), d| {
+            (a.min(d), b.max(d))
+        });
+        if min > 0.0 || max < 0.0 {
+            return true;
+        }
+        let centre = signed_distance(plane, c);
+        images.iter().all(|&(v, y, _)| {
+            let side = if k.planes[v as usize].contains(&(p as u32)) {
+                centre
+            } else {
+                signed_distance(plane, k.positions[v as usize])
+            };
+            signed_distance(plane, y) * side > 0.0
+        })
     })
 }
 
@@ -357,74 +424,118 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
+/// K with some cells' collars applied: positions (old ones moved, new ones appended), tetrahedra,
+/// and per tetrahedron the part it came from (`None`: a cell left as it was).
+struct Applied {
+    positions: Vec<[f64; 3]>,
+    kept: Vec<[u32; 4]>,
+    part: Vec<Option<usize>>,
+}
+
+fn apply(k: &Triangulation, parts: &[CellPart], collars: &[Option<CellCollar>]) -> Applied {
+    let mut out = Applied {
+        positions: k.positions.clone(),
+        kept: Vec::with_capacity(k.kept.len() * 2),
+        part: Vec::with_capacity(k.kept.len() * 2),
+    };
+    let mut mapped = vec![false; k.kept.len()];
+    for (p, (part, cc)) in parts.iter().zip(collars).enumerate() {
+        let Some(cc) = cc else { continue };
+        let mut fresh: FxHashMap<u32, u32> = FxHashMap::default();
+        for (n, &(v, y, is_new)) in cc.images.iter().enumerate() {
+            if is_new {
+                out.positions.push(y);
+                fresh.insert(u32::MAX - 1 - n as u32, (out.positions.len() - 1) as u32);
+            } else {
+                out.positions[v as usize] = y;
+            }
+        }
+        let resolve = |t: &[u32; 4]| t.map(|v| *fresh.get(&v).unwrap_or(&v));
+        let before = out.kept.len();
+        out.kept
+            .extend(cc.tets.iter().chain(&cc.prisms).map(resolve));
+        out.part
+            .resize(out.part.len() + out.kept.len() - before, Some(p));
+        for &i in &part.kept {
+            mapped[i] = true;
+        }
+    }
+    for (t, _) in k.kept.iter().zip(&mapped).filter(|(_, &m)| !m) {
+        out.kept.push(*t);
+        out.part.push(None);
+    }
+    out
+}
+
+/// Most rounds of leaving out the collars of cells at singular simplices.
+const SINGULAR_ROUNDS: usize = 4;
+
 /// Give K its collar of `height` (absolute), moving no point more than `max_shift` where the
-/// cell's planes are not parallel. The last change to K: the unkept lists are not
-/// updated (they are emptied).
+/// cell's planes are not parallel. The last change to K: the unkept lists are emptied.
+///
+/// A collar over every section triangle can meet the cell's solid where it touched the plane at an
+/// edge or a vertex only, and make that edge or vertex singular. So the result is checked: where
+/// ∂K has more singular simplices than without the collar, the cells at them keep their solid as it
+/// was (their neighbours' collars stay), for a few rounds, and otherwise no cell gets a collar.
 pub fn build(
     k: &mut Triangulation,
     arr_planes: &[ArrPlane],
     height: f64,
     max_shift: f64,
 ) -> CollarStats {
-    let mut stats = CollarStats {
-        min_height: f64::INFINITY,
-        ..Default::default()
-    };
+    let mut stats = CollarStats::default();
     let parts = cell_parts(k);
-    let mut collars = Vec::new();
-    for part in &parts {
-        if part.volume <= 0.0 || part.bases.is_empty() {
-            continue;
+    // cells are independent: their collars are found in parallel
+    let found: Vec<Option<Option<CellCollar>>> = parts
+        .par_iter()
+        .map(|part| {
+            (part.volume > 0.0 && !part.bases.is_empty())
+                .then(|| best_collar(k, part, arr_planes, height, max_shift))
+        })
+        .collect();
+    stats.cells_refused = found.iter().filter(|f| matches!(f, Some(None))).count() as u64;
+    let mut collars: Vec<Option<CellCollar>> = found.into_iter().map(Option::flatten).collect();
+    let singular =
+        |tets: &[[u32; 4]]| super::fill::singular_simplices(&super::assembly::boundary_of(tets));
+    let (e0, v0) = singular(k.kept);
+    let allowed = e0.len() + v0.len();
+    let mut applied = None;
+    for _ in 0..SINGULAR_ROUNDS {
+        let a = apply(k, &parts, &collars);
+        let (e, v) = singular(&a.kept);
+        if e.len() + v.len() <= allowed {
+            applied = Some(a);
+            break;
         }
-        // the valid candidate with the highest collar (up to `height`), then the smallest move
-        let found = contractions(k, part, arr_planes, height, max_shift)
-            .into_iter()
-            .filter_map(|phi| cell_collar(k, part, arr_planes, phi).ok())
-            .min_by(|a, b| {
-                let key = |cc: &CellCollar| (-(cc.height.min(height) / height * 100.0).floor(), cc.shift);
-                key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal)
-            });
-        match found {
-            Some(cc) => collars.push((part, cc)),
-            None => stats.cells_refused += 1,
-        }
-    }
-    let mut new_kept: Vec<[u32; 4]> = Vec::with_capacity(k.kept.len() + 3 * k.kept.len() / 2);
-    let mut mapped = vec![false; k.kept.len()];
-    for (part, cc) in collars {
-        let mut fresh: FxHashMap<u32, u32> = FxHashMap::default();
-        for (n, &(v, y, is_new)) in cc.images.iter().enumerate() {
-            if is_new {
-                k.positions.push(y);
-                k.planes.push(Planes::new());
-                fresh.insert(u32::MAX - 1 - n as u32, (k.positions.len() - 1) as u32);
-            } else {
-                k.positions[v as usize] = y;
+        let at: FxHashSet<u32> = e.iter().flat_map(|&(x, y)| [x, y]).chain(v).collect();
+        for (t, p) in a.kept.iter().zip(&a.part) {
+            if let Some(p) = p {
+                if t.iter().any(|v| at.contains(v)) && collars[*p].take().is_some() {
+                    stats.cells_left_singular += 1;
+                }
             }
         }
-        let resolve = |t: [u32; 4]| t.map(|v| *fresh.get(&v).unwrap_or(&v));
-        new_kept.extend(cc.tets.into_iter().map(resolve));
-        new_kept.extend(cc.prisms.iter().map(|&t| resolve(t)));
-        for &i in &part.kept {
-            mapped[i] = true;
-        }
+    }
+    let Some(a) = applied else {
+        stats.cells_left_singular += collars.iter().flatten().count() as u64;
+        k.fillable.clear();
+        k.external.clear();
+        return stats;
+    };
+    for cc in collars.iter().flatten() {
         stats.cells += 1;
         stats.prisms += cc.prisms.len() as u64 / 3;
-        stats.min_height = stats.min_height.min(cc.height);
+        stats.min_height = if stats.cells == 1 {
+            cc.height
+        } else {
+            stats.min_height.min(cc.height)
+        };
         stats.max_shift = stats.max_shift.max(cc.shift);
     }
-    new_kept.extend(
-        k.kept
-            .iter()
-            .zip(&mapped)
-            .filter(|(_, &m)| !m)
-            .map(|(t, _)| *t),
-    );
-    *k.kept = new_kept;
+    k.planes.resize(a.positions.len(), Planes::new());
+    *k.positions = a.positions;
+    *k.kept = a.kept;
     k.fillable.clear();
     k.external.clear();
-    if stats.cells == 0 {
-        stats.min_height = 0.0;
-    }
     stats
 }

@@ -32,11 +32,11 @@
 pub mod assembly;
 pub mod branching;
 pub mod carve;
-pub mod collar;
 pub mod cell;
 pub mod cell_input;
 pub mod chains;
 pub mod classify;
+pub mod collar;
 pub mod complex;
 pub mod conform;
 pub mod cutting;
@@ -465,7 +465,14 @@ fn assemble_cells(
     let slabs = options.delaunay.thicken_flat_zones;
     let fill_voids = !options.delaunay.keep_topology;
     let k = report.time("assembly", || {
-        assembly::assemble(arr, pool, results, slabs, fill_voids, options.delaunay.collar)
+        assembly::assemble(
+            arr,
+            pool,
+            results,
+            slabs,
+            fill_voids,
+            options.delaunay.collar,
+        )
     });
     report.count("nonconforming_faces", k.nonconforming_faces);
     report.count("flat_zone_triangles", k.flat_triangles);
@@ -499,12 +506,22 @@ fn assemble_cells(
     report.count("collar_cells", k.collar.cells);
     report.count("collar_cells_refused", k.collar.cells_refused);
     report.count("collar_prisms", k.collar.prisms);
+    report.count("collar_cells_left_singular", k.collar.cells_left_singular);
     report
         .values
         .insert("collar_min_height".into(), k.collar.min_height);
     report
         .values
         .insert("collar_max_shift".into(), k.collar.max_shift);
+    report
+        .values
+        .insert("collar_seconds".into(), k.collar.seconds);
+    if k.collar.cells_left_singular > 0 {
+        report.warnings.push(format!(
+            "collar: {} cells keep their solid as it was (their collar would make the surface singular): sections just off their planes are not protected there",
+            k.collar.cells_left_singular
+        ));
+    }
     if k.collar.cells_refused > 0 {
         report.warnings.push(format!(
             "collar: {} cells keep their solid as it was (a mapped tetrahedron would flip or leave the cell): sections just off their planes are not protected there",

@@ -186,3 +186,24 @@ pub fn worst_section(mesh: &slice2solid::TriMesh, s: &Sections) -> f64 {
             }
         })
 }
+
+/// The summed area of every section's material (outer contours less holes).
+#[allow(dead_code)]
+pub fn section_area(sections: &Sections) -> f64 {
+    let shoelace = |p: &[[f64; 2]]| {
+        let n = p.len();
+        (0..n)
+            .map(|i| p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1])
+            .sum::<f64>()
+            .abs()
+            / 2.0
+    };
+    sections
+        .sections
+        .iter()
+        .flat_map(|s| &s.regions)
+        .map(|r| {
+            shoelace(&r.outer.points2) - r.holes.iter().map(|h| shoelace(&h.points2)).sum::<f64>()
+        })
+        .sum()
+}

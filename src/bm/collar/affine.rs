@@ -4,8 +4,8 @@
 //! A homothety lifts every face alike but moves far points in proportion to the cell's width; a
 //! squeeze along one normal keeps widths but fails where the faces are not parallel. Between these,
 //! the map x ↦ x + h(τ + G x̃) (x̃ = (x − c)/reach) that maximises the smallest lift η ≤ 1 of the
-//! points on the cell's planes, with no point of the cell moving more than `max_shift`, and then,
-//! at that lift, moves points least. Affine functions take their extremes at extreme points, so the
+//! points on the cell's planes, with no point of the cell moving more than `max_shift`, and,
+//! nearly as high, moves points least. Affine functions take their extremes at extreme points, so the
 //! constraints are written at the convex hull of each plane's points and the corners of the
 //! cell's bounding box. The result is checked exactly like the other candidates.
 use super::{dist, CellPart, Contraction};
@@ -65,15 +65,16 @@ impl Unknowns {
 
     /// The terms of w·(τ + G x̃).
     fn along(&self, w: [f64; 3], x: [f64; 3]) -> Vec<(Variable, f64)> {
-        let mut e: Vec<(Variable, f64)> = (0..3).map(|i| (self.tau[i], w[i])).collect();
-        for i in 0..3 {
-            for j in 0..3 {
-                e.push((self.g[i][j], w[i] * x[j]));
-            }
+        let mut e: Vec<(Variable, f64)> = self.tau.iter().copied().zip(w).collect();
+        for (row, wi) in self.g.iter().zip(w) {
+            e.extend(row.iter().zip(x).map(|(&g, xj)| (g, wi * xj)));
         }
         e
     }
 }
+
+/// Points on one plane: (u,v) in its frame, vertex id.
+type PlanePoints = Vec<([f64; 2], usize)>;
 
 /// The constraints of a cell: (inward unit normal, scaled point) per hull corner of each plane's
 /// points, and the scaled corners of the bounding box.
@@ -98,7 +99,7 @@ fn constraints(
         .collect();
     vertices.sort_unstable();
     vertices.dedup();
-    let mut on_plane: FxHashMap<u32, Vec<([f64; 2], usize)>> = FxHashMap::default();
+    let mut on_plane: FxHashMap<u32, PlanePoints> = FxHashMap::default();
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for &v in &vertices {
         let x = k.positions[v as usize];
@@ -112,7 +113,7 @@ fn constraints(
         }
     }
     let mut lifts = Vec::new();
-    let mut planes: Vec<(u32, Vec<([f64; 2], usize)>)> = on_plane.into_iter().collect();
+    let mut planes: Vec<(u32, PlanePoints)> = on_plane.into_iter().collect();
     planes.sort_unstable_by_key(|p| p.0);
     for (p, pts) in planes {
         let plane = &arr_planes[p as usize].plane;
@@ -132,7 +133,13 @@ fn constraints(
 }
 
 /// Lifts at least `eta` (in collar heights) at every hull corner of every plane.
-fn lift_rows(lp: &mut Problem, u: &Unknowns, cs: &CellConstraints, eta: Option<Variable>, at_least: f64) {
+fn lift_rows(
+    lp: &mut Problem,
+    u: &Unknowns,
+    cs: &CellConstraints,
+    eta: Option<Variable>,
+    at_least: f64,
+) {
     for &(w, x) in &cs.lifts {
         let mut e = u.along(w, x);
         if let Some(eta) = eta {
@@ -143,14 +150,23 @@ fn lift_rows(lp: &mut Problem, u: &Unknowns, cs: &CellConstraints, eta: Option<V
 }
 
 /// Moves at most `bound` (in collar heights, per coordinate) at every corner of the bounding box.
-fn shift_rows(lp: &mut Problem, u: &Unknowns, cs: &CellConstraints, bound: Option<Variable>, fixed: f64) {
+fn shift_rows(
+    lp: &mut Problem,
+    u: &Unknowns,
+    cs: &CellConstraints,
+    bound: Option<Variable>,
+    fixed: f64,
+) {
     for &x in &cs.corners {
         for i in 0..3 {
             let mut w = [0.0; 3];
             w[i] = 1.0;
             for sign in [1.0, -1.0] {
-                let mut e: Vec<(Variable, f64)> =
-                    u.along(w, x).into_iter().map(|(v, a)| (v, sign * a)).collect();
+                let mut e: Vec<(Variable, f64)> = u
+                    .along(w, x)
+                    .into_iter()
+                    .map(|(v, a)| (v, sign * a))
+                    .collect();
                 if let Some(b) = bound {
                     e.push((b, -1.0));
                 }
@@ -183,23 +199,18 @@ pub(super) fn best_affine(
     // I + (h/reach)G keeps orientation while every entry of (h/reach)G is below 1/4
     let g_bound = 0.25 * reach / height;
     let sigma = max_shift / height;
-    // first the largest lift (at most one height) with every point moving at most max_shift
+    // the largest lift (at most one height), and among those nearly as high the smallest move:
+    // one program with the move weighted far below the lift (a move of `sigma` costs 1% of it)
     let mut lp = Problem::new(OptimizationDirection::Maximize);
     let u = Unknowns::new(&mut lp, g_bound);
     let eta = lp.add_var(1.0, (0.0, 1.0));
+    let bound = lp.add_var(-0.01 / sigma, (0.0, sigma));
     lift_rows(&mut lp, &u, &cs, Some(eta), 0.0);
-    shift_rows(&mut lp, &u, &cs, None, sigma);
-    let best = lp.solve().ok()?.objective();
-    if best < MIN_LIFT {
-        return None;
-    }
-    // then, at that lift, the smallest move
-    let mut lp = Problem::new(OptimizationDirection::Minimize);
-    let u = Unknowns::new(&mut lp, g_bound);
-    let bound = lp.add_var(1.0, (0.0, sigma));
-    lift_rows(&mut lp, &u, &cs, None, 0.999 * best);
     shift_rows(&mut lp, &u, &cs, Some(bound), 0.0);
     let sol = lp.solve().ok()?;
+    if sol[eta] < MIN_LIFT {
+        return None;
+    }
     let t = u.tau.map(|v| height * sol[v]);
     let g = u.g.map(|row| row.map(|v| height / reach * sol[v]));
     Some(Contraction { c, t, g })
