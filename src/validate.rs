@@ -40,12 +40,6 @@ pub(crate) use repair::{material_of, pieces_of};
 /// below any real misplacement.
 pub const OFF_PLANE_RELATIVE_TOLERANCE: f64 = 1e-3;
 
-/// Consecutive contour vertices closer than this (relative to the model's bounding-box diagonal)
-/// are one vertex: edges that short carry no shape, and the reconstruction's refinements near them
-/// (points split off their edges) would be closer still, below what file formats and other tools
-/// keep apart.
-pub const NEAR_DUPLICATE_RELATIVE: f64 = 1e-6;
-
 /// Two planes are the same plane when they are this close over the model's bounding box,
 /// relative to its diagonal.
 pub const DUPLICATE_PLANE_RELATIVE_TOLERANCE: f64 = 1e-9;
@@ -255,7 +249,6 @@ pub fn validate_with_options(
     }
 
     // Duplicate consecutive vertices (closing edge included), then the vertex count.
-    let near = NEAR_DUPLICATE_RELATIVE * model_diagonal(&sections);
     for (s, sec) in sections.sections.iter_mut().enumerate() {
         for (r, region) in sec.regions.iter_mut().enumerate() {
             for (role, c) in contours_mut(region) {
@@ -264,7 +257,7 @@ pub fn validate_with_options(
                     region: r,
                     role,
                 };
-                if remove_consecutive_duplicates(c, near) {
+                if remove_consecutive_duplicates(c) {
                     duplicates.add(|| loc.contour(id));
                 }
                 if c.points2.len() < 3 {
@@ -308,7 +301,7 @@ pub fn validate_with_options(
         .unwrap_or(0);
     sections.n_labels = sections.n_labels.max(max_label.max(0) as usize);
     duplicates.report(
-        &format!("removed duplicate consecutive vertices (equal, or closer than {NEAR_DUPLICATE_RELATIVE} x the model diagonal to the vertex before)"),
+        "removed duplicate consecutive vertices",
         &mut sections.warnings,
     );
     reoriented.report(
@@ -461,33 +454,26 @@ pub fn off_plane_tolerance(sections: &Sections) -> f64 {
     OFF_PLANE_RELATIVE_TOLERANCE * model_diagonal(sections)
 }
 
-/// Remove consecutive vertices equal to, or within `near` (in 2D) of, the last one kept (closing
-/// edge included). True if any were removed.
+/// Remove consecutive equal vertices (in 2D, closing edge included). True if any were removed.
 #[allow(clippy::needless_range_loop)]
-fn remove_consecutive_duplicates(c: &mut Contour, near: f64) -> bool {
+fn remove_consecutive_duplicates(c: &mut Contour) -> bool {
     let n = c.points2.len();
-    let close = |a: [f64; 2], b: [f64; 2]| a == b || (a[0] - b[0]).hypot(a[1] - b[1]) <= near;
     let mut keep = vec![true; n];
     let mut any = false;
-    let mut last = 0;
     for i in 1..n {
-        if close(c.points2[i], c.points2[last]) {
+        if c.points2[i] == c.points2[i - 1] {
             keep[i] = false;
             any = true;
-        } else {
-            last = i;
         }
     }
-    // Closing edge: drop trailing kept vertices close to the first one.
-    for i in (1..n).rev() {
-        if !keep[i] {
-            continue;
+    // Closing edge: drop trailing vertices equal to the first kept one.
+    let mut last = n;
+    while last > 1 && c.points2[last - 1] == c.points2[0] {
+        if keep[last - 1] {
+            keep[last - 1] = false;
+            any = true;
         }
-        if !close(c.points2[i], c.points2[0]) {
-            break;
-        }
-        keep[i] = false;
-        any = true;
+        last -= 1;
     }
     if any {
         let mut k = keep.iter();

@@ -96,8 +96,9 @@ fn both_cells_of_a_face_triangulate_it_alike() {
 }
 
 /// The random-plane cases of `bm_random_planes::many_random_planes` (20 and 30 planes, seeds 4 and 5,
-/// five reference meshes; sliced directly, not through a CSL file) with shared samples: today 3 of
-/// 20 are not clean (pinched vertices, singular edges or flat folds left; no exact crossing). With
+/// five reference meshes; sliced directly, not through a CSL file) with shared samples: today 2 of
+/// 20 are not clean (pinched vertices, singular edges or flat folds left; no exact crossing;
+/// balloondog_box 30/4 became clean with the collar). With
 /// the first pipeline (cells glued, since removed) 11 kept crossing pairs. A listed expectation,
 /// so a fix shows.
 #[test]
@@ -136,7 +137,6 @@ fn random_planes_with_shared_samples() {
         [
             "balloondog: 30 planes, seed 5",
             "balloondog_box: 20 planes, seed 4",
-            "balloondog_box: 30 planes, seed 4",
         ]
     );
 }
