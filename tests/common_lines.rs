@@ -114,7 +114,10 @@ fn odd072_is_reconciled() {
     assert!(c.closed && c.manifold && c.oriented, "{c:?}");
     // Known, not wished: 37 overlapping near-coplanar pairs (folds the complex leaves between the
     // pieces the trims cut apart); no exact crossing.
-    assert_eq!((c.self_intersections, c.overlapping_coplanar_pairs), (0, 37));
+    assert_eq!(
+        (c.self_intersections, c.overlapping_coplanar_pairs),
+        (0, 37)
+    );
     let worst = c.worst_section.unwrap().relative;
     assert!(worst < 1.9e-3, "{worst}");
 }

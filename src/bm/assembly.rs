@@ -165,15 +165,18 @@ pub fn assemble(
         out.voids.tets_filled += again.tets_filled;
     }
     out.folds_closed = super::manifold::close_flat_folds(&mut k, &nonconforming, FLAT_FOLD * diag);
+    let mut boundary = None;
     if collar > 0.0 {
         let max_shift = super::collar::MAX_SHIFT_PER_HEIGHT * collar * diag;
         let start = std::time::Instant::now();
-        out.collar = super::collar::build(&mut k, &arr.planes, collar * diag, max_shift);
+        let (stats, b) = super::collar::build(&mut k, &arr.planes, collar * diag, max_shift);
+        out.collar = stats;
+        boundary = b;
         out.collar.seconds = start.elapsed().as_secs_f64();
         out.collar.min_height /= diag;
         out.collar.max_shift /= diag;
     }
-    let boundary = boundary_of(&tets);
+    let boundary = boundary.unwrap_or_else(|| boundary_of(&tets));
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;
     out.singular_vertices = vertices;

@@ -477,34 +477,40 @@ const SINGULAR_ROUNDS: usize = 4;
 /// edge or a vertex only, and make that edge or vertex singular. So the result is checked: where
 /// ∂K has more singular simplices than without the collar, the cells at them keep their solid as it
 /// was (their neighbours' collars stay), for a few rounds, and otherwise no cell gets a collar.
+/// With the stats, ∂K when the collar was applied (`assembly::boundary_of` of the new K).
 pub fn build(
     k: &mut Triangulation,
     arr_planes: &[ArrPlane],
     height: f64,
     max_shift: f64,
-) -> CollarStats {
+) -> (CollarStats, Option<Vec<[u32; 3]>>) {
     let mut stats = CollarStats::default();
     let parts = cell_parts(k);
-    // cells are independent: their collars are found in parallel
-    let found: Vec<Option<Option<CellCollar>>> = parts
-        .par_iter()
-        .map(|part| {
-            (part.volume > 0.0 && !part.bases.is_empty())
-                .then(|| best_collar(k, part, arr_planes, height, max_shift))
-        })
-        .collect();
-    stats.cells_refused = found.iter().filter(|f| matches!(f, Some(None))).count() as u64;
-    let mut collars: Vec<Option<CellCollar>> = found.into_iter().map(Option::flatten).collect();
     let singular =
         |tets: &[[u32; 4]]| super::fill::singular_simplices(&super::assembly::boundary_of(tets));
-    let (e0, v0) = singular(k.kept);
+    // cells are independent: their collars are found in parallel, beside ∂K's singular count
+    let (found, (e0, v0)): (Vec<Option<Option<CellCollar>>>, _) = rayon::join(
+        || {
+            parts
+                .par_iter()
+                .map(|part| {
+                    (part.volume > 0.0 && !part.bases.is_empty())
+                        .then(|| best_collar(k, part, arr_planes, height, max_shift))
+                })
+                .collect()
+        },
+        || singular(k.kept),
+    );
+    stats.cells_refused = found.iter().filter(|f| matches!(f, Some(None))).count() as u64;
+    let mut collars: Vec<Option<CellCollar>> = found.into_iter().map(Option::flatten).collect();
     let allowed = e0.len() + v0.len();
     let mut applied = None;
     for _ in 0..SINGULAR_ROUNDS {
         let a = apply(k, &parts, &collars);
-        let (e, v) = singular(&a.kept);
+        let boundary = super::assembly::boundary_of(&a.kept);
+        let (e, v) = super::fill::singular_simplices(&boundary);
         if e.len() + v.len() <= allowed {
-            applied = Some(a);
+            applied = Some((a, boundary));
             break;
         }
         let at: FxHashSet<u32> = e.iter().flat_map(|&(x, y)| [x, y]).chain(v).collect();
@@ -516,11 +522,11 @@ pub fn build(
             }
         }
     }
-    let Some(a) = applied else {
+    let Some((a, boundary)) = applied else {
         stats.cells_left_singular += collars.iter().flatten().count() as u64;
         k.fillable.clear();
         k.external.clear();
-        return stats;
+        return (stats, None);
     };
     for cc in collars.iter().flatten() {
         stats.cells += 1;
@@ -537,7 +543,7 @@ pub fn build(
     *k.kept = a.kept;
     k.fillable.clear();
     k.external.clear();
-    stats
+    (stats, Some(boundary))
 }
 
 #[cfg(test)]
