@@ -33,6 +33,9 @@ mod affine;
 /// planes gets a thinner collar rather than a homothety that moves its far side much.
 pub const MAX_SHRINK: f64 = 0.05;
 
+/// Least ratio of a collar's height to the farthest move of its cell's map.
+pub const MIN_STEEPNESS: f64 = 0.1;
+
 /// Farthest a homothety may move a point, in collar heights: where a cell is much wider than
 /// deep (a slab between two oblique planes), its collar gets thinner instead.
 pub const MAX_SHIFT_PER_HEIGHT: f64 = 10.0;
@@ -283,7 +286,9 @@ fn best_collar(
             best = better(best, cc);
         }
     }
-    best
+    // a collar whose points move far along the plane and little off it has walls nearly in the
+    // plane, folded onto their neighbours (a double sheet): the cell keeps its solid
+    best.filter(|cc| cc.height >= MIN_STEEPNESS * cc.shift)
 }
 
 /// The collar of one cell under `phi`, or `Err` where a check fails.
