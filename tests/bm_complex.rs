@@ -9,7 +9,6 @@
 //! closed manifold with exact sections.
 mod common;
 use slice2solid::eval::check::check_mesh;
-use slice2solid::eval::tets::check_tets;
 use slice2solid::{DelaunayOptions, Options};
 
 /// (file, faces triangulated differently, flat-zone triangles, singular edges, pinched vertices,
@@ -69,12 +68,7 @@ fn the_solid_is_the_boundary_of_one_conforming_complex() {
                 (differ, flat, edges, vertices)
             ));
         }
-        let tets = solid.tets.as_ref().expect("the complex has tetrahedra");
-        let t = check_tets(tets, Some(&solid.surface));
-        let equal = t
-            .surface
-            .as_ref()
-            .is_some_and(|s| s.boundary_equals_surface);
+        let (t, equal) = common::check_solid_tets(&solid);
         // conforming as a complex (TetCheck::conforming also wants a manifold boundary, which
         // the pinned singularities are not)
         let complex = t.coincident_vertices == 0
@@ -191,15 +185,10 @@ fn a_fan_of_planes_runs_through_the_tagged_kernel() {
     assert_eq!(count("cells_untagged"), 0);
     assert_eq!(count("nonconforming_faces"), 0);
     assert_eq!(count("singular_edges"), 0);
-    let t = check_tets(solid.tets.as_ref().unwrap(), Some(&solid.surface));
+    let (t, equal) = common::check_solid_tets(&solid);
     assert_eq!((t.inverted, t.flat), (0, 0));
     assert!(t.valid && t.conforming, "{t:?}");
-    assert!(
-        t.surface
-            .as_ref()
-            .is_some_and(|m| m.boundary_equals_surface),
-        "{t:?}"
-    );
+    assert!(equal, "{t:?}");
     let c = slice2solid::eval::check::check_mesh(&solid.surface, Some(&sections));
     let worst = c.worst_section.as_ref().unwrap().relative;
     eprintln!(

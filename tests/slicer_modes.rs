@@ -8,7 +8,6 @@
 //! list cannot go stale.
 mod common;
 use slice2solid::eval::check::check_mesh;
-use slice2solid::eval::tets::check_tets;
 use slice2solid::slice::SliceMode;
 
 /// Worst relative section difference allowed (today: at most 6.3e-10 over these cases but the
@@ -33,12 +32,7 @@ fn problems(mesh: &str, mode: SliceMode, planes: usize) -> Vec<String> {
         .unwrap_or_else(|e| panic!("{mesh} {mode:?} {planes}: {e}"));
     let c = check_mesh(&solid.surface, Some(&sections));
     let worst = c.worst_section.as_ref().map_or(1.0, |w| w.relative);
-    let tets = solid.tets.as_ref().expect("the complex has tetrahedra");
-    let t = check_tets(tets, Some(&solid.surface));
-    let equal = t
-        .surface
-        .as_ref()
-        .is_some_and(|s| s.boundary_equals_surface);
+    let (t, equal) = common::check_solid_tets(&solid);
     eprintln!(
         "{mesh} {mode:?} {planes}: closed {} manifold {} crossings {} overlaps {} worst {worst:e} tets valid {} boundary = surface {equal}",
         c.closed, c.manifold, c.self_intersections, c.overlapping_coplanar_pairs, t.valid

@@ -24,6 +24,7 @@ use super::refine::{key3, Planes, Triangulation};
 use crate::arrangement::ArrPlane;
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::geom::predicates::orient3d;
+use crate::sections::{dot, sub};
 use petgraph::unionfind::UnionFind;
 use rayon::prelude::*;
 
@@ -104,6 +105,13 @@ struct CellPart {
     volume: f64,
 }
 
+impl CellPart {
+    /// The volume centroid of the cell's triangulation: strictly inside the convex cell.
+    fn centre(&self) -> [f64; 3] {
+        self.moment.map(|m| m / self.volume)
+    }
+}
+
 /// The cells of K's triangulation with a section triangle on a face. Every section triangle
 /// gets a prism on each side whose cell has volume, kept from that side or not: the collar is
 /// the section thickened, and K's tetrahedra on its faces stand on the prisms' tops.
@@ -155,11 +163,11 @@ fn signed_distance(plane: &ArrPlane, x: [f64; 3]) -> f64 {
     plane.plane.signed_distance(x)
 }
 
-/// A cell's collar, checked but not yet applied: new positions of its points (`None`: a new
-/// point), its mapped tetrahedra and prisms in those ids.
+/// A cell's collar, checked but not yet applied: the images of its points, its mapped
+/// tetrahedra and prisms in cell-local ids (`fresh_id` for images that are new points).
 struct CellCollar {
-    /// (vertex of K, its image; whether the image is a new point or moves the vertex).
-    images: Vec<(u32, [f64; 3], bool)>,
+    /// (vertex of K, its image: a new point where the vertex is `on_plane`, else its new place).
+    images: Vec<(u32, [f64; 3])>,
     tets: Vec<[u32; 4]>,
     prisms: Vec<[u32; 4]>,
     height: f64,
@@ -193,7 +201,7 @@ fn contractions(
     height: f64,
     max_shift: f64,
 ) -> Vec<Contraction> {
-    let c = part.moment.map(|m| m / part.volume);
+    let c = part.centre();
     let mut normals: Vec<[f64; 3]> = Vec::new();
     let mut nearest = f64::INFINITY;
     for &(_, p) in &part.bases {
@@ -201,7 +209,7 @@ fn contractions(
         nearest = nearest.min(plane.signed_distance(c).abs());
         let n = plane.normal;
         let n = match normals.first() {
-            Some(m) if n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < 0.0 => n.map(|x| -x),
+            Some(&m) if dot(n, m) < 0.0 => n.map(|x| -x),
             _ => n,
         };
         normals.push(n);
@@ -215,15 +223,12 @@ fn contractions(
             mean[i] += n[i];
         }
     }
-    let len = (mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]).sqrt();
+    let len = dot(mean, mean).sqrt();
     let mut out = Vec::new();
     let shrink = (height / nearest).min(MAX_SHRINK);
     if len > 0.0 {
         let m = mean.map(|x| x / len);
-        let along = normals
-            .iter()
-            .map(|n| (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]).abs())
-            .fold(1.0, f64::min);
+        let along = normals.iter().map(|&n| dot(n, m).abs()).fold(1.0, f64::min);
         if along > 0.5 {
             let a = shrink / along;
             out.push(Contraction {
@@ -280,8 +285,7 @@ fn best_collar(
             best = better(best, cc);
         }
     }
-    let c = part.moment.map(|m| m / part.volume);
-    if let Some(phi) = affine::best_affine(k, part, arr_planes, c, height, max_shift) {
+    if let Some(phi) = affine::best_affine(k, part, arr_planes, height, max_shift) {
         if let Ok(cc) = cell_collar(k, part, arr_planes, phi) {
             best = better(best, cc);
         }
@@ -301,10 +305,10 @@ fn cell_collar(
     let c = phi.c;
     let bases = &part.bases;
     let phi = |x: [f64; 3]| phi.apply(x);
-    // images: local ids are K's ids for points on no plane, and fresh ids (u32::MAX - n) otherwise,
-    // resolved when applied
+    // images: local ids are K's ids for points on no plane, and `fresh_id`s otherwise, resolved
+    // when applied
     let mut image: FxHashMap<u32, u32> = FxHashMap::default();
-    let mut images: Vec<(u32, [f64; 3], bool)> = Vec::new();
+    let mut images: Vec<(u32, [f64; 3])> = Vec::new();
     let mut local_pos: FxHashMap<u32, [f64; 3]> = FxHashMap::default();
     let mut shift = 0.0f64;
     let mut map_vertex = |v: u32| -> u32 {
@@ -312,13 +316,12 @@ fn cell_collar(
             let x = k.positions[v as usize];
             let y = phi(x);
             shift = shift.max(dist(x, y));
-            let on_plane = !k.planes[v as usize].is_empty();
-            let id = if on_plane {
-                u32::MAX - 1 - images.len() as u32
+            let id = if on_plane(k, v) {
+                fresh_id(images.len())
             } else {
                 v
             };
-            images.push((v, y, on_plane));
+            images.push((v, y));
             local_pos.insert(id, y);
             id
         })
@@ -371,13 +374,13 @@ fn cell_collar(
 /// Only planes within `shift` of the points' bounding box can be crossed.
 fn stays_in_cell(
     k: &Triangulation,
-    images: &[(u32, [f64; 3], bool)],
+    images: &[(u32, [f64; 3])],
     arr_planes: &[ArrPlane],
     c: [f64; 3],
     shift: f64,
 ) -> bool {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for &(v, _, _) in images {
+    for &(v, _) in images {
         let x = k.positions[v as usize];
         for i in 0..3 {
             lo[i] = lo[i].min(x[i] - shift);
@@ -394,7 +397,7 @@ fn stays_in_cell(
             return true;
         }
         let centre = signed_distance(plane, c);
-        images.iter().all(|&(v, y, _)| {
+        images.iter().all(|&(v, y)| {
             let side = if k.planes[v as usize].contains(&(p as u32)) {
                 centre
             } else {
@@ -425,8 +428,20 @@ fn prism(f: [u32; 3], mut top: impl FnMut(u32) -> u32) -> [[u32; 4]; 3] {
     tets
 }
 
+/// A point on a plane keeps its place (as a prism's base) and its image is a new point; a point on
+/// no plane lies in one cell only and moves.
+fn on_plane(k: &Triangulation, v: u32) -> bool {
+    !k.planes[v as usize].is_empty()
+}
+
+/// The cell-local id of the `n`-th image while it is not yet a point of K: far above K's ids.
+fn fresh_id(n: usize) -> u32 {
+    u32::MAX - 1 - n as u32
+}
+
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    let d = sub(a, b);
+    dot(d, d).sqrt()
 }
 
 /// K with some cells' collars applied: positions (old ones moved, new ones appended), tetrahedra,
@@ -447,10 +462,10 @@ fn apply(k: &Triangulation, parts: &[CellPart], collars: &[Option<CellCollar>]) 
     for (p, (part, cc)) in parts.iter().zip(collars).enumerate() {
         let Some(cc) = cc else { continue };
         let mut fresh: FxHashMap<u32, u32> = FxHashMap::default();
-        for (n, &(v, y, is_new)) in cc.images.iter().enumerate() {
-            if is_new {
+        for (n, &(v, y)) in cc.images.iter().enumerate() {
+            if on_plane(k, v) {
                 out.positions.push(y);
-                fresh.insert(u32::MAX - 1 - n as u32, (out.positions.len() - 1) as u32);
+                fresh.insert(fresh_id(n), (out.positions.len() - 1) as u32);
             } else {
                 out.positions[v as usize] = y;
             }
@@ -491,8 +506,6 @@ pub fn build(
 ) -> (CollarStats, Option<Vec<[u32; 3]>>) {
     let mut stats = CollarStats::default();
     let parts = cell_parts(k);
-    let singular =
-        |tets: &[[u32; 4]]| super::fill::singular_simplices(&super::assembly::boundary_of(tets));
     // cells are independent: their collars are found in parallel, beside ∂K's singular count
     let (found, (e0, v0)): (Vec<Option<Option<CellCollar>>>, _) = rayon::join(
         || {
@@ -504,17 +517,17 @@ pub fn build(
                 })
                 .collect()
         },
-        || singular(k.kept),
+        || super::assembly::singularities(&super::assembly::boundary_of(k.kept)),
     );
     stats.cells_refused = found.iter().filter(|f| matches!(f, Some(None))).count() as u64;
     let mut collars: Vec<Option<CellCollar>> = found.into_iter().map(Option::flatten).collect();
-    let allowed = e0.len() + v0.len();
+    let allowed = e0 + v0;
     let mut applied = None;
     for _ in 0..SINGULAR_ROUNDS {
         let a = apply(k, &parts, &collars);
         let boundary = super::assembly::boundary_of(&a.kept);
         let (e, v) = super::fill::singular_simplices(&boundary);
-        if e.len() + v.len() <= allowed {
+        if (e.len() + v.len()) as u64 <= allowed {
             applied = Some((a, boundary));
             break;
         }
@@ -527,10 +540,10 @@ pub fn build(
             }
         }
     }
+    k.fillable.clear();
+    k.external.clear();
     let Some((a, boundary)) = applied else {
         stats.cells_left_singular += collars.iter().flatten().count() as u64;
-        k.fillable.clear();
-        k.external.clear();
         return (stats, None);
     };
     for cc in collars.iter().flatten() {
@@ -546,23 +559,13 @@ pub fn build(
     k.planes.resize(a.positions.len(), Planes::new());
     *k.positions = a.positions;
     *k.kept = a.kept;
-    k.fillable.clear();
-    k.external.clear();
     (stats, Some(boundary))
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::refine::test_support::orient;
     use super::*;
-
-    fn orient(p: &[[f64; 3]], t: [u32; 4]) -> f64 {
-        orient3d(
-            p[t[0] as usize],
-            p[t[1] as usize],
-            p[t[2] as usize],
-            p[t[3] as usize],
-        )
-    }
 
     /// A base triangle on z = 0 whose cell lies above (outward: facing down), in every vertex
     /// order: the three tetrahedra are positive, fill the prism, and two prisms sharing an edge

@@ -115,3 +115,15 @@ pub fn shared_csl_files() -> Vec<PathBuf> {
     assert_eq!(stems, expected, "shared CSL files in {}", dir.display());
     files
 }
+
+/// The exact check of a solid's tetrahedra with its surface, and whether their boundary is that
+/// surface.
+pub fn check_solid_tets(solid: &slice2solid::Solid) -> (slice2solid::eval::tets::TetCheck, bool) {
+    let tets = solid.tets.as_ref().expect("the complex has tetrahedra");
+    let t = slice2solid::eval::tets::check_tets(tets, Some(&solid.surface));
+    let equal = t
+        .surface
+        .as_ref()
+        .is_some_and(|s| s.boundary_equals_surface);
+    (t, equal)
+}

@@ -181,10 +181,10 @@ pub(super) fn best_affine(
     k: &Triangulation,
     part: &CellPart,
     arr_planes: &[ArrPlane],
-    c: [f64; 3],
     height: f64,
     max_shift: f64,
 ) -> Option<Contraction> {
+    let c = part.centre();
     let reach = part
         .kept
         .iter()
