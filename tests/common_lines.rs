@@ -69,6 +69,47 @@ fn material_on_a_line_the_other_plane_leaves_empty_is_removed() {
     assert_eq!(solid.report.counts["common_lines_trimmed"], 2);
 }
 
+/// The same with the empty plane first: the line's direction is then n_0 × n_1 from the empty
+/// plane, and each square's strip must still lie at the square's own stretch (it lay mirrored,
+/// at -s, and removed nothing there: `odd026`).
+#[test]
+fn the_owner_of_the_higher_plane_index_is_trimmed_too() {
+    let mut s = squares_and_an_empty_plane();
+    s.sections.rotate_right(1);
+    let (out, trims) = reconcile_common_lines(s.clone(), SNAP, LINE_STRIP_RELATIVE).unwrap();
+    assert_eq!(trims.trimmed, 2, "{:?}", trims.warnings);
+    let w = LINE_STRIP_RELATIVE * 6.0;
+    for k in 1..3 {
+        let sec = &out.sections[k];
+        assert_eq!(sec.regions.len(), 2, "each square splits in two");
+        assert!(
+            (sec.area() - (16.0 - 8.0 * w)).abs() < 1e-9,
+            "{}",
+            sec.area()
+        );
+    }
+}
+
+/// The rule's postcondition: reconciled sections agree along every common line, so a second
+/// pass finds nothing to trim. The odd files mix parallel families, fans and random planes with
+/// sections that disagree along most of their lines.
+#[test]
+fn reconciled_sections_need_no_second_trim() {
+    for stem in ODD {
+        let path = shared_dir().join(format!("data/odd/{stem}.json"));
+        let s = parse_json(&std::fs::read_to_string(&path).unwrap(), stem).unwrap();
+        let s = slice2solid::validate::validate(s, stem).unwrap();
+        let (once, first) = reconcile_common_lines(s, SNAP, LINE_STRIP_RELATIVE).unwrap();
+        let (_, second) = reconcile_common_lines(once, SNAP, LINE_STRIP_RELATIVE).unwrap();
+        assert!(first.trimmed > 0, "{stem}: nothing to trim");
+        assert_eq!(second.trimmed, 0, "{stem}: {:?}", second.warnings);
+    }
+}
+
+const ODD: [&str; 7] = [
+    "odd026", "odd033", "odd040", "odd052", "odd072", "odd076", "odd079",
+];
+
 #[test]
 fn no_strip_leaves_the_sections_as_they_are() {
     let s = squares_and_an_empty_plane();

@@ -42,10 +42,13 @@ pub struct LineTrims {
     pub max_length: f64,
 }
 
-/// A stretch [s0, s1] of line (i, j) to clear of section `owner`'s material.
+/// A stretch [s0, s1] of line (i, j) to clear of section `owner`'s material, in arc length
+/// `dir · x` along the line's direction `dir` (n_i × n_j, normalised, for i < j: the same for
+/// both owners of a line).
 struct Trim {
     owner: usize,
     other: usize,
+    dir: [f64; 3],
     s0: f64,
     s1: f64,
     /// Length of the owner's material on L inside the stretch.
@@ -91,7 +94,7 @@ pub fn reconcile_common_lines(
         let sec = &mut sections.sections[i];
         let rects: Vec<Vec<[f64; 2]>> = list
             .iter()
-            .map(|t| strip_rectangle(&sec.plane, &planes[t.other], t.s0, t.s1, strip))
+            .map(|t| strip_rectangle(&sec.plane, &planes[t.other], t.dir, t.s0, t.s1, strip))
             .collect();
         let before = sec.area();
         trim_section(sec, &rects, strip, NUDGE_RELATIVE * diag);
@@ -187,6 +190,7 @@ fn pair_trims(
             out.push(Trim {
                 owner,
                 other,
+                dir,
                 s0,
                 s1,
                 material,
@@ -271,18 +275,27 @@ fn stretches_to_clear(
     out
 }
 
-/// The rectangle of plane `p`'s (u,v) coordinates along its line with `other` from s0 to s1,
-/// `half_width` to either side, counter-clockwise.
-fn strip_rectangle(p: &Plane, other: &Plane, s0: f64, s1: f64, half_width: f64) -> Vec<[f64; 2]> {
+/// The rectangle of plane `p`'s (u,v) coordinates along its line with `other` from s0 to s1 (arc
+/// length `dir · x`, `dir` the line's unit direction), `half_width` to either side (either
+/// orientation: `trim_section` orients it).
+fn strip_rectangle(
+    p: &Plane,
+    other: &Plane,
+    dir: [f64; 3],
+    s0: f64,
+    s1: f64,
+    half_width: f64,
+) -> Vec<[f64; 2]> {
     // The other plane's signed distance restricted to p: a s + b t + c.
     let (a, b) = (dot(other.normal, p.u), dot(other.normal, p.v));
     let c = dot(other.normal, p.origin) + other.offset;
     let g = (a * a + b * b).sqrt();
     let normal = [a / g, b / g];
-    // Along the line: n_p × n_other = a v − b u, i.e. (−b, a) in (u,v).
-    let along = [-normal[1], normal[0]];
+    // `dir` in (u,v): the caller's orientation of the line, which depends on the order of the
+    // two planes, not on which of them owns the section being trimmed.
+    let along = [dot(dir, p.u), dot(dir, p.v)];
     let foot = [-c * normal[0] / g, -c * normal[1] / g];
-    let s_foot = dot(cross(p.normal, other.normal), p.to_3d(foot)) / g;
+    let s_foot = dot(dir, p.to_3d(foot));
     let at = |s: f64, side: f64| {
         [
             foot[0] + (s - s_foot) * along[0] + side * half_width * normal[0],
@@ -352,14 +365,20 @@ mod tests {
     fn the_strip_rectangle_lies_along_the_line() {
         let p = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
         let q = Plane::from_equation([1.0, 0.0, 1.0], -0.5).unwrap();
-        let r = strip_rectangle(&p, &q, -1.0, 2.0, 0.01);
-        let dir = cross(p.normal, q.normal);
-        let l = dot(dir, dir).sqrt();
-        let mid = |a: [f64; 2], b: [f64; 2]| p.to_3d([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]);
-        for (x, s) in [(mid(r[0], r[3]), -1.0), (mid(r[1], r[2]), 2.0)] {
-            assert!(q.signed_distance(x).abs() < 1e-12);
-            assert!((dot(dir, x) / l - s).abs() < 1e-12);
+        let d = cross(p.normal, q.normal);
+        let dir = d.map(|x| x / dot(d, d).sqrt());
+        // the same stretch of the line on either plane (the second owner was the bug of odd026:
+        // its rectangle lay at -s)
+        for (a, b) in [(&p, &q), (&q, &p)] {
+            let r = strip_rectangle(a, b, dir, -1.0, 2.0, 0.01);
+            let mid =
+                |x: [f64; 2], y: [f64; 2]| a.to_3d([(x[0] + y[0]) / 2.0, (x[1] + y[1]) / 2.0]);
+            for (x, s) in [(mid(r[0], r[3]), -1.0), (mid(r[1], r[2]), 2.0)] {
+                assert!(a.signed_distance(x).abs() < 1e-12);
+                assert!(b.signed_distance(x).abs() < 1e-12);
+                assert!((dot(dir, x) - s).abs() < 1e-12);
+            }
+            assert!((polygon_signed_area(&r).abs() - 3.0 * 0.02).abs() < 1e-12);
         }
-        assert!(polygon_signed_area(&r) > 0.0);
     }
 }
