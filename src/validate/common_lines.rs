@@ -319,7 +319,9 @@ fn trim_section(sec: &mut Section, rects: &[Vec<[f64; 2]>], strip: f64, nudge: f
         let mut subject = Vec::new();
         material_of(region, &mut subject);
         let shapes = subject.overlay_as::<i64>(&clip, OverlayRule::Difference, FillRule::NonZero);
-        for piece in pieces_of(shapes, nudge).unwrap_or_default() {
+        let mut pieces = pieces_of(shapes, nudge).unwrap_or_default();
+        break_rows(&mut pieces, rects, strip);
+        for piece in pieces {
             let r = region_of_piece(region.label, &sec.plane, piece);
             if r.area() >= strip * strip {
                 regions.push(r);
@@ -327,6 +329,71 @@ fn trim_section(sec: &mut Section, rects: &[Vec<[f64; 2]>], strip: f64, nudge: f
         }
     }
     sec.regions = regions;
+}
+
+/// How far `break_rows` moves a vertex off a strip's edge, relative to the strip's half-width
+/// (times 1 to 2, per vertex).
+const ROW_BREAK: f64 = 1e-5;
+
+/// Where a wiggly contour crosses a strip's long edge, the boolean leaves a row of section vertices
+/// on one straight line, collinear in the ideal but not exactly after its rounding. The engine's
+/// tag rules decide collinear plane points combinatorially only when they are exactly collinear
+/// (or on a line of two planes); a row that is collinear up to rounding is decided by the float
+/// predicates in 3D and in uv differently, and the cell's Delaunay insertion meets a cavity that is
+/// not star-shaped (odd040: every cell beside a trimmed row went untagged). So a row of three or
+/// more vertices on one edge is moved off it, away from the strip, by 1–2 × `ROW_BREAK` × the
+/// half-width (a different amount per vertex, deterministic): in general position at the scale the
+/// predicates resolve, and still outside the strip.
+fn break_rows(pieces: &mut [Vec<Vec<[f64; 2]>>], rects: &[Vec<[f64; 2]>], strip: f64) {
+    let on_edge = strip * 1e-6;
+    for r in rects {
+        // the two long edges (corners 0→1 and 2→3, `strip_rectangle`), each with the unit normal
+        // pointing away from the strip
+        for (p, q, opposite) in [(r[0], r[1], r[3]), (r[2], r[3], r[0])] {
+            let d = [q[0] - p[0], q[1] - p[1]];
+            let len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+            if len == 0.0 {
+                continue;
+            }
+            let (dir, mut normal) = ([d[0] / len, d[1] / len], [-d[1] / len, d[0] / len]);
+            if (opposite[0] - p[0]) * normal[0] + (opposite[1] - p[1]) * normal[1] > 0.0 {
+                normal = [-normal[0], -normal[1]];
+            }
+            let mut row: Vec<(usize, usize, usize)> = Vec::new();
+            for (a, piece) in pieces.iter().enumerate() {
+                for (b, c) in piece.iter().enumerate() {
+                    for (k, x) in c.iter().enumerate() {
+                        let rel = [x[0] - p[0], x[1] - p[1]];
+                        let t = rel[0] * dir[0] + rel[1] * dir[1];
+                        let h = rel[0] * normal[0] + rel[1] * normal[1];
+                        if h.abs() <= on_edge && t >= -on_edge && t <= len + on_edge {
+                            row.push((a, b, k));
+                        }
+                    }
+                }
+            }
+            if row.len() < 3 {
+                continue;
+            }
+            for (m, &(a, b, k)) in row.iter().enumerate() {
+                // a pseudo-random amount in [1, 2) (a hash of the index, not a linear sequence,
+                // whose values at equally spaced points are themselves on one line)
+                let amount = strip * ROW_BREAK * (1.0 + unit_hash(m as u64));
+                let x = &mut pieces[a][b][k];
+                x[0] += amount * normal[0];
+                x[1] += amount * normal[1];
+            }
+        }
+    }
+}
+
+/// A number in [0, 1) from `x` (splitmix64's finaliser): deterministic, without structure.
+fn unit_hash(x: u64) -> f64 {
+    let mut z = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
 }
 
 #[cfg(test)]
@@ -359,6 +426,62 @@ mod tests {
         assert_eq!(s.len(), 1);
         assert!(s[0].0 < 0.0 && s[0].1 > 3.0);
         assert!((s[0].2 - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_row_of_crossings_on_a_strip_edge_is_broken() {
+        // a comb of five teeth crossing the line x = 0 of plane z = 0 (the other plane x = 0):
+        // the strip's two long edges cut it in rows of ten vertices each
+        let p = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+        let q = Plane::from_equation([1.0, 0.0, 0.0], 0.0).unwrap();
+        let mut comb: Vec<[f64; 3]> = vec![[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+        for k in 0..5 {
+            let y = 1.0 + 2.0 * (4 - k) as f64 * 0.1;
+            comb.extend([
+                [1.0, y + 0.1, 0.0],
+                [-1.0, y + 0.1, 0.0],
+                [-1.0, y, 0.0],
+                [1.0, y, 0.0],
+            ]);
+        }
+        comb.truncate(comb.len() - 2);
+        comb.push([-1.0, 1.0, 0.0]);
+        let points2: Vec<[f64; 2]> = comb.iter().map(|&x| p.to_2d(x)).collect();
+        let mut sec = Section {
+            plane: p,
+            regions: vec![crate::sections::Region {
+                label: 1,
+                outer: crate::sections::Contour::from_2d(&p, points2),
+                holes: Vec::new(),
+            }],
+            source_index: 0,
+            max_off_plane: 0.0,
+        };
+        let d = cross(p.normal, q.normal);
+        let dir = d.map(|x| x / dot(d, d).sqrt());
+        let w = 0.01;
+        let rect = strip_rectangle(&p, &q, dir, -10.0, 10.0, w);
+        trim_section(&mut sec, &[rect], w, 1e-9);
+        let near: Vec<[f64; 2]> = sec
+            .regions
+            .iter()
+            .flat_map(|r| r.outer.points2.iter().copied())
+            .filter(|&x| (q.signed_distance(p.to_3d(x)).abs() - w).abs() < 1e-6)
+            .collect();
+        assert!(near.len() >= 2 * 10, "{}", near.len());
+        for x in &near {
+            let h = q.signed_distance(p.to_3d(*x)).abs();
+            assert!(h >= w * (1.0 + 0.5 * ROW_BREAK) && h < w * (1.0 + 2.0 * ROW_BREAK));
+        }
+        // no three of them on one line, by a margin far above rounding
+        for a in 0..near.len() {
+            for b in a + 1..near.len() {
+                for c in b + 1..near.len() {
+                    let o = crate::geom::predicates::orient2d(near[a], near[b], near[c]);
+                    assert!(o.abs() > 1e-12, "{:?}", (near[a], near[b], near[c]));
+                }
+            }
+        }
     }
 
     #[test]
