@@ -78,6 +78,12 @@ pub struct VertexPool {
     pub tags: Vec<PlaneTags>,
     /// Per tag (same order as `tags[v]`): the vertex in that plane's (u,v) frame.
     pub uv: Vec<SmallVec<[[f64; 2]; 3]>>,
+    /// Vertices known to lie on a segment between two others (a contour edge's conformity
+    /// Steiner points, `bm::conform`): the segment's ends. Its position and uv are rounded
+    /// midpoints, collinear with the ends only up to rounding; the Delaunay kernel's line rule
+    /// reads this instead.
+    #[serde(default)]
+    pub on_segment: std::collections::BTreeMap<VertexId, [VertexId; 2]>,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]

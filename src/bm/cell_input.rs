@@ -195,7 +195,9 @@ pub fn pool_tags(
         .filter(|t| cell_planes.contains(t))
         .map(|&t| (t, arr.planes[t as usize].plane.to_2d(p)))
         .collect();
-    PointTags::new(g as u64, &planes)
+    let mut tags = PointTags::new(g as u64, &planes);
+    tags.segment = pool.on_segment.get(&g).map(|s| s.map(u64::from));
+    tags
 }
 
 pub fn edge_key(a: u32, b: u32) -> (u32, u32) {

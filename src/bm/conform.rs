@@ -41,6 +41,7 @@ impl Splits {
         ]);
         pool.tags.push(tags);
         pool.uv.push(uv);
+        pool.on_segment.insert(m, segment_of(pool, a, b));
         self.mid.insert(k, m);
         m
     }
@@ -67,6 +68,20 @@ impl Splits {
             }
         }
     }
+}
+
+/// The contour edge that edge (a, b) is a part of: the segment a split point of either end lies
+/// on when the other end is on it too, else (a, b) itself.
+fn segment_of(pool: &VertexPool, a: u32, b: u32) -> [u32; 2] {
+    let on = |v: u32, s: &[u32; 2]| s.contains(&v) || pool.on_segment.get(&v) == Some(s);
+    for v in [a, b] {
+        if let Some(s) = pool.on_segment.get(&v) {
+            if on(a, s) && on(b, s) {
+                return *s;
+            }
+        }
+    }
+    [a.min(b), a.max(b)]
 }
 
 /// Boundary loops (outer and holes) of every face, global ids, splits applied.
@@ -108,5 +123,8 @@ mod tests {
         let m2 = s.split(&mut pool, 0, 3);
         assert_eq!(s.expand(&[0, 1, 2]), vec![0, m2, 3, 1, 2]);
         assert_eq!(s.split(&mut pool, 0, 1), 3);
+        // both split points lie on the contour edge (0, 1)
+        assert_eq!(pool.on_segment[&3], [0, 1]);
+        assert_eq!(pool.on_segment[&m2], [0, 1]);
     }
 }

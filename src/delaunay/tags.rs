@@ -8,7 +8,9 @@
 //!
 //! * **Line rule.** When two vertices `a, b` of the tested tetrahedron and the query `q` are on one
 //!   line for the ideal points — they share two planes (the line where the planes meet), or they
-//!   share a plane and are exactly collinear in its uv (a row of a grid) — `q` conflicts iff it is
+//!   share a plane and are exactly collinear in its uv (a row of a grid) or on one known segment
+//!   (a contour edge and its conformity midpoints, whose rounded uv are collinear only nearly) —
+//!   `q` conflicts iff it is
 //!   strictly between `a` and `b` on that line: a line through two points of a sphere is inside
 //!   the sphere exactly between them (and for an infinite tetrahedron, whose hull facet's plane
 //!   then contains `q`, inside its circumcircle exactly between them). Every tetrahedron around the
@@ -50,6 +52,10 @@ pub struct PointTags {
     /// (global plane id, uv in that plane); sorted by plane id by the kernel.
     pub planes: SmallVec<[(u32, [f64; 2]); 3]>,
     pub gid: u64,
+    /// The gids of the ends of a segment the point is known to lie on (a contour edge it splits):
+    /// it is collinear with them and with every other point of that segment, whatever its rounded
+    /// coordinates say.
+    pub segment: Option<[u64; 2]>,
 }
 
 impl PointTags {
@@ -58,6 +64,7 @@ impl PointTags {
         let mut t = PointTags {
             planes: planes.iter().copied().collect(),
             gid,
+            segment: None,
         };
         t.planes.sort_by_key(|p| p.0);
         t
@@ -79,7 +86,8 @@ impl PointTags {
 
     /// Sorts the planes and checks them: at most three, distinct ids, finite uv.
     pub(super) fn normalized(&self) -> Result<PointTags, String> {
-        let t = PointTags::new(self.gid, &self.planes);
+        let mut t = PointTags::new(self.gid, &self.planes);
+        t.segment = self.segment;
         if t.planes.len() > 3 {
             return Err(format!("{} planes (at most 3)", t.planes.len()));
         }
@@ -163,10 +171,24 @@ fn line_plane_of(a: &PointTags, b: &PointTags, q: &PointTags, common: u8) -> Opt
     match common.count_ones() {
         1 => {
             let o = crate::geom::predicates::orient2d(a.uv(pl)?, b.uv(pl)?, q.uv(pl)?);
-            (o == 0.0).then_some(pl)
+            (o == 0.0 || on_one_segment(a, b, q)).then_some(pl)
         }
         _ => Some(pl),
     }
+}
+
+/// Whether the three points lie on one known segment (`PointTags::segment`): each is one of its
+/// ends or is tagged with it.
+#[inline]
+fn on_one_segment(a: &PointTags, b: &PointTags, q: &PointTags) -> bool {
+    [a.segment, b.segment, q.segment]
+        .into_iter()
+        .flatten()
+        .any(|s| {
+            [a, b, q]
+                .iter()
+                .all(|p| p.segment == Some(s) || s.contains(&p.gid))
+        })
 }
 
 /// See [`line_plane_of`]: `Some(plane)` when the three points are collinear for the ideal points
@@ -249,6 +271,33 @@ mod tests {
         assert_eq!(rule([Some(&a), Some(&b), Some(&c), Some(&d)], &d), None);
         assert!(degenerate([&a, &b, &c, &qin]));
         assert!(!degenerate([&a, &b, &c, &d]));
+    }
+
+    #[test]
+    fn a_split_point_is_on_its_segment_whatever_its_rounding() {
+        // a contour edge of plane 4 and its midpoint, rounded a little off the line in uv
+        let a = t(10, &[(4, [0.1, 0.3])]);
+        let b = t(11, &[(4, [0.7, 0.5])]);
+        let mut m = t(20, &[(4, [0.4, 0.4 + 1e-17])]);
+        assert_ne!(
+            crate::geom::predicates::orient2d([0.1, 0.3], [0.7, 0.5], [0.4, 0.4 + 1e-17]),
+            0.0
+        );
+        assert!(!on_one_line(&a, &b, &m));
+        m.segment = Some([10, 11]);
+        assert!(on_one_line(&a, &b, &m));
+        // a second split point of the same edge, and the first one's ends
+        let mut m2 = t(21, &[(4, [0.25, 0.35])]);
+        m2.segment = Some([10, 11]);
+        assert!(on_one_line(&a, &m, &m2) && on_one_line(&m2, &b, &m));
+        // another edge's end is not on it
+        let c = t(12, &[(4, [0.4, 0.9])]);
+        assert!(!on_one_line(&a, &m, &c));
+        let apex = t(5, &[(3, [0.0, 0.0])]);
+        assert_eq!(
+            rule([Some(&a), Some(&b), Some(&c), Some(&apex)], &m),
+            Some(true)
+        );
     }
 
     #[test]
