@@ -92,7 +92,7 @@ fn fans_reconstruct_clean() {
     let mut failures = Vec::new();
     for (mesh, n, untagged, genus) in [
         ("hand", 16, 0, 38),
-        ("hand", 40, 1, 24),
+        ("hand", 40, 0, 24),
         ("eight_15", 16, 0, 2),
     ] {
         let s = fan(mesh, n);
