@@ -3,6 +3,7 @@
 //! faces up is several times faster than a hash map of the ~4 faces per tetrahedron of a whole
 //! complex, which the assembly rebuilds many times.
 use super::complex::outward_face;
+use rayon::prelude::*;
 
 /// Per face (sorted key): the tetrahedra that have it, in increasing index.
 pub struct FaceTable {
@@ -98,26 +99,56 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
             *slot += 1;
         }
     }
-    for v in 0..n {
-        sort_small(&mut rows[start[v] as usize..start[v + 1] as usize]);
-    }
+    for_ranges(&start, &mut rows, |start, rows, lo| {
+        for b in start.windows(2) {
+            sort_small(&mut rows[(b[0] - lo) as usize..(b[1] - lo) as usize]);
+        }
+    });
     (start, rows)
+}
+
+/// Vertices per range of buckets handed to one thread.
+const RANGE: usize = 1 << 13;
+
+/// Calls `f` on consecutive ranges of buckets in parallel: with the range's `start` entries (one
+/// more than its buckets), its rows, and the index of its first row.
+fn for_ranges(start: &[u32], rows: &mut [u128], f: impl Fn(&[u32], &mut [u128], u32) + Sync) {
+    let n = start.len().saturating_sub(1);
+    let mut parts = Vec::with_capacity(n / RANGE + 1);
+    let mut rest = rows;
+    for lo in (0..n).step_by(RANGE) {
+        let hi = (lo + RANGE).min(n);
+        let (head, tail) = rest.split_at_mut((start[hi] - start[lo]) as usize);
+        parts.push((&start[lo..=hi], head));
+        rest = tail;
+    }
+    parts
+        .into_par_iter()
+        .for_each(|(s, rows)| f(s, rows, s[0]));
 }
 
 /// The triangles of `tets` with exactly one tetrahedron, oriented outward from it (unsorted).
 pub fn boundary(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
     let (start, rows) = bucketed(&[tets]);
-    let mut out = Vec::new();
-    for b in start.windows(2) {
-        // equal faces are adjacent in their bucket
-        for run in rows[b[0] as usize..b[1] as usize].chunk_by(|x, y| x >> 32 == y >> 32) {
-            if let [r] = run {
-                let c = *r as u32;
-                out.push(outward_face(&tets[(c >> 2) as usize], (c & 3) as usize));
+    // ranges of buckets in parallel, concatenated in order
+    let n = start.len().saturating_sub(1);
+    let parts: Vec<Vec<[u32; 3]>> = (0..n.div_ceil(RANGE))
+        .into_par_iter()
+        .map(|r| {
+            let mut out = Vec::new();
+            for b in start[r * RANGE..=((r + 1) * RANGE).min(n)].windows(2) {
+                // equal faces are adjacent in their bucket
+                for run in rows[b[0] as usize..b[1] as usize].chunk_by(|x, y| x >> 32 == y >> 32) {
+                    if let [r] = run {
+                        let c = *r as u32;
+                        out.push(outward_face(&tets[(c >> 2) as usize], (c & 3) as usize));
+                    }
+                }
             }
-        }
-    }
-    out
+            out
+        })
+        .collect();
+    parts.concat()
 }
 
 /// Insertion sort for the small buckets (a dozen rows on average), the library sort otherwise.
