@@ -14,9 +14,15 @@ pub struct FaceTable {
     codes: Vec<u32>,
 }
 
-fn key3(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
+/// The four vertices in increasing order (a sorting network).
+#[inline]
+fn sorted4(mut t: [u32; 4]) -> [u32; 4] {
+    for (a, b) in [(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)] {
+        if t[a] > t[b] {
+            t.swap(a, b);
+        }
+    }
+    t
 }
 
 impl FaceTable {
@@ -79,11 +85,10 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
     let n = all().flatten().max().map_or(0, |&v| v as usize + 1);
     let mut start = vec![0u32; n + 1];
     for t in all() {
-        for i in 0..4 {
-            // the smallest vertex of the face opposite i
-            let m = (0..4).filter(|&j| j != i).map(|j| t[j]).min().unwrap_or(0);
-            start[m as usize + 1] += 1;
-        }
+        // three faces have the smallest vertex, the one opposite it the second smallest
+        let s = sorted4(*t);
+        start[s[0] as usize + 1] += 3;
+        start[s[1] as usize + 1] += 1;
     }
     for v in 0..n {
         start[v + 1] += start[v];
@@ -91,8 +96,11 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
     let mut next = start.clone();
     let mut rows: Vec<u128> = vec![0; start[n] as usize];
     for (ti, t) in all().enumerate() {
+        // the sorted key of the face opposite i: the sorted tetrahedron without t[i]
+        let s = sorted4(*t);
         for i in 0..4 {
-            let k = key3(outward_face(t, i));
+            let j = s.iter().position(|&v| v == t[i]).unwrap_or(0);
+            let k: [u32; 3] = std::array::from_fn(|m| s[m + (m >= j) as usize]);
             let slot = &mut next[k[0] as usize];
             let code = 4 * ti as u32 + i as u32;
             rows[*slot as usize] = (k[1] as u128) << 64 | (k[2] as u128) << 32 | code as u128;
