@@ -249,19 +249,25 @@ fn components(items: &[Vec<u32>], share: usize) -> Vec<Vec<usize>> {
         }
         x
     }
-    // adjacency by shared sub-lists of length `share` (1: a vertex, 2: an edge)
-    let mut by_key: FxHashMap<Vec<u32>, usize> = FxHashMap::default();
+    // adjacency by shared sub-lists of length `share` (1: a vertex, 2: an edge), as pairs (a
+    // vertex's second entry `u32::MAX`): no allocation per key
+    let mut by_key: FxHashMap<(u32, u32), usize> = FxHashMap::default();
+    let mut s: SmallVec<[u32; 4]> = SmallVec::new();
+    let mut keys: SmallVec<[(u32, u32); 6]> = SmallVec::new();
     for (i, it) in items.iter().enumerate() {
-        let mut s = it.clone();
+        s.clear();
+        s.extend_from_slice(it);
         s.sort_unstable();
-        let keys: Vec<Vec<u32>> = match share {
-            1 => s.iter().map(|&x| vec![x]).collect(),
-            _ => (0..s.len())
-                .flat_map(|a| (a + 1..s.len()).map(move |b| (a, b)))
-                .map(|(a, b)| vec![s[a], s[b]])
-                .collect(),
-        };
-        for k in keys {
+        keys.clear();
+        match share {
+            1 => keys.extend(s.iter().map(|&x| (x, u32::MAX))),
+            _ => {
+                for a in 0..s.len() {
+                    keys.extend((a + 1..s.len()).map(|b| (s[a], s[b])));
+                }
+            }
+        }
+        for &k in &keys {
             if let Some(&j) = by_key.get(&k) {
                 let (x, y) = (find(&mut parent, i), find(&mut parent, j));
                 parent[x] = y;
