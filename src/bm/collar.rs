@@ -518,7 +518,10 @@ pub fn build(
                 })
                 .collect()
         },
-        || super::assembly::singularities(&super::assembly::boundary_of(k.kept)),
+        || {
+            let (e, v) = super::assembly::singular_sets(k.kept);
+            (e.len() as u64, v.len() as u64)
+        },
     );
     stats.cells_refused = found.iter().filter(|f| matches!(f, Some(None))).count() as u64;
     let mut collars: Vec<Option<CellCollar>> = found.into_iter().map(Option::flatten).collect();
