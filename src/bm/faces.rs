@@ -98,8 +98,8 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
     for (ti, t) in all().enumerate() {
         // the sorted key of the face opposite i: the sorted tetrahedron without t[i]
         let s = sorted4(*t);
-        for i in 0..4 {
-            let j = s.iter().position(|&v| v == t[i]).unwrap_or(0);
+        for (i, &x) in t.iter().enumerate() {
+            let j = s.iter().position(|&v| v == x).unwrap_or(0);
             let k: [u32; 3] = std::array::from_fn(|m| s[m + (m >= j) as usize]);
             let slot = &mut next[k[0] as usize];
             let code = 4 * ti as u32 + i as u32;
@@ -130,9 +130,7 @@ fn for_ranges(start: &[u32], rows: &mut [u128], f: impl Fn(&[u32], &mut [u128], 
         parts.push((&start[lo..=hi], head));
         rest = tail;
     }
-    parts
-        .into_par_iter()
-        .for_each(|(s, rows)| f(s, rows, s[0]));
+    parts.into_par_iter().for_each(|(s, rows)| f(s, rows, s[0]));
 }
 
 /// The triangles of `tets` with exactly one tetrahedron, oriented outward from it (unsorted).

@@ -177,7 +177,7 @@ pub(super) fn singular_simplices(tris: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<u32
     const CHUNK: usize = 4096;
     let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
     let around = crate::mesh::Stars::<u32>::new(n, tris);
-    let parts: Vec<(Vec<(u32, u32)>, Vec<u32>)> = (0..n.div_ceil(CHUNK))
+    let parts: Vec<super::assembly::Sets> = (0..n.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
             let (mut edges, mut vertices, mut ts) = (Vec::new(), Vec::new(), Vec::new());
