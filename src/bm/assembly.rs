@@ -423,6 +423,12 @@ fn count_faces(faces: &[Vec<Side>], positions: &[[f64; 3]], out: &mut Assembled)
     }
 }
 
+/// The singular edges and pinched vertices of the boundary of `tets` (their order does not depend
+/// on the triangles' order, so the boundary is not sorted).
+pub(super) fn singular_sets(tets: &[[u32; 4]]) -> Sets {
+    super::fill::singular_simplices(&super::faces::boundary(tets))
+}
+
 /// (edges with more than two triangles, vertices whose triangles form more than one fan).
 pub fn singularities(tris: &[[u32; 3]]) -> (u64, u64) {
     let (edges, vertices) = super::fill::singular_simplices(tris);

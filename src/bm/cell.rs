@@ -48,12 +48,17 @@ pub struct FaceSide {
 }
 
 /// The start of a cell's run that every rerun with shared samples repeats exactly (it depends on
-/// the cell's contour points only): their Delaunay triangulation and the first round's diagram
-/// samples. Kept from the first run so that the reruns skip it.
+/// the cell's contour points only): the first round's diagram samples and the Delaunay
+/// triangulation of the contour points with them. Kept from the first run so that the reruns only
+/// insert the other sides' samples (the triangulation is unique for a point set under the
+/// perturbation, whatever the insertion order).
 #[derive(Clone, Debug)]
 pub struct RunStart {
+    /// The contour points the start was computed from.
     points: Vec<[f64; 3]>,
+    /// Their triangulation, with the first round's samples after them when `with_samples`.
     dt: crate::delaunay::Delaunay,
+    with_samples: bool,
     tagged: bool,
     branching: Chains,
     cutting: Chains,
@@ -199,14 +204,23 @@ pub fn finite_tets(dt: &crate::delaunay::Delaunay) -> Vec<[u32; 4]> {
 /// decide, untagged (then `*tagged` becomes false: the cell's faces may differ from the other
 /// side's, counted by the caller).
 fn cell_delaunay(input: &CellInput, tagged: &mut bool) -> Result<crate::delaunay::Delaunay> {
+    points_delaunay(&input.points, &input.tags, tagged)
+}
+
+/// [`cell_delaunay`] of the first `points.len()` points of a cell (tags alongside).
+fn points_delaunay(
+    points: &[[f64; 3]],
+    tags: &[crate::delaunay::PointTags],
+    tagged: &mut bool,
+) -> Result<crate::delaunay::Delaunay> {
     if *tagged {
-        match crate::delaunay::Delaunay::try_new_tagged(&input.points, &input.tags) {
+        match crate::delaunay::Delaunay::try_new_tagged(points, &tags[..points.len()]) {
             Ok(dt) => return Ok(dt),
             Err(crate::Error::Input { .. }) => *tagged = false,
             Err(e) => return Err(e),
         }
     }
-    crate::delaunay::Delaunay::try_new(&input.points)
+    crate::delaunay::Delaunay::try_new(points)
 }
 
 /// Per slot: sorted vertex triple → (the triangle oriented outward from its tet, the tet).
@@ -267,7 +281,9 @@ pub fn run_cell_sharing(
 ) -> Result<CellResult> {
     let rounds = if split_pairs { SAMPLE_PAIR_ROUNDS } else { 0 };
     let how = match &start {
-        Some(st) if st.points == input.points => Start::Reuse(st),
+        Some(st) if st.points == input.points && (sampling.branching || sampling.cutting) => {
+            Start::Reuse(st)
+        }
         _ => Start::Compute,
     };
     let mut r = run_cell_with(input, sampling, Stop::Never, rounds, Some(shared), how)?;
@@ -320,7 +336,11 @@ fn run_cell_with(
             Tri { dt, tagged }
         }
     };
-    let mut cx = Complex::from_delaunay(input.points.len(), &tri.dt);
+    // a reused start already holds the samples: its complex is built once they are all in
+    let mut cx = match start {
+        Start::Reuse(_) => Complex::default(),
+        _ => Complex::from_delaunay(input.points.len(), &tri.dt),
+    };
     clock.lap(|t| &mut t.delaunay);
     let mut sampled = Sampled::default();
     if sampling.branching || sampling.cutting {

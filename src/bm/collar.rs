@@ -65,30 +65,31 @@ fn common_plane(planes: &[Planes], f: [u32; 3]) -> Option<u32> {
     a.iter().copied().find(|p| b.contains(p) && c.contains(p))
 }
 
-/// The cell class of every tetrahedron of `tets` (the roots of a union-find).
+/// The cell class of every tetrahedron of `tets` (the roots of a union-find): tetrahedra meet
+/// across faces on no common plane and at vertices on no plane. Faces are grouped by the bucketed
+/// face table (no hash map of the whole complex's faces); a face of more than two tetrahedra joins
+/// them in pairs in index order.
 fn cell_classes(tets: &[[u32; 4]], planes: &[Planes]) -> Vec<usize> {
     let mut uf = UnionFind::<usize>::new(tets.len());
-    let mut open: FxHashMap<[u32; 3], usize> = FxHashMap::default();
-    let mut inner_vertex: FxHashMap<u32, usize> = FxHashMap::default();
-    for (i, t) in tets.iter().enumerate() {
-        for j in 0..4 {
-            let f = key3(outward_face(t, j));
-            if common_plane(planes, f).is_some() {
-                continue;
-            }
-            match open.remove(&f) {
-                Some(o) => {
-                    uf.union(i, o);
-                }
-                None => {
-                    open.insert(f, i);
-                }
-            }
+    let faces = super::faces::FaceTable::new(tets);
+    faces.for_each_face(|codes| {
+        let (t, i) = ((codes[0] >> 2) as usize, (codes[0] & 3) as usize);
+        if codes.len() < 2 || common_plane(planes, outward_face(&tets[t], i)).is_some() {
+            return;
         }
+        for pair in codes.chunks_exact(2) {
+            uf.union((pair[0] >> 2) as usize, (pair[1] >> 2) as usize);
+        }
+    });
+    let mut inner_vertex = vec![usize::MAX; planes.len()];
+    for (i, t) in tets.iter().enumerate() {
         for &v in t {
             if planes[v as usize].is_empty() {
-                let o = *inner_vertex.entry(v).or_insert(i);
-                uf.union(i, o);
+                let o = &mut inner_vertex[v as usize];
+                if *o == usize::MAX {
+                    *o = i;
+                }
+                uf.union(i, *o);
             }
         }
     }
@@ -517,7 +518,10 @@ pub fn build(
                 })
                 .collect()
         },
-        || super::assembly::singularities(&super::assembly::boundary_of(k.kept)),
+        || {
+            let (e, v) = super::assembly::singular_sets(k.kept);
+            (e.len() as u64, v.len() as u64)
+        },
     );
     stats.cells_refused = found.iter().filter(|f| matches!(f, Some(None))).count() as u64;
     let mut collars: Vec<Option<CellCollar>> = found.into_iter().map(Option::flatten).collect();

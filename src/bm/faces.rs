@@ -3,6 +3,7 @@
 //! faces up is several times faster than a hash map of the ~4 faces per tetrahedron of a whole
 //! complex, which the assembly rebuilds many times.
 use super::complex::outward_face;
+use rayon::prelude::*;
 
 /// Per face (sorted key): the tetrahedra that have it, in increasing index.
 pub struct FaceTable {
@@ -13,9 +14,15 @@ pub struct FaceTable {
     codes: Vec<u32>,
 }
 
-fn key3(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
+/// The four vertices in increasing order (a sorting network).
+#[inline]
+fn sorted4(mut t: [u32; 4]) -> [u32; 4] {
+    for (a, b) in [(0, 1), (2, 3), (0, 2), (1, 3), (1, 2)] {
+        if t[a] > t[b] {
+            t.swap(a, b);
+        }
+    }
+    t
 }
 
 impl FaceTable {
@@ -78,11 +85,10 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
     let n = all().flatten().max().map_or(0, |&v| v as usize + 1);
     let mut start = vec![0u32; n + 1];
     for t in all() {
-        for i in 0..4 {
-            // the smallest vertex of the face opposite i
-            let m = (0..4).filter(|&j| j != i).map(|j| t[j]).min().unwrap_or(0);
-            start[m as usize + 1] += 1;
-        }
+        // three faces have the smallest vertex, the one opposite it the second smallest
+        let s = sorted4(*t);
+        start[s[0] as usize + 1] += 3;
+        start[s[1] as usize + 1] += 1;
     }
     for v in 0..n {
         start[v + 1] += start[v];
@@ -90,34 +96,65 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
     let mut next = start.clone();
     let mut rows: Vec<u128> = vec![0; start[n] as usize];
     for (ti, t) in all().enumerate() {
-        for i in 0..4 {
-            let k = key3(outward_face(t, i));
+        // the sorted key of the face opposite i: the sorted tetrahedron without t[i]
+        let s = sorted4(*t);
+        for (i, &x) in t.iter().enumerate() {
+            let j = s.iter().position(|&v| v == x).unwrap_or(0);
+            let k: [u32; 3] = std::array::from_fn(|m| s[m + (m >= j) as usize]);
             let slot = &mut next[k[0] as usize];
             let code = 4 * ti as u32 + i as u32;
             rows[*slot as usize] = (k[1] as u128) << 64 | (k[2] as u128) << 32 | code as u128;
             *slot += 1;
         }
     }
-    for v in 0..n {
-        sort_small(&mut rows[start[v] as usize..start[v + 1] as usize]);
-    }
+    for_ranges(&start, &mut rows, |start, rows, lo| {
+        for b in start.windows(2) {
+            sort_small(&mut rows[(b[0] - lo) as usize..(b[1] - lo) as usize]);
+        }
+    });
     (start, rows)
+}
+
+/// Vertices per range of buckets handed to one thread.
+const RANGE: usize = 1 << 13;
+
+/// Calls `f` on consecutive ranges of buckets in parallel: with the range's `start` entries (one
+/// more than its buckets), its rows, and the index of its first row.
+fn for_ranges(start: &[u32], rows: &mut [u128], f: impl Fn(&[u32], &mut [u128], u32) + Sync) {
+    let n = start.len().saturating_sub(1);
+    let mut parts = Vec::with_capacity(n / RANGE + 1);
+    let mut rest = rows;
+    for lo in (0..n).step_by(RANGE) {
+        let hi = (lo + RANGE).min(n);
+        let (head, tail) = rest.split_at_mut((start[hi] - start[lo]) as usize);
+        parts.push((&start[lo..=hi], head));
+        rest = tail;
+    }
+    parts.into_par_iter().for_each(|(s, rows)| f(s, rows, s[0]));
 }
 
 /// The triangles of `tets` with exactly one tetrahedron, oriented outward from it (unsorted).
 pub fn boundary(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
     let (start, rows) = bucketed(&[tets]);
-    let mut out = Vec::new();
-    for b in start.windows(2) {
-        // equal faces are adjacent in their bucket
-        for run in rows[b[0] as usize..b[1] as usize].chunk_by(|x, y| x >> 32 == y >> 32) {
-            if let [r] = run {
-                let c = *r as u32;
-                out.push(outward_face(&tets[(c >> 2) as usize], (c & 3) as usize));
+    // ranges of buckets in parallel, concatenated in order
+    let n = start.len().saturating_sub(1);
+    let parts: Vec<Vec<[u32; 3]>> = (0..n.div_ceil(RANGE))
+        .into_par_iter()
+        .map(|r| {
+            let mut out = Vec::new();
+            for b in start[r * RANGE..=((r + 1) * RANGE).min(n)].windows(2) {
+                // equal faces are adjacent in their bucket
+                for run in rows[b[0] as usize..b[1] as usize].chunk_by(|x, y| x >> 32 == y >> 32) {
+                    if let [r] = run {
+                        let c = *r as u32;
+                        out.push(outward_face(&tets[(c >> 2) as usize], (c & 3) as usize));
+                    }
+                }
             }
-        }
-    }
-    out
+            out
+        })
+        .collect();
+    parts.concat()
 }
 
 /// Insertion sort for the small buckets (a dozen rows on average), the library sort otherwise.

@@ -11,6 +11,7 @@
 //! first; a round fills every singularity that has one, and the rounds repeat on the new boundary
 //! (a fill can pinch elsewhere) up to a bound. What remains is counted by the caller.
 use crate::fxhash::{FxHashMap, FxHashSet};
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 fn key4(mut t: [u32; 4]) -> [u32; 4] {
@@ -170,34 +171,42 @@ impl Index {
 
 /// The boundary's singular edges (more than two triangles) and pinched vertices (several fans).
 pub(super) fn singular_simplices(tris: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<u32>) {
-    // sorting and counting runs: no hashing of the whole surface
-    let mut all_edges: Vec<(u32, u32)> = tris
-        .iter()
-        .flat_map(|t| (0..3).map(move |i| (t[i], t[(i + 1) % 3])))
-        .map(|(a, b)| (a.min(b), a.max(b)))
-        .collect();
-    all_edges.sort_unstable();
-    let mut edges = Vec::new();
-    for run in all_edges.chunk_by(|a, b| a == b) {
-        if run.len() > 2 {
-            edges.push(run[0]);
-        }
-    }
+    // Per vertex v, the other vertices of its triangles sorted: the triangles of an edge vw are a
+    // run there (more than two: singular), and the fans are joined along the runs. One pass per
+    // vertex, no sort of the whole surface; chunks of vertices in parallel, in vertex order.
+    const CHUNK: usize = 4096;
     let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
     let around = crate::mesh::Stars::<u32>::new(n, tris);
-    let mut ts: Vec<[u32; 3]> = Vec::new();
-    let vertices = (0..n as u32)
-        .filter(|&v| {
-            ts.clear();
-            ts.extend(around[v as usize].iter().map(|&i| tris[i as usize]));
-            !ts.is_empty() && fans(&ts, v) > 1
+    let parts: Vec<super::assembly::Sets> = (0..n.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(|c| {
+            let (mut edges, mut vertices, mut ts) = (Vec::new(), Vec::new(), Vec::new());
+            for v in (c * CHUNK) as u32..((c + 1) * CHUNK).min(n) as u32 {
+                ts.clear();
+                ts.extend(around[v as usize].iter().map(|&i| tris[i as usize]));
+                if !ts.is_empty() && fans_and_edges(&ts, v, Some(&mut edges)) > 1 {
+                    vertices.push(v);
+                }
+            }
+            (edges, vertices)
         })
         .collect();
-    (edges, vertices)
+    let mut out = (Vec::new(), Vec::new());
+    for (e, v) in parts {
+        out.0.extend(e);
+        out.1.extend(v);
+    }
+    out
 }
 
 /// Number of fans of the triangles through `v` (connected through shared edges at `v`).
 pub(super) fn fans(tris: &[[u32; 3]], v: u32) -> usize {
+    fans_and_edges(tris, v, None)
+}
+
+/// [`fans`]; with `singular`, the edges vw (w > v) of more than two of the triangles are pushed
+/// there, in increasing w.
+fn fans_and_edges(tris: &[[u32; 3]], v: u32, singular: Option<&mut Vec<(u32, u32)>>) -> usize {
     let n = tris.len();
     let mut parent: SmallVec<[usize; 16]> = (0..n).collect();
     fn find(p: &mut [usize], mut x: usize) -> usize {
@@ -213,10 +222,16 @@ pub(super) fn fans(tris: &[[u32; 3]], v: u32) -> usize {
         at.extend(t.iter().filter(|&&w| w != v).map(|&w| (w, i)));
     }
     at.sort_unstable();
+    let mut singular = singular;
     for run in at.chunk_by(|a, b| a.0 == b.0) {
         for x in &run[1..] {
             let (a, b) = (find(&mut parent, x.1), find(&mut parent, run[0].1));
             parent[a] = b;
+        }
+        if let Some(out) = singular.as_deref_mut() {
+            if run.len() > 2 && run[0].0 > v {
+                out.push((v, run[0].0));
+            }
         }
     }
     (0..n).filter(|&i| find(&mut parent, i) == i).count()
@@ -234,19 +249,25 @@ fn components(items: &[Vec<u32>], share: usize) -> Vec<Vec<usize>> {
         }
         x
     }
-    // adjacency by shared sub-lists of length `share` (1: a vertex, 2: an edge)
-    let mut by_key: FxHashMap<Vec<u32>, usize> = FxHashMap::default();
+    // adjacency by shared sub-lists of length `share` (1: a vertex, 2: an edge), as pairs (a
+    // vertex's second entry `u32::MAX`): no allocation per key
+    let mut by_key: FxHashMap<(u32, u32), usize> = FxHashMap::default();
+    let mut s: SmallVec<[u32; 4]> = SmallVec::new();
+    let mut keys: SmallVec<[(u32, u32); 6]> = SmallVec::new();
     for (i, it) in items.iter().enumerate() {
-        let mut s = it.clone();
+        s.clear();
+        s.extend_from_slice(it);
         s.sort_unstable();
-        let keys: Vec<Vec<u32>> = match share {
-            1 => s.iter().map(|&x| vec![x]).collect(),
-            _ => (0..s.len())
-                .flat_map(|a| (a + 1..s.len()).map(move |b| (a, b)))
-                .map(|(a, b)| vec![s[a], s[b]])
-                .collect(),
-        };
-        for k in keys {
+        keys.clear();
+        match share {
+            1 => keys.extend(s.iter().map(|&x| (x, u32::MAX))),
+            _ => {
+                for a in 0..s.len() {
+                    keys.extend((a + 1..s.len()).map(|b| (s[a], s[b])));
+                }
+            }
+        }
+        for &k in &keys {
             if let Some(&j) = by_key.get(&k) {
                 let (x, y) = (find(&mut parent, i), find(&mut parent, j));
                 parent[x] = y;

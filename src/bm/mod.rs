@@ -358,10 +358,11 @@ fn share_samples(
         }
         dirty_faces = shared.extend(arr, pool, results);
     }
-    for r in results.iter_mut().flatten() {
+    // the starts' triangulations are dropped in parallel too (tens of MB on big inputs)
+    results.par_iter_mut().flatten().for_each(|r| {
         shared.adopt_ids(r);
         r.start = None;
-    }
+    });
     counts.samples = shared.len() as u64;
     counts.one_sided = shared.one_sided(results);
     Ok(counts)

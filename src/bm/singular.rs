@@ -63,9 +63,9 @@ pub fn resolve(
     let mut best: Option<(u64, Option<Snapshot>, SingularStats)> = None;
     let mut best_is_current = false;
     for round in 0..=rounds {
-        let (edges, vertices) = known.take().unwrap_or_else(|| {
-            super::fill::singular_simplices(&super::assembly::boundary_of(t.kept))
-        });
+        let (edges, vertices) = known
+            .take()
+            .unwrap_or_else(|| super::assembly::singular_sets(t.kept));
         stats
             .per_round
             .push((edges.len() as u64, vertices.len() as u64));

@@ -69,7 +69,8 @@ pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> Sl
     while !pending.is_empty() {
         let parents: Vec<&Parent> = pending.iter().map(|c| &c.0[0]).collect();
         let refused = grow_slabs(t, &parents, thickness, false, &mut stats);
-        let existing = existing_tets(t);
+        let next = refused.iter().filter_map(|&i| pending[i].0.get(1));
+        let existing = existing_among(t, next.map(|p| p.tet));
         pending = refused
             .into_iter()
             .filter_map(|i| {
@@ -87,7 +88,7 @@ pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> Sl
     // a zone still without a slab (mostly one whose parents' edges all lie on planes: a cell corner
     // on two planes, as cells between axis-aligned planes have) is tried once more with the edges on
     // planes split too, where those planes' sections hold the slab's faces on them
-    let existing = existing_tets(t);
+    let existing = existing_among(t, left.iter().flat_map(|all| all.iter().map(|p| p.tet)));
     let last: Vec<&Parent> = left
         .iter()
         .filter_map(|all| all.iter().find(|p| existing.contains(&key4(p.tet))))
@@ -100,13 +101,24 @@ pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> Sl
     stats
 }
 
-/// The tetrahedra of the triangulation now (sorted keys).
-fn existing_tets(t: &Triangulation) -> FxHashSet<[u32; 4]> {
+/// Which of the tetrahedra `wanted` the triangulation has now (sorted keys): one scan, a tetrahedron
+/// looked up only when it has the smallest vertex of a wanted one (no set of the whole complex).
+fn existing_among(
+    t: &Triangulation,
+    wanted: impl IntoIterator<Item = [u32; 4]>,
+) -> FxHashSet<[u32; 4]> {
+    let wanted: FxHashSet<[u32; 4]> = wanted.into_iter().map(key4).collect();
+    let mut first = vec![false; t.positions.len()];
+    for k in &wanted {
+        first[k[0] as usize] = true;
+    }
     t.kept
         .iter()
         .chain(t.fillable.iter())
         .chain(t.external.iter())
+        .filter(|x| x.iter().any(|&v| first[v as usize]))
         .map(|&x| key4(x))
+        .filter(|k| wanted.contains(k))
         .collect()
 }
 

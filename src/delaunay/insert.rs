@@ -334,30 +334,73 @@ impl Delaunay {
     /// rule can make such a cavity (the perturbed float predicates always give a ball), so it is
     /// checked only then. Combinatorial, so exact.
     fn cavity_is_ball(&mut self, boundary: &[BoundaryFacet], cavity: &[u32]) -> bool {
-        let mut edges: Vec<(u32, u32)> = Vec::with_capacity(3 * boundary.len());
-        let mut verts: Vec<u32> = Vec::with_capacity(boundary.len() + 4);
-        for b in boundary {
+        // vertices by stamp (a fresh generation per test), edges counted in an open-addressing
+        // table: linear in the cavity's size (this runs on most tagged insertions)
+        self.vmark_gen = self.vmark_gen.wrapping_add(1);
+        if self.vmark_gen == 0 {
+            self.vmark.iter_mut().for_each(|m| *m = 0);
+            self.vmark_gen = 1;
+        }
+        let gen = self.vmark_gen;
+        if self.vmark.len() < self.pts.len() {
+            self.vmark.resize(self.pts.len(), 0);
+        }
+        let bits = (usize::BITS - (6 * boundary.len()).leading_zeros()).max(4);
+        let mut table = std::mem::take(&mut self.ball_edges);
+        table.clear();
+        table.resize(1 << bits, (u64::MAX, 0));
+        let (mut verts, mut edges, mut infinite) = (0i64, 0i64, false);
+        let mut manifold = true;
+        'facets: for b in boundary {
             // the facet: the three vertices other than the new one (at `b.i`)
             let f: [u32; 3] = std::array::from_fn(|k| b.v[(b.i as usize + 1 + k) & 3]);
             for k in 0..3 {
-                let (x, y) = (f[k], f[(k + 1) % 3]);
-                edges.push((x.min(y), x.max(y)));
+                let w = f[k];
+                if w == INFINITE {
+                    verts += !infinite as i64;
+                    infinite = true;
+                } else if self.vmark[w as usize] != gen {
+                    self.vmark[w as usize] = gen;
+                    verts += 1;
+                }
+                let (x, y) = (w.min(f[(k + 1) % 3]), w.max(f[(k + 1) % 3]));
+                let key = ((x as u64) << 32) | y as u64;
+                let mut h = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize;
+                loop {
+                    let e = &mut table[h];
+                    if e.0 == u64::MAX {
+                        *e = (key, 1);
+                        edges += 1;
+                        break;
+                    }
+                    if e.0 == key {
+                        e.1 += 1;
+                        if e.1 > 2 {
+                            manifold = false;
+                            break 'facets;
+                        }
+                        break;
+                    }
+                    h = (h + 1) & ((1 << bits) - 1);
+                }
             }
-            verts.extend_from_slice(&f);
         }
-        edges.sort_unstable();
-        verts.sort_unstable();
-        verts.dedup();
-        let manifold = edges.chunks(2).all(|p| p.len() == 2 && p[0] == p[1])
-            && edges.windows(3).all(|w| !(w[0] == w[1] && w[1] == w[2]));
-        let euler = verts.len() as i64 - (edges.len() / 2) as i64 + boundary.len() as i64;
-        let keeps_vertices = cavity.iter().all(|&c| {
-            self.tds.tets[c as usize]
-                .v
-                .iter()
-                .all(|w| verts.binary_search(w).is_ok())
-        });
-        let ball = manifold && euler == 2 && keeps_vertices;
+        self.ball_edges = table;
+        // each edge on exactly two facets: no count above two and 3F = 2E
+        let manifold = manifold && 2 * edges == 3 * boundary.len() as i64;
+        let euler = verts - edges + boundary.len() as i64;
+        let keeps_vertices = || {
+            cavity.iter().all(|&c| {
+                self.tds.tets[c as usize].v.iter().all(|&w| {
+                    if w == INFINITE {
+                        infinite
+                    } else {
+                        self.vmark[w as usize] == gen
+                    }
+                })
+            })
+        };
+        let ball = manifold && euler == 2 && keeps_vertices();
         if !ball {
             self.inconsistent = true;
         }

@@ -157,6 +157,10 @@ pub struct Delaunay {
     /// Visit stamps of the tagged locate's fallback search (by tetrahedron slot).
     stamp: Vec<u32>,
     stamp_gen: u32,
+    /// Scratch of the cavity's ball test: vertex stamps (by internal id) and an edge count table.
+    vmark: Vec<u32>,
+    vmark_gen: u32,
+    ball_edges: Vec<(u64, u8)>,
     /// Points the parallel bulk build deferred to a sequential tail.
     parallel_deferred: usize,
 }
@@ -388,6 +392,9 @@ impl Delaunay {
             rule_decided: std::cell::Cell::new(false),
             stamp: Vec::new(),
             stamp_gen: 0,
+            vmark: Vec::new(),
+            vmark_gen: 0,
+            ball_edges: Vec::new(),
             parallel_deferred: 0,
             lo: [f64::INFINITY; 3],
             hi: [f64::NEG_INFINITY; 3],

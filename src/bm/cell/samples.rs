@@ -1,7 +1,7 @@
 //! A cell's diagram samples: rounds of branching and cutting samples (paper §2.2), each taken on
 //! the triangulation the last round left and inserted into it with the other sides' shared
 //! samples, and consecutive samples joined by Delaunay edges (`chains`).
-use super::{cell_delaunay, Clock, RunStart, Sampling, Start, BRANCHING_ROUNDS};
+use super::{cell_delaunay, points_delaunay, Clock, RunStart, Sampling, Start, BRANCHING_ROUNDS};
 use crate::bm::cell_input::{CellInput, IdMap, IdSet};
 use crate::bm::chains::{conform_pairs, Chains, DiagramSample, Kind, SamplePair};
 use crate::bm::classify::{tet_types, Classifier};
@@ -93,38 +93,52 @@ pub(super) fn insert_diagram_samples(
     let mut out = Sampled::default();
     let lookup = shared_lookup(input, how.shared);
     for round in 0..BRANCHING_ROUNDS {
-        let (branch_chains, cut_chains) = match how.start {
-            Start::Reuse(st) if round == 0 => (st.branching.clone(), st.cutting.clone()),
-            _ => {
-                let chains = diagram_samples(input, cx, how.sampling, clock);
-                if round == 0 && matches!(how.start, Start::Keep) {
-                    out.start = Some(Box::new(RunStart {
-                        points: input.points.clone(),
-                        dt: tri.dt.clone(),
-                        tagged: tri.tagged,
-                        branching: chains.0.clone(),
-                        cutting: chains.1.clone(),
-                    }));
-                }
-                chains
-            }
+        let reuse = match how.start {
+            Start::Reuse(st) if round == 0 => Some(st),
+            _ => None,
         };
+        let (branch_chains, cut_chains) = match reuse {
+            Some(st) => (st.branching.clone(), st.cutting.clone()),
+            None => diagram_samples(input, cx, how.sampling, clock),
+        };
+        // the start's parts before the samples go in (its triangulation is taken after)
+        let mut keep = (round == 0 && matches!(how.start, Start::Keep)).then(|| StartParts {
+            points: input.points.clone(),
+            tagged: tri.tagged,
+            branching: branch_chains.clone(),
+            cutting: cut_chains.clone(),
+        });
         let (n_branch_round, n_cut_round) = (branch_chains.samples.len(), cut_chains.samples.len());
         let has_shared = round == 0 && lookup.iter().any(|m| !m.is_empty());
         if n_branch_round + n_cut_round == 0 && !has_shared {
+            if let Some(parts) = keep.take() {
+                out.start = Some(Box::new(parts.complete(input, tri)?));
+            }
+            if reuse.is_some() {
+                *cx = Complex::from_delaunay(input.points.len(), &tri.dt);
+            }
             break;
         }
         out.branching += n_branch_round as u64;
         out.cutting += n_cut_round as u64;
         // inserted into the triangulation we have, in one batch (same result as re-triangulating
-        // everything)
+        // everything); a reused start has this round's samples in already
         let mut chains = branch_chains;
         chains.extend(cut_chains);
         let first_sample = input.points.len() as u32;
-        let first_cut = input.points.len() + n_branch_round;
-        insert_samples(
-            input, tri, &chains, &lookup, first_cut, has_shared, how, &mut out,
-        )?;
+        let batch = Batch {
+            lookup: &lookup,
+            first_cut: input.points.len() + n_branch_round,
+            has_shared,
+            present: match reuse {
+                Some(st) if st.with_samples => chains.samples.len(),
+                _ => 0,
+            },
+        };
+        insert_samples(input, tri, &chains, &batch, how, &mut out)?;
+        if let Some(parts) = keep.take() {
+            out.start = Some(Box::new(parts.complete(input, tri)?));
+        }
         clock.lap(|t| &mut t.delaunay);
         join_sample_pairs(input, tri, &chains, first_sample, how, &mut out)?;
         clock.lap(|t| &mut t.sample_pairs);
@@ -134,16 +148,56 @@ pub(super) fn insert_diagram_samples(
     Ok(out)
 }
 
+/// A run's start (`RunStart`) before its samples are inserted.
+struct StartParts {
+    points: Vec<[f64; 3]>,
+    tagged: bool,
+    branching: Chains,
+    cutting: Chains,
+}
+
+impl StartParts {
+    /// The start, with the triangulation `tri` that now holds the samples too; when the tag rules
+    /// failed on them (`tri` fell back to the untagged kernel), with the contour points'
+    /// triangulation instead, and the reruns insert the samples again as the whole run would.
+    fn complete(self, input: &CellInput, tri: &Tri) -> Result<RunStart> {
+        let (dt, tagged, with_samples) = if tri.tagged == self.tagged {
+            (tri.dt.clone(), tri.tagged, true)
+        } else {
+            let mut tagged = true;
+            let dt = points_delaunay(&self.points, &input.tags, &mut tagged)?;
+            (dt, tagged, false)
+        };
+        Ok(RunStart {
+            points: self.points,
+            dt,
+            with_samples,
+            tagged,
+            branching: self.branching,
+            cutting: self.cutting,
+        })
+    }
+}
+
+/// What one round's batch of samples inserts.
+struct Batch<'a> {
+    /// Per slot, the shared samples' global ids by position.
+    lookup: &'a [IdMap<[u64; 3], u32>],
+    /// Local id of the round's first cutting sample.
+    first_cut: usize,
+    /// The other sides' shared samples go in too.
+    has_shared: bool,
+    /// How many of the round's own samples the triangulation has already (a reused start's).
+    present: usize,
+}
+
 /// Insert one round's samples (with their global ids where `lookup` knows them) and, with
-/// `has_shared`, the other sides' shared samples, in one batch.
-#[allow(clippy::too_many_arguments)]
+/// `has_shared`, the other sides' shared samples, in one batch (less those already `present`).
 fn insert_samples(
     input: &mut CellInput,
     tri: &mut Tri,
     chains: &Chains,
-    lookup: &[IdMap<[u64; 3], u32>],
-    first_cut: usize,
-    has_shared: bool,
+    b: &Batch,
     how: &SampleRun,
     out: &mut Sampled,
 ) -> Result<()> {
@@ -158,27 +212,26 @@ fn insert_samples(
                 "non-finite coordinate",
             ));
         }
-        let gid = lookup[s]
+        let gid = b.lookup[s]
             .get(&crate::bm::shared_samples::key(p3))
             .copied()
             .unwrap_or(u32::MAX);
         let l = input.add_vertex(s, q, p3, gid);
         batch.push(p3);
-        if l as usize >= first_cut {
+        if l as usize >= b.first_cut {
             out.cut_ids.push(l);
         }
     }
-    if has_shared {
+    if b.has_shared {
         out.foreign += add_foreign_samples(input, how.shared, &mut batch);
     }
-    let ids = tri
-        .dt
-        .insert_batch_tagged(&batch, &input.tags[input.points.len() - batch.len()..]);
+    let batch = &batch[b.present..];
+    let first = input.points.len() - batch.len();
+    let ids = tri.dt.insert_batch_tagged(batch, &input.tags[first..]);
     if tri.tagged && tri.dt.consistent().is_err() {
         tri.dt = cell_delaunay(input, &mut tri.tagged)?;
     }
     // ids in local order (a duplicate gets the earlier vertex's id)
-    let first = input.points.len() - batch.len();
     debug_assert!(ids
         .iter()
         .enumerate()

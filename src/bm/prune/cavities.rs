@@ -2,6 +2,7 @@
 //! pinches of its surface at vertices repaired by filling notches (`fill_pinches`).
 use crate::bm::classify::{Classified, TetType};
 use crate::bm::complex::{Complex, NONE};
+use smallvec::SmallVec;
 
 /// Fills the voids of the complex `alive`: face-connected groups of tets of `r1` (step 1's result)
 /// that are not kept, not flat, and whose every face is shared with a kept tet, with the group, or is
@@ -64,8 +65,9 @@ fn enclosed_groups(
 /// Returns the number of fans (edge-connected groups of those triangles around `v`); more than
 /// one is a pinch of the surface at `v`.
 pub(super) fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32) -> usize {
-    let mut tris: Vec<[u32; 2]> = Vec::new();
-    let mut planar: Vec<bool> = Vec::new();
+    // called for every vertex of every cell: small buffers on the stack, no hashing
+    let mut tris: SmallVec<[[u32; 2]; 32]> = SmallVec::new();
+    let mut planar: SmallVec<[bool; 32]> = SmallVec::new();
     for &t in &cx.star[v as usize] {
         let tu = t as usize;
         if cl.ty[tu] == TetType::Flat {
@@ -103,7 +105,7 @@ pub(super) fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32
     if tris.len() < 2 {
         return tris.len();
     }
-    let mut parent: Vec<usize> = (0..tris.len()).collect();
+    let mut parent: SmallVec<[usize; 32]> = (0..tris.len()).collect();
     fn find(p: &mut [usize], mut x: usize) -> usize {
         while p[x] != x {
             p[x] = p[p[x]];
@@ -114,17 +116,19 @@ pub(super) fn surface_fans(cx: &Complex, cl: &Classified, alive: &[bool], v: u32
     // Triangles continue each other across an edge (v, w) they alone share; where more meet (a
     // crease of the solid touching a section along the edge), only planar with planar and
     // non-planar with non-planar, as the gluing pairs them.
-    let mut by_w: std::collections::HashMap<u32, Vec<usize>> = Default::default();
-    for (k, w) in tris.iter().enumerate() {
-        for &x in w {
-            by_w.entry(x).or_default().push(k);
-        }
-    }
-    for ks in by_w.values() {
-        for x in 0..ks.len() {
-            for y in x + 1..ks.len() {
-                if ks.len() == 2 || planar[ks[x]] == planar[ks[y]] {
-                    let (a, b) = (find(&mut parent, ks[x]), find(&mut parent, ks[y]));
+    // (w, triangle) sorted: the triangles through each edge (v, w) are a run
+    let mut by_w: SmallVec<[(u32, usize); 64]> = tris
+        .iter()
+        .enumerate()
+        .flat_map(|(k, w)| w.iter().map(move |&x| (x, k)))
+        .collect();
+    by_w.sort_unstable();
+    for run in by_w.chunk_by(|a, b| a.0 == b.0) {
+        for x in 0..run.len() {
+            for y in x + 1..run.len() {
+                let (kx, ky) = (run[x].1, run[y].1);
+                if run.len() == 2 || planar[kx] == planar[ky] {
+                    let (a, b) = (find(&mut parent, kx), find(&mut parent, ky));
                     parent[a] = b;
                 }
             }
