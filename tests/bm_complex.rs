@@ -17,7 +17,7 @@ const PINS: [(&str, u64, u64, u64, u64, usize); 12] = [
     ("Armadillo-23-better", 0, 0, 0, 0, 3),
     ("Elephant", 0, 0, 0, 0, 1),
     ("Heart-simplified", 0, 0, 0, 0, 1),
-    ("Horsers", 0, 2, 0, 0, 1),
+    ("Horsers", 0, 3, 0, 0, 1),
     ("ParallelEight", 0, 0, 0, 0, 1),
     ("ParallelEightMore", 0, 0, 0, 0, 1),
     ("SideBishop", 0, 0, 0, 0, 1),

@@ -16,7 +16,7 @@ const PINS: [(&str, u64, u64, u64, usize, i64); 12] = [
     ("Armadillo-23-better", 0, 57, 0, 3, 3),
     ("Elephant", 0, 544, 0, 1, 28),
     ("Heart-simplified", 0, 0, 0, 1, 0),
-    ("Horsers", 0, 292, 0, 1, 5),
+    ("Horsers", 0, 292, 0, 1, 4),
     ("ParallelEight", 0, 4, 0, 1, 2),
     ("ParallelEightMore", 0, 4, 0, 1, 2),
     ("SideBishop", 0, 8, 0, 1, 0),
@@ -97,8 +97,8 @@ fn both_cells_of_a_face_triangulate_it_alike() {
 
 /// The random-plane cases of `bm_random_planes::many_random_planes` (20 and 30 planes, seeds 4 and 5,
 /// five reference meshes; sliced directly, not through a CSL file) with shared samples: today 2 of
-/// 20 are not clean (pinched vertices, singular edges or flat folds left; no exact crossing;
-/// balloondog_box 30/4 became clean with the collar). With
+/// 20 is not clean (8 untagged cells: pinched vertices, singular edges left; no exact crossing;
+/// balloondog_box 30/4 became clean with the collar, 20/4 when growth stopped keeping slivers). With
 /// the first pipeline (cells glued, since removed) 11 kept crossing pairs. A listed expectation,
 /// so a fix shows.
 #[test]
@@ -132,11 +132,5 @@ fn random_planes_with_shared_samples() {
             }
         }
     }
-    assert_eq!(
-        bad,
-        [
-            "balloondog: 30 planes, seed 5",
-            "balloondog_box: 20 planes, seed 4",
-        ]
-    );
+    assert_eq!(bad, ["balloondog: 30 planes, seed 5"]);
 }

@@ -152,13 +152,9 @@ fn odd072_is_reconciled() {
     }
     let solid = slice2solid::reconstruct(&s, &Options::default()).unwrap();
     let c = check_mesh(&solid.surface, Some(&s));
-    assert!(c.closed && c.manifold && c.oriented, "{c:?}");
-    // Known, not wished: 37 overlapping near-coplanar pairs (folds the complex leaves between the
-    // pieces the trims cut apart); no exact crossing.
-    assert_eq!(
-        (c.self_intersections, c.overlapping_coplanar_pairs),
-        (0, 37)
-    );
+    // whether the solid is clean is `tests/odd_inputs.rs`'s (listed there); here: no exact
+    // crossing, and the sections the trims left
+    assert_eq!(c.self_intersections, 0, "{c:?}");
     let worst = c.worst_section.unwrap().relative;
     assert!(worst < 1.9e-3, "{worst}");
 }

@@ -136,7 +136,7 @@ pub fn grow(
     for group in groups {
         let children: Option<Vec<[u32; 4]>> = group
             .iter()
-            .map(|g| kept_children(g, &ids, t.planes, t.internal))
+            .map(|g| kept_children(g, &ids, t.planes, t.internal, t.positions))
             .collect::<Option<Vec<_>>>()
             .map(|c| c.concat());
         let added = children.map_or(0, |c| {
@@ -195,6 +195,7 @@ fn kept_children(
     ids: &FxHashMap<(u32, u32), u32>,
     planes: &[Planes],
     internal: &FxHashSet<[u32; 3]>,
+    positions: &[[f64; 3]],
 ) -> Option<Vec<[u32; 4]>> {
     let outer: SmallVec<[u32; 3]> = g
         .tet
@@ -208,7 +209,39 @@ fn kept_children(
         .collect();
     let on_core = near.iter().any(|c| g.core.iter().all(|v| c.contains(v)));
     let in_sections = near.iter().all(|c| faces_in_sections(c, planes, internal));
-    (on_core && in_sections).then_some(near)
+    let solid = near.iter().all(|c| !sliver(positions, c));
+    (on_core && in_sections && solid).then_some(near)
+}
+
+/// Height over its largest face below this fraction of its longest edge: a tetrahedron flat up to
+/// rounding, whose faces on ∂K would lie on each other.
+const SLIVER: f64 = 1e-6;
+
+fn sliver(positions: &[[f64; 3]], t: &[u32; 4]) -> bool {
+    let p = t.map(|v| positions[v as usize]);
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let norm = |a: [f64; 3]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+    let (e1, e2, e3) = (sub(p[1], p[0]), sub(p[2], p[0]), sub(p[3], p[0]));
+    let c = cross(e1, e2);
+    let six_v = (c[0] * e3[0] + c[1] * e3[1] + c[2] * e3[2]).abs();
+    let mut area2: f64 = 0.0;
+    for i in 0..4 {
+        let f = super::complex::outward_face(t, i).map(|v| positions[v as usize]);
+        area2 = area2.max(norm(cross(sub(f[1], f[0]), sub(f[2], f[0]))));
+    }
+    let mut longest: f64 = 0.0;
+    for &(i, j) in super::complex::TET_EDGES.iter() {
+        longest = longest.max(norm(sub(p[i], p[j])));
+    }
+    // height over the largest face = 3V / A = 6V / (2A)
+    six_v / area2 < SLIVER * longest
 }
 
 /// The face `f` lies on a plane: its three vertices share that plane's tag.
