@@ -23,6 +23,25 @@ fn squares_and_an_empty_plane() -> Sections {
     parse_json(text, "t.json").unwrap()
 }
 
+/// One of the 4x4 squares after the trim: two pieces, the strip's area (half-width `w`) gone,
+/// no vertex within the strip around x = 2.
+fn assert_square_split_by_strip(sec: &slice2solid::Section, w: f64) {
+    assert_eq!(sec.regions.len(), 2, "each square splits in two");
+    assert!(
+        (sec.area() - (16.0 - 8.0 * w)).abs() < 1e-9,
+        "{}",
+        sec.area()
+    );
+    for r in &sec.regions {
+        for p in &r.outer.points3 {
+            assert!(
+                (p[0] - 2.0).abs() >= w * (1.0 - 1e-9),
+                "{p:?} within the strip"
+            );
+        }
+    }
+}
+
 #[test]
 fn material_on_a_line_the_other_plane_leaves_empty_is_removed() {
     let s = squares_and_an_empty_plane();
@@ -35,21 +54,7 @@ fn material_on_a_line_the_other_plane_leaves_empty_is_removed() {
     );
     let w = LINE_STRIP_RELATIVE * 6.0; // diagonal of [0,4]x[0,4]x[0,2]
     for k in 0..2 {
-        let sec = &out.sections[k];
-        assert_eq!(sec.regions.len(), 2, "each square splits in two");
-        assert!(
-            (sec.area() - (16.0 - 8.0 * w)).abs() < 1e-9,
-            "{}",
-            sec.area()
-        );
-        for r in &sec.regions {
-            for p in &r.outer.points3 {
-                assert!(
-                    (p[0] - 2.0).abs() >= w * (1.0 - 1e-9),
-                    "{p:?} within the strip"
-                );
-            }
-        }
+        assert_square_split_by_strip(&out.sections[k], w);
     }
     assert!(
         trims.warnings[0].contains("planes 0 and 2 disagree"),
@@ -80,13 +85,7 @@ fn the_owner_of_the_higher_plane_index_is_trimmed_too() {
     assert_eq!(trims.trimmed, 2, "{:?}", trims.warnings);
     let w = LINE_STRIP_RELATIVE * 6.0;
     for k in 1..3 {
-        let sec = &out.sections[k];
-        assert_eq!(sec.regions.len(), 2, "each square splits in two");
-        assert!(
-            (sec.area() - (16.0 - 8.0 * w)).abs() < 1e-9,
-            "{}",
-            sec.area()
-        );
+        assert_square_split_by_strip(&out.sections[k], w);
     }
 }
 

@@ -13,6 +13,7 @@
 //! child is kept only if each of its faces that lies on a plane is inside that plane's section:
 //! the sections stay R ∩ P = A.
 use crate::fxhash::{FxHashMap, FxHashSet};
+use crate::sections::{cross, dot, sub};
 use smallvec::SmallVec;
 
 /// The planes a global vertex lies on (plane ids).
@@ -219,29 +220,32 @@ const SLIVER: f64 = 1e-6;
 
 fn sliver(positions: &[[f64; 3]], t: &[u32; 4]) -> bool {
     let p = t.map(|v| positions[v as usize]);
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let norm = |a: [f64; 3]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    let (e1, e2, e3) = (sub(p[1], p[0]), sub(p[2], p[0]), sub(p[3], p[0]));
-    let c = cross(e1, e2);
-    let six_v = (c[0] * e3[0] + c[1] * e3[1] + c[2] * e3[2]).abs();
-    let mut area2: f64 = 0.0;
+    let longest = super::complex::TET_EDGES
+        .iter()
+        .map(|&(i, j)| {
+            let e = sub(p[i], p[j]);
+            dot(e, e).sqrt()
+        })
+        .fold(0.0, f64::max);
+    flat_height(p) < SLIVER * longest
+}
+
+/// Distance of the farthest vertex from the plane of the largest face (float; for a flatness
+/// test far above rounding).
+pub fn flat_height(p: [[f64; 3]; 4]) -> f64 {
+    let (mut best, mut height) = (0.0, f64::INFINITY);
     for i in 0..4 {
-        let f = super::complex::outward_face(t, i).map(|v| positions[v as usize]);
-        area2 = area2.max(norm(cross(sub(f[1], f[0]), sub(f[2], f[0]))));
+        // the other three in increasing index
+        let f = [(1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2)][i];
+        let f = [p[f.0], p[f.1], p[f.2]];
+        let n = cross(sub(f[1], f[0]), sub(f[2], f[0]));
+        let len = dot(n, n).sqrt();
+        if len > best {
+            best = len;
+            height = dot(n, sub(p[i], f[0])).abs() / len;
+        }
     }
-    let mut longest: f64 = 0.0;
-    for &(i, j) in super::complex::TET_EDGES.iter() {
-        longest = longest.max(norm(sub(p[i], p[j])));
-    }
-    // height over the largest face = 3V / A = 6V / (2A)
-    six_v / area2 < SLIVER * longest
+    height
 }
 
 /// The face `f` lies on a plane: its three vertices share that plane's tag.

@@ -2,8 +2,9 @@
 //! toggling the flat wedges behind them, under the same rules as the singular simplices' toggles.
 use super::{Labelled, ToggleStats, MANY, NONE};
 use crate::bm::complex;
-use crate::bm::refine::{self, key3, Triangulation};
+use crate::bm::refine::{self, flat_height, key3, Triangulation};
 use crate::fxhash::FxHashSet;
+use crate::sections::{dot, sub};
 
 /// Close the cracks and cut the fins of ∂K at flat tetrahedra. Where the tetrahedra around an edge
 /// of ∂K between its two surface triangles, on one side, are all flat (their four vertices within
@@ -72,49 +73,15 @@ impl Flat<'_> {
     /// share with it)? Two surface triangles at `e` with such apexes folded onto each other.
     fn same_side(&self, e: (u32, u32), a: u32, b: u32) -> bool {
         let p = |v: u32| self.positions[v as usize];
-        let (o, d) = (p(e.0), sub3(p(e.1), p(e.0)));
-        let dd = dot3(d, d);
+        let (o, d) = (p(e.0), sub(p(e.1), p(e.0)));
+        let dd = dot(d, d);
         let perp = |q: [f64; 3]| {
-            let w = sub3(q, o);
-            let s = dot3(w, d) / dd;
+            let w = sub(q, o);
+            let s = dot(w, d) / dd;
             [w[0] - s * d[0], w[1] - s * d[1], w[2] - s * d[2]]
         };
-        dot3(perp(p(a)), perp(p(b))) > 0.0
+        dot(perp(p(a)), perp(p(b))) > 0.0
     }
-}
-
-fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Distance of the farthest vertex from the plane of the largest face (float; for a flatness
-/// test far above rounding).
-fn flat_height(p: [[f64; 3]; 4]) -> f64 {
-    let (sub, dot) = (sub3, dot3);
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let (mut best, mut height) = (0.0, f64::INFINITY);
-    for i in 0..4 {
-        // the other three in increasing index
-        let f = [(1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2)][i];
-        let f = [p[f.0], p[f.1], p[f.2]];
-        let n = cross(sub(f[1], f[0]), sub(f[2], f[0]));
-        let len = dot(n, n).sqrt();
-        if len > best {
-            best = len;
-            height = dot(n, sub(p[i], f[0])).abs() / len;
-        }
-    }
-    height
 }
 
 impl Labelled<'_> {
