@@ -485,3 +485,53 @@ fn exact_cosphericity_across_planes_is_valid_or_an_error() {
         Err(e) => eprintln!("refused, as it may be: {e}"),
     }
 }
+
+/// A flat triangle of a sliced mesh, cut by three axis planes: the contour points of the faces
+/// x = 0, y = 0 and z = 0 of the corner region {x, y, z ≥ 0, x + y + z ≤ 0.9} lie on the oblique
+/// plane x + y + z = 0.9 up to rounding, so that hull face of the cell's points is tiled by tetrahedra
+/// flat up to rounding. The rounded centroid of such a tetrahedron can fall outside it, and the
+/// kernel's star test of a new hull facet (against a point inside the hull) then refused valid
+/// insertions: the cell fell back to the untagged kernel (balloondog cut by 100 axis planes: 29
+/// cells). The build must succeed and be valid.
+#[test]
+fn hull_face_of_points_from_several_planes_on_one_oblique_plane_is_tagged() {
+    let mut pts: Vec<P> = Vec::new();
+    let mut tags = Vec::new();
+    let tag = |p: P, gid: u64| {
+        let planes: Vec<(u32, [f64; 2])> = (0..3u32)
+            .filter(|&k| p[k as usize] == 0.0)
+            .map(|k| {
+                let (u, v) = (((k + 1) % 3) as usize, ((k + 2) % 3) as usize);
+                (k, [p[u], p[v]])
+            })
+            .collect();
+        PointTags::new(gid, &planes)
+    };
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+    let n = 40;
+    for axis in 0..3usize {
+        let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
+        for i in 0..=n {
+            // the contour on the oblique plane (irregular spacing, as a mesh's crossings are),
+            // the face's edge on the next axis plane, and samples inside the face's triangle
+            let s = (i as f64 + 0.5 * rng.gen::<f64>()) / (n as f64 + 1.0) * 0.9;
+            let mut on_mesh = [0.0; 3];
+            on_mesh[a] = s;
+            on_mesh[b] = 0.9 - s;
+            let mut on_edge = [0.0; 3];
+            on_edge[a] = s;
+            let mut inside = [0.0; 3];
+            inside[a] = s * rng.gen::<f64>();
+            inside[b] = (0.9 - s) * rng.gen::<f64>();
+            for p in [on_mesh, on_edge, inside] {
+                if !pts.contains(&p) {
+                    tags.push(tag(p, pts.len() as u64));
+                    pts.push(p);
+                }
+            }
+        }
+    }
+    let dt = Delaunay::try_new_tagged(&pts, &tags).expect("a valid cavity was refused");
+    dt.is_valid().unwrap();
+    assert_eq!(flat_tets(&dt, &tags), 0);
+}

@@ -70,6 +70,21 @@ pub(super) struct BoundaryFacet {
     pub(super) j: u8,
 }
 
+/// The rounded centroid of the positive tetrahedron `p` if it is strictly inside it (exact
+/// orientations), else `None`: the centroid of a tetrahedron flat up to rounding (contour points
+/// of one flat triangle of a sliced mesh, on several planes) can round out of it, and a point
+/// outside the hull would make the star test refuse a valid cavity.
+fn strictly_inner_point(p: [P; 4]) -> Option<P> {
+    let c: P = std::array::from_fn(|k| 0.25 * (p[0][k] + p[1][k] + p[2][k] + p[3][k]));
+    (0..4)
+        .all(|i| {
+            let mut r = p;
+            r[i] = c;
+            pred::orient(r[0], r[1], r[2], r[3]) > 0.0
+        })
+        .then_some(c)
+}
+
 /// Coordinates of finite internal vertex `v` (< pts.len() by construction).
 #[inline(always)]
 fn pt(pts: &[P], v: u32) -> P {
@@ -295,11 +310,8 @@ impl Delaunay {
             outside
                 .iter()
                 .map(|&t| self.tds.tets[t as usize].v)
-                .find(|v| !v.contains(&INFINITE))
-                .map(|v| {
-                    let p = v.map(|w| self.pts[w as usize]);
-                    std::array::from_fn(|k| 0.25 * (p[0][k] + p[1][k] + p[2][k] + p[3][k]))
-                })
+                .filter(|v| !v.contains(&INFINITE))
+                .find_map(|v| strictly_inner_point(v.map(|w| self.pts[w as usize])))
         } else {
             None
         };
