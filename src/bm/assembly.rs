@@ -49,6 +49,8 @@ pub struct Assembled {
     pub voids: super::voids::VoidStats,
     /// Pinched vertices left by growth and toggles whose smaller cones lost their tips (`carve`).
     pub carved: super::carve::CarveStats,
+    /// Slivers on the outer boundary of the cells' triangulations, taken out (`refine`).
+    pub hull_slivers: u64,
     /// The prisms over the sections near every plane (`collar`).
     pub collar: super::collar::CollarStats,
 }
@@ -150,6 +152,7 @@ pub fn assemble(
         internal: &mut internal,
     };
     let diag = diagonal(&pool.positions);
+    out.hull_slivers = super::refine::drop_hull_slivers(&mut k);
     if slabs && out.flat_triangles > 0 {
         out.slabs = super::slab::thicken(&mut k, &faces, SLAB_THICKNESS * diag);
     }

@@ -488,6 +488,7 @@ fn assemble_cells(
     report.count("singular_edges_found", k.singular_edges_found);
     report.count("singular_vertices_found", k.singular_vertices_found);
     report.count("tets_filled", k.tets_filled);
+    report.count("hull_slivers_dropped", k.hull_slivers);
     report.count("singular_edge_gaps_grown", k.grown.edge_gaps);
     report.count("singular_vertex_gaps_grown", k.grown.vertex_gaps);
     report.count("singular_growth_tets", k.grown.tets);

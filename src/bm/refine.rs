@@ -12,6 +12,10 @@
 //! (combinatorial plane membership), section triangles are refined with the tetrahedra, and a
 //! child is kept only if each of its faces that lies on a plane is inside that plane's section:
 //! the sections stay R ∩ P = A.
+//!
+//! Refinement cannot split an edge of a tetrahedron flat up to rounding (a child would flip);
+//! those on the outer boundary of the cells' triangulations hold no volume and are taken out first
+//! ([`drop_hull_slivers`]).
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::sections::{cross, dot, sub};
 use smallvec::SmallVec;
@@ -214,20 +218,117 @@ fn kept_children(
     (on_core && in_sections && solid).then_some(near)
 }
 
+/// Take out of the triangulation its tetrahedra that are flat up to rounding (`ROUNDING_FLAT`) with a face
+/// on its outer boundary (a face no other tetrahedron shares) and no face on a plane: the contour
+/// points of one flat triangle of a sliced mesh, on two or more planes, lie on one oblique plane,
+/// and where that plane bounds a cell's points the cell's hull is folded there by rounding into
+/// such a tetrahedron. It holds no volume, but no edge of it can be split (a child would flip),
+/// which blocks every refinement around it. A kept one is taken out only where that leaves ∂K as
+/// it was up to the flat fold: its faces on ∂K (outer or beside an unkept tetrahedron) are exactly
+/// one side of it, the faces beside kept tetrahedra the other, so ∂K trades one side's triangles
+/// for the other's, with the same border. Returns how many were taken out.
+pub fn drop_hull_slivers(t: &mut Triangulation) -> u64 {
+    let mut faces: FxHashMap<[u32; 3], u32> = FxHashMap::default();
+    for x in t
+        .kept
+        .iter()
+        .chain(t.fillable.iter())
+        .chain(t.external.iter())
+    {
+        for i in 0..4 {
+            *faces
+                .entry(key3(super::complex::outward_face(x, i)))
+                .or_default() += 1;
+        }
+    }
+    let kept_faces: FxHashMap<[u32; 3], u32> = {
+        let mut m = FxHashMap::default();
+        for x in t.kept.iter() {
+            for i in 0..4 {
+                *m.entry(key3(super::complex::outward_face(x, i)))
+                    .or_default() += 1;
+            }
+        }
+        m
+    };
+    let planes = &*t.planes;
+    let positions = &*t.positions;
+    // 0: not a hull sliver; 1: one; 2: one whose faces beside kept tetrahedra are one side of it
+    let kind = |x: &[u32; 4]| -> u8 {
+        let fs: [[u32; 3]; 4] = std::array::from_fn(|i| super::complex::outward_face(x, i));
+        if fs.iter().any(|f| on_a_plane(planes, f)) || !fs.iter().any(|f| faces[&key3(*f)] == 1) {
+            return 0;
+        }
+        if !flat_to_rounding(positions, x) {
+            return 0;
+        }
+        let side = flat_sides(x.map(|v| positions[v as usize]));
+        // a face beside a kept tetrahedron is counted twice in kept_faces (this one and that one)
+        let beside_kept: [bool; 4] =
+            std::array::from_fn(|i| kept_faces.get(&key3(fs[i])) == Some(&2));
+        let one_side =
+            (0..4).all(|i| beside_kept[i] == side[i]) || (0..4).all(|i| beside_kept[i] != side[i]);
+        1 + u8::from(one_side)
+    };
+    let mut dropped = 0;
+    let before = t.kept.len();
+    t.kept.retain(|x| kind(x) != 2);
+    dropped += (before - t.kept.len()) as u64;
+    for list in [&mut *t.fillable, &mut *t.external] {
+        let before = list.len();
+        list.retain(|x| kind(x) == 0);
+        dropped += (before - list.len()) as u64;
+    }
+    dropped
+}
+
+/// Height over its largest face below this fraction of its longest edge: flat up to the rounding
+/// of its vertices' constructions (far below `SLIVER`: taking such a tetrahedron out moves ∂K by
+/// no more than that height, which must stay below every real feature, slabs included).
+const ROUNDING_FLAT: f64 = 1e-12;
+
+fn flat_to_rounding(positions: &[[f64; 3]], t: &[u32; 4]) -> bool {
+    let p = t.map(|v| positions[v as usize]);
+    flat_height(p) < ROUNDING_FLAT * longest_edge(p)
+}
+
+fn longest_edge(p: [[f64; 3]; 4]) -> f64 {
+    super::complex::TET_EDGES
+        .iter()
+        .map(|&(i, j)| {
+            let e = sub(p[i], p[j]);
+            dot(e, e).sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Per face of a flat tetrahedron (face i opposite vertex i, outward), whether it faces the same way
+/// as its largest face.
+fn flat_sides(p: [[f64; 3]; 4]) -> [bool; 4] {
+    let normal = |i: usize| {
+        // outward: away from vertex i
+        let f = [(1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2)][i];
+        let n = cross(sub(p[f.1], p[f.0]), sub(p[f.2], p[f.0]));
+        if dot(n, sub(p[i], p[f.0])) > 0.0 {
+            [-n[0], -n[1], -n[2]]
+        } else {
+            n
+        }
+    };
+    let ns: [[f64; 3]; 4] = std::array::from_fn(normal);
+    let big = (0..4)
+        .max_by(|&a, &b| dot(ns[a], ns[a]).total_cmp(&dot(ns[b], ns[b])))
+        .unwrap();
+    std::array::from_fn(|i| dot(ns[i], ns[big]) > 0.0)
+}
+
 /// Height over its largest face below this fraction of its longest edge: a tetrahedron flat up to
 /// rounding, whose faces on ∂K would lie on each other.
 const SLIVER: f64 = 1e-6;
 
 fn sliver(positions: &[[f64; 3]], t: &[u32; 4]) -> bool {
     let p = t.map(|v| positions[v as usize]);
-    let longest = super::complex::TET_EDGES
-        .iter()
-        .map(|&(i, j)| {
-            let e = sub(p[i], p[j]);
-            dot(e, e).sqrt()
-        })
-        .fold(0.0, f64::max);
-    flat_height(p) < SLIVER * longest
+    flat_height(p) < SLIVER * longest_edge(p)
 }
 
 /// Distance of the farthest vertex from the plane of the largest face (float; for a flatness
@@ -382,6 +483,56 @@ mod tests {
 
     fn ids(pairs: &[((u32, u32), u32)]) -> FxHashMap<(u32, u32), u32> {
         pairs.iter().copied().collect()
+    }
+
+    /// A tetrahedron flat up to rounding on the outer boundary: the square a b c d with c lifted
+    /// 1e-15 (its upper faces a b c and a c d, lower a b d and b c d) over two kept tetrahedra
+    /// below (apex e). Kept, with only its lower faces beside kept tetrahedra, it goes and ∂K
+    /// takes the lower faces instead; kept with a kept neighbour above too, it stays; unkept, it goes.
+    #[test]
+    fn a_flat_tet_on_the_hull_is_taken_out_where_that_keeps_the_boundary() {
+        let positions0 = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 1e-15],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.5, -1.0],
+            [0.5, 0.2, 1.0],
+        ];
+        let (a, b, c, d, e, f) = (0, 1, 2, 3, 4, 5);
+        let p = &positions0;
+        let flat = test_support::positive(p, [a, b, c, d]);
+        let below = [
+            test_support::positive(p, [a, b, d, e]),
+            test_support::positive(p, [b, c, d, e]),
+        ];
+        let above = test_support::positive(p, [a, b, c, f]);
+        let run = |kept: Vec<[u32; 4]>, fillable: Vec<[u32; 4]>| {
+            let mut positions = positions0.clone();
+            let mut planes: Vec<Planes> = vec![Planes::new(); positions.len()];
+            let (mut kept, mut fillable, mut external) = (kept, fillable, Vec::new());
+            let mut internal = FxHashSet::default();
+            let mut t = Triangulation {
+                positions: &mut positions,
+                planes: &mut planes,
+                kept: &mut kept,
+                fillable: &mut fillable,
+                external: &mut external,
+                internal: &mut internal,
+            };
+            let n = drop_hull_slivers(&mut t);
+            (n, kept, fillable)
+        };
+        let (n, kept, _) = run(vec![flat, below[0], below[1]], vec![]);
+        assert_eq!(n, 1);
+        assert_eq!(kept.len(), 2);
+        let bnd = boundary_of(&kept);
+        assert_eq!(singularities(&bnd), (0, 0));
+        assert!(bnd.iter().any(|t| key3(*t) == key3([a, b, d])));
+        let (n, kept, _) = run(vec![flat, below[0], below[1], above], vec![]);
+        assert_eq!((n, kept.len()), (0, 4));
+        let (n, _, fillable) = run(vec![below[0], below[1]], vec![flat]);
+        assert_eq!((n, fillable.len()), (1, 0));
     }
 
     #[test]
