@@ -11,7 +11,8 @@
 //! The sections stay R ∩ P = A: a tip face on a plane is a section triangle, and the cone is
 //! carved only when the tetrahedron on the other side of each such face is kept (the face stays
 //! in R). A vertex is carved only when that strictly lowers the number of singular simplices of
-//! ∂K; otherwise the triangulation is restored.
+//! ∂K, counted after a few rounds of growth (`singular::resolve`) where the carving alone only
+//! moved the singularity to the cap's edge; otherwise the triangulation is restored.
 use super::assembly::{boundary_of, Sets};
 use super::fill::singular_simplices;
 use super::refine::{edge, grow, key3, key4, on_a_plane, split, Triangulation};
@@ -68,6 +69,18 @@ pub fn carve_pinches(
                     }
                     (e, w) = singular_simplices(&boundary_of(t.kept));
                 }
+                // a carved cone can leave the singularity at its cap's edge (where a kept
+                // tetrahedron that was not in the cones shares the split edge): grow there
+                if tips > 0 && e.len() + w.len() >= count {
+                    let (_, now) = super::singular::resolve(
+                        t,
+                        LOOKAHEAD_ROUNDS,
+                        d,
+                        super::singular::EdgeGaps::NearEdge,
+                        Some((e, w)),
+                    );
+                    (e, w) = now.unwrap_or_else(|| singular_simplices(&boundary_of(t.kept)));
+                }
                 if tips > 0 && e.len() + w.len() < count {
                     count = e.len() + w.len();
                     stats.vertices += 1;
@@ -82,6 +95,9 @@ pub fn carve_pinches(
     }
     stats
 }
+
+/// Growth rounds after a carving that left as many singular simplices as before.
+const LOOKAHEAD_ROUNDS: usize = 2;
 
 /// Most cones tried as the one kept at a singular simplex.
 const MAX_CONES: usize = 4;
