@@ -59,14 +59,14 @@ fn figure_eight_cut_by_random_planes() {
 
 /// The cases of `many_random_planes` that are not clean today: a listed expectation, so that both a
 /// fix (a case leaves the list: remove it here) and a regression (a case joins it) fail the test.
-/// None has an exact crossing; each keeps a pinched vertex or singular edge that the resolution
-/// inside the complex leaves (Elephant 20 planes, seed 5, left the list with `carve`), or 3–9
-/// overlapping near-coplanar pairs (flat folds). With the first
-/// pipeline (each cell glued, since removed) 8 cases kept 3–15 exact crossings instead.
-const KNOWN_UNCLEAN: &[&str] = &["balloondog: 30 planes, seed 5"];
+/// None today: Elephant 20 planes, seed 5, left the list with `carve`, the four balloondog_box
+/// cases when growth stopped keeping sliver children, balloondog 30 planes, seed 5 (a singular edge
+/// over a section whose regions touch at a vertex) with the saddle bridges of `singular`'s
+/// `OffPlane` growth. With the first pipeline (each cell glued, since removed) 8 cases kept 3–15
+/// exact crossings instead.
+const KNOWN_UNCLEAN: &[&str] = &[];
 
-/// Open: with 20 or 30 random planes, 1 of these 20 cases is not clean (`KNOWN_UNCLEAN`; the four
-/// balloondog_box cases left the list when growth stopped keeping sliver children).
+/// With 20 or 30 random planes, all 20 cases are clean (`KNOWN_UNCLEAN`).
 #[test]
 fn many_random_planes() {
     let bad: Vec<String> = [

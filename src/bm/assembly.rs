@@ -240,6 +240,32 @@ fn resolve_singularities(
             whole_first
         }
     };
+    // where some are left, the saddle bridges (growth that keeps off the planes) from there
+    let kept = if kept.0 .0 == 0 {
+        kept
+    } else {
+        let before = Snapshot::of(k);
+        let off_plane = grow_then_toggle(
+            k,
+            [EdgeGaps::OffPlane, EdgeGaps::NearEdge],
+            kept.3.clone(),
+            nonconforming,
+            diag,
+            max_toggles,
+        );
+        if off_plane.0 .0 < kept.0 .0 {
+            let (mut grown, toggled) = (kept.1, kept.2);
+            grown.add(&off_plane.1);
+            let toggled = ToggleStats {
+                added: toggled.added + off_plane.2.added,
+                removed: toggled.removed + off_plane.2.removed,
+            };
+            (off_plane.0, grown, toggled, off_plane.3)
+        } else {
+            before.restore(k);
+            kept
+        }
+    };
     let (_, grown, toggled, left) = kept;
     out.grown = grown;
     out.toggled.added += toggled.added;

@@ -32,6 +32,10 @@ pub enum EdgeGaps {
     Whole,
     /// Only the part near the edge (split points at `distance`): nothing far from it changes.
     NearEdge,
+    /// As `NearEdge`, but an edge lying on a plane (its ends share one) is not split, so the part
+    /// kept touches a plane only at the core's vertices on it: the bridge of a saddle, where a
+    /// section's regions touch at a vertex and the gap between them on the plane must stay open.
+    OffPlane,
 }
 
 impl SingularStats {
@@ -112,7 +116,8 @@ fn grow_round(
     let vertex_groups = vertex_gaps(t, vertices);
     let n_edge = edge_groups.len();
     let groups: Vec<Vec<Growth>> = edge_groups.into_iter().chain(vertex_groups).collect();
-    let points = split_points(t.positions, &groups, distance);
+    let on_plane_edges = how != EdgeGaps::OffPlane;
+    let points = split_points(t.positions, t.planes, &groups, distance, on_plane_edges);
     let g = grow(t, &groups, points);
     let added: u64 = g.tets_per_group.iter().sum();
     for (i, &n) in g.tets_per_group.iter().enumerate() {
@@ -166,13 +171,23 @@ impl Snapshot {
 /// vertex (at most halfway); an edge asked for twice keeps its first point.
 fn split_points(
     positions: &[[f64; 3]],
+    planes: &[Planes],
     groups: &[Vec<Growth>],
     distance: f64,
+    on_plane_edges: bool,
 ) -> FxHashMap<(u32, u32), [f64; 3]> {
     let mut out = FxHashMap::default();
+    let on_a_plane_edge = |a: u32, b: u32| {
+        planes[a as usize]
+            .iter()
+            .any(|p| planes[b as usize].contains(p))
+    };
     for g in groups.iter().flatten() {
         for &c in &g.core {
             for &x in g.tet.iter().filter(|x| !g.core.contains(x)) {
+                if !on_plane_edges && on_a_plane_edge(c, x) {
+                    continue;
+                }
                 let (p, q) = (positions[c as usize], positions[x as usize]);
                 let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
                 let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
@@ -329,7 +344,8 @@ fn all_but_largest(
         .into_iter()
         .map(|c| {
             let tets: Vec<[u32; 4]> = c.iter().map(|&i| gaps[i]).collect();
-            let ok = tets.iter().all(|x| may_grow(x, core, t.planes, t.internal));
+            let ok = how == EdgeGaps::OffPlane
+                || tets.iter().all(|x| may_grow(x, core, t.planes, t.internal));
             (ok, tets)
         })
         .collect();
@@ -530,6 +546,40 @@ mod tests {
         };
         let (s, _) = resolve(&mut t, 4, 0.1, EdgeGaps::Whole, None);
         (s, kept, positions)
+    }
+
+    /// A saddle: on the plane z = 0 (vertices 0-4) the section is the quadrants +x+y and -x-y,
+    /// which touch at the origin; above them the octants 0 and 6 are kept, so the edge from the
+    /// origin up (0, 5) is singular. Growing near the edge would put the quadrants +x-y or -x+y,
+    /// outside the section, into K; growth off the plane bridges the octants above it instead.
+    #[test]
+    fn a_section_pinched_at_a_vertex_gets_a_saddle() {
+        let run = |how: EdgeGaps| {
+            let (mut positions, mut kept, mut fillable) = octahedron(&[0, 6]);
+            let mut planes = vec![Planes::new(); positions.len()];
+            for p in planes.iter_mut().take(5) {
+                p.push(0);
+            }
+            let mut internal: FxHashSet<[u32; 3]> =
+                [key3([0, 1, 3]), key3([0, 2, 4])].into_iter().collect();
+            let mut external = Vec::new();
+            let mut t = Triangulation {
+                positions: &mut positions,
+                planes: &mut planes,
+                kept: &mut kept,
+                fillable: &mut fillable,
+                external: &mut external,
+                internal: &mut internal,
+            };
+            resolve(&mut t, 4, 0.1, how, None);
+            let in_sections = kept
+                .iter()
+                .all(|x| crate::bm::refine::faces_in_sections(x, &planes, &internal));
+            (singularities(&boundary_of(&kept)), in_sections)
+        };
+        let (near, in_sections) = run(EdgeGaps::NearEdge);
+        assert!(near != (0, 0) && in_sections, "{near:?}");
+        assert_eq!(run(EdgeGaps::OffPlane), ((0, 0), true));
     }
 
     #[test]
