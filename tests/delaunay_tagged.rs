@@ -17,11 +17,14 @@
 //! kernel on the same points gives different face triangulations (grounded faces of non-flat tets,
 //! the engine's notion today) and flat tetrahedra (four vertices on one plane); the test asserts both.
 //!
-//! Known limitation (not exercised here): ideal points that are exactly cospherical across
-//! *different* planes (e.g. grids on orthogonal faces of a box: the corners of a lattice cell are
-//! on one sphere) make the float decision of a mixed 5-tuple (rounding noise) disagree with the
-//! plane rule's symbolic one; the cavity is then not star-shaped (a debug assertion in the kernel
-//! says so). See `src/delaunay/tags.rs`.
+//! Known limitation: ideal points that are exactly cospherical across *different* planes (e.g.
+//! grids on orthogonal faces of a box: the corners of a lattice cell are on one sphere) can make
+//! the float decision of a mixed 5-tuple (rounding noise) disagree with the plane rule's symbolic
+//! one; the cavity is then not star-shaped and the build is refused
+//! (`exact_cosphericity_across_planes_is_valid_or_an_error`). The refusals once seen on the
+//! engine's axis grids were not this but a star test against a point outside the hull
+//! (`hull_face_of_points_from_several_planes_on_one_oblique_plane_is_tagged`). See
+//! `src/delaunay/tags.rs`.
 mod delaunay_check;
 use rand::{Rng, SeedableRng};
 use slice2solid::delaunay::{pred, Delaunay, PointTags};
