@@ -228,55 +228,34 @@ fn kept_children(
 /// one side of it, the faces beside kept tetrahedra the other, so ∂K trades one side's triangles
 /// for the other's, with the same border. Returns how many were taken out.
 pub fn drop_hull_slivers(t: &mut Triangulation) -> u64 {
-    let mut faces: FxHashMap<[u32; 3], u32> = FxHashMap::default();
-    for x in t
-        .kept
-        .iter()
-        .chain(t.fillable.iter())
-        .chain(t.external.iter())
-    {
-        for i in 0..4 {
-            *faces
-                .entry(key3(super::complex::outward_face(x, i)))
-                .or_default() += 1;
+    // tetrahedra numbered as the table has them: kept first, then fillable, then external
+    let table = super::faces::FaceTable::of_lists(&[t.kept, t.fillable, t.external]);
+    let n_kept = t.kept.len() as u32;
+    let (planes, positions) = (&*t.planes, &*t.positions);
+    let goes = |j: u32, x: &[u32; 4]| -> bool {
+        let fs: [[u32; 3]; 4] = std::array::from_fn(|i| key3(super::complex::outward_face(x, i)));
+        if fs.iter().any(|f| on_a_plane(planes, f))
+            || !fs.iter().any(|f| table.owners(f).len() == 1)
+            || !flat_to_rounding(positions, x)
+        {
+            return false;
         }
-    }
-    let kept_faces: FxHashMap<[u32; 3], u32> = {
-        let mut m = FxHashMap::default();
-        for x in t.kept.iter() {
-            for i in 0..4 {
-                *m.entry(key3(super::complex::outward_face(x, i)))
-                    .or_default() += 1;
-            }
-        }
-        m
-    };
-    let planes = &*t.planes;
-    let positions = &*t.positions;
-    // 0: not a hull sliver; 1: one; 2: one whose faces beside kept tetrahedra are one side of it
-    let kind = |x: &[u32; 4]| -> u8 {
-        let fs: [[u32; 3]; 4] = std::array::from_fn(|i| super::complex::outward_face(x, i));
-        if fs.iter().any(|f| on_a_plane(planes, f)) || !fs.iter().any(|f| faces[&key3(*f)] == 1) {
-            return 0;
-        }
-        if !flat_to_rounding(positions, x) {
-            return 0;
+        if j >= n_kept {
+            return true;
         }
         let side = flat_sides(x.map(|v| positions[v as usize]));
-        // a face beside a kept tetrahedron is counted twice in kept_faces (this one and that one)
+        // beside a kept tetrahedron: the face's kept owners are this one and that one
         let beside_kept: [bool; 4] =
-            std::array::from_fn(|i| kept_faces.get(&key3(fs[i])) == Some(&2));
-        let one_side =
-            (0..4).all(|i| beside_kept[i] == side[i]) || (0..4).all(|i| beside_kept[i] != side[i]);
-        1 + u8::from(one_side)
+            std::array::from_fn(|i| table.owners(&fs[i]).filter(|&o| o < n_kept).count() == 2);
+        (0..4).all(|i| beside_kept[i] == side[i]) || (0..4).all(|i| beside_kept[i] != side[i])
     };
-    let mut dropped = 0;
-    let before = t.kept.len();
-    t.kept.retain(|x| kind(x) != 2);
-    dropped += (before - t.kept.len()) as u64;
-    for list in [&mut *t.fillable, &mut *t.external] {
+    let (mut next, mut dropped) = (0u32, 0u64);
+    for list in [&mut *t.kept, &mut *t.fillable, &mut *t.external] {
         let before = list.len();
-        list.retain(|x| kind(x) == 0);
+        list.retain(|x| {
+            next += 1;
+            !goes(next - 1, x)
+        });
         dropped += (before - list.len()) as u64;
     }
     dropped
