@@ -453,6 +453,39 @@ pub(crate) mod test_support {
             [t[0], t[1], t[3], t[2]]
         }
     }
+
+    /// A triangulation that owns its lists (a test builds one and lends it with `view`).
+    #[derive(Default)]
+    pub struct Owned {
+        pub positions: Vec<[f64; 3]>,
+        pub planes: Vec<super::Planes>,
+        pub kept: Vec<[u32; 4]>,
+        pub fillable: Vec<[u32; 4]>,
+        pub external: Vec<[u32; 4]>,
+        pub internal: crate::fxhash::FxHashSet<[u32; 3]>,
+    }
+
+    impl Owned {
+        /// `positions` with no plane on any point, and nothing else.
+        pub fn at(positions: Vec<[f64; 3]>) -> Owned {
+            Owned {
+                planes: vec![super::Planes::new(); positions.len()],
+                positions,
+                ..Owned::default()
+            }
+        }
+
+        pub fn view(&mut self) -> super::Triangulation<'_> {
+            super::Triangulation {
+                positions: &mut self.positions,
+                planes: &mut self.planes,
+                kept: &mut self.kept,
+                fillable: &mut self.fillable,
+                external: &mut self.external,
+                internal: &mut self.internal,
+            }
+        }
+    }
 }
 
 #[cfg(test)]
@@ -487,20 +520,13 @@ mod tests {
         ];
         let above = test_support::positive(p, [a, b, c, f]);
         let run = |kept: Vec<[u32; 4]>, fillable: Vec<[u32; 4]>| {
-            let mut positions = positions0.clone();
-            let mut planes: Vec<Planes> = vec![Planes::new(); positions.len()];
-            let (mut kept, mut fillable, mut external) = (kept, fillable, Vec::new());
-            let mut internal = FxHashSet::default();
-            let mut t = Triangulation {
-                positions: &mut positions,
-                planes: &mut planes,
-                kept: &mut kept,
-                fillable: &mut fillable,
-                external: &mut external,
-                internal: &mut internal,
+            let mut o = test_support::Owned {
+                kept,
+                fillable,
+                ..test_support::Owned::at(positions0.clone())
             };
-            let n = drop_hull_slivers(&mut t);
-            (n, kept, fillable)
+            let n = drop_hull_slivers(&mut o.view());
+            (n, o.kept, o.fillable)
         };
         let (n, kept, _) = run(vec![flat, below[0], below[1]], vec![]);
         assert_eq!(n, 1);
@@ -565,20 +591,17 @@ mod tests {
 
     #[test]
     fn growing_into_a_gap_at_an_edge_joins_its_two_sectors() {
-        let (mut positions, mut planes) = fan();
+        let (positions, planes) = fan();
         let [a, b, c] = [[0, 1, 2, 3], [0, 1, 3, 4], [0, 1, 4, 5]].map(|t| positive(&positions, t));
-        let mut kept = vec![a, c];
-        assert_eq!(singularities(&boundary_of(&kept)).0, 1);
-        let (mut fillable, mut external) = (vec![b], Vec::new());
-        let mut internal = FxHashSet::default();
-        let mut t = Triangulation {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
+        assert_eq!(singularities(&boundary_of(&[a, c])).0, 1);
+        let mut o = test_support::Owned {
+            positions,
+            planes,
+            kept: vec![a, c],
+            fillable: vec![b],
+            ..Default::default()
         };
+        let mut t = o.view();
         let mut points = FxHashMap::default();
         for (v, x) in [(0, 3), (0, 4), (1, 3), (1, 4)] {
             let (p, q) = (t.positions[v as usize], t.positions[x as usize]);
@@ -591,29 +614,27 @@ mod tests {
         let g = grow(&mut t, &[vec![growth]], points);
         assert_eq!(g.points, 4);
         assert!(g.tets_per_group[0] > 0);
-        let bnd = boundary_of(&kept);
+        let bnd = boundary_of(&o.kept);
         assert_eq!(singularities(&bnd), (0, 0));
-        assert!(kept.iter().all(|&k| orient(&positions, k) > 0.0));
+        assert!(o.kept.iter().all(|&k| orient(&o.positions, k) > 0.0));
         // the rest of the gap stays unkept
-        assert!(!fillable.is_empty());
+        assert!(!o.fillable.is_empty());
     }
 
     #[test]
     fn no_growth_puts_a_face_on_a_plane_outside_its_section() {
         // the same gap, but its face (0,1,3) lies on plane 0 and is not a section triangle
-        let (mut positions, mut planes) = fan();
+        let (positions, mut planes) = fan();
         planes[3] = [0].into_iter().collect();
         let [a, b, c] = [[0, 1, 2, 3], [0, 1, 3, 4], [0, 1, 4, 5]].map(|t| positive(&positions, t));
-        let (mut kept, mut fillable, mut external) = (vec![a, c], vec![b], Vec::new());
-        let mut internal = FxHashSet::default();
-        let mut t = Triangulation {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
+        let mut o = test_support::Owned {
+            positions,
+            planes,
+            kept: vec![a, c],
+            fillable: vec![b],
+            ..Default::default()
         };
+        let mut t = o.view();
         let mut points = FxHashMap::default();
         for (v, x) in [(0, 3), (0, 4), (1, 3), (1, 4)] {
             let (p, q) = (t.positions[v as usize], t.positions[x as usize]);
@@ -626,7 +647,7 @@ mod tests {
         let g = grow(&mut t, &[vec![growth]], points);
         assert_eq!(g.tets_per_group, vec![0]);
         assert_eq!(
-            kept.len(),
+            o.kept.len(),
             6,
             "the two kept tets are split in three each, none added"
         );

@@ -497,7 +497,7 @@ mod tests {
     use super::*;
     use crate::bm::assembly::{boundary_of, singularities};
 
-    use crate::bm::refine::test_support::{orient, positive};
+    use crate::bm::refine::test_support::{orient, positive, Owned};
 
     /// Eight tetrahedra around the vertex 0 (the octants of an octahedron with apexes ±x, ±y,
     /// ±z), `kept` of them in K.
@@ -532,20 +532,20 @@ mod tests {
         (positions, kept, rest)
     }
 
+    /// The octahedron with `kept_octants` kept and the rest fillable, no planes.
+    fn octants_owned(kept_octants: &[usize]) -> Owned {
+        let (positions, kept, fillable) = octahedron(kept_octants);
+        Owned {
+            kept,
+            fillable,
+            ..Owned::at(positions)
+        }
+    }
+
     fn resolve_octants(kept_octants: &[usize]) -> (SingularStats, Vec<[u32; 4]>, Vec<[f64; 3]>) {
-        let (mut positions, mut kept, mut fillable) = octahedron(kept_octants);
-        let mut planes = vec![Planes::new(); positions.len()];
-        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
-        let mut t = Triangulation {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
-        };
-        let (s, _) = resolve(&mut t, 4, 0.1, EdgeGaps::Whole, None);
-        (s, kept, positions)
+        let mut o = octants_owned(kept_octants);
+        let (s, _) = resolve(&mut o.view(), 4, 0.1, EdgeGaps::Whole, None);
+        (s, o.kept, o.positions)
     }
 
     /// A saddle: on the plane z = 0 (vertices 0-4) the section is the quadrants +x+y and -x-y,
@@ -555,27 +555,17 @@ mod tests {
     #[test]
     fn a_section_pinched_at_a_vertex_gets_a_saddle() {
         let run = |how: EdgeGaps| {
-            let (mut positions, mut kept, mut fillable) = octahedron(&[0, 6]);
-            let mut planes = vec![Planes::new(); positions.len()];
-            for p in planes.iter_mut().take(5) {
+            let mut o = octants_owned(&[0, 6]);
+            for p in o.planes.iter_mut().take(5) {
                 p.push(0);
             }
-            let mut internal: FxHashSet<[u32; 3]> =
-                [key3([0, 1, 3]), key3([0, 2, 4])].into_iter().collect();
-            let mut external = Vec::new();
-            let mut t = Triangulation {
-                positions: &mut positions,
-                planes: &mut planes,
-                kept: &mut kept,
-                fillable: &mut fillable,
-                external: &mut external,
-                internal: &mut internal,
-            };
-            resolve(&mut t, 4, 0.1, how, None);
-            let in_sections = kept
+            o.internal = [key3([0, 1, 3]), key3([0, 2, 4])].into_iter().collect();
+            resolve(&mut o.view(), 4, 0.1, how, None);
+            let in_sections = o
+                .kept
                 .iter()
-                .all(|x| crate::bm::refine::faces_in_sections(x, &planes, &internal));
-            (singularities(&boundary_of(&kept)), in_sections)
+                .all(|x| crate::bm::refine::faces_in_sections(x, &o.planes, &o.internal));
+            (singularities(&boundary_of(&o.kept)), in_sections)
         };
         let (near, in_sections) = run(EdgeGaps::NearEdge);
         assert!(near != (0, 0) && in_sections, "{near:?}");
@@ -604,7 +594,7 @@ mod tests {
     fn an_open_ring_at_a_last_plane_is_closed_by_its_one_gap() {
         // three tets above z = 0 around the edge (0,1) on it, nothing below (a last plane):
         // the outer two kept, the middle one a gap; the space below is the other gap
-        let mut positions = vec![
+        let positions = vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
@@ -613,23 +603,17 @@ mod tests {
             [0.3, -0.7, 0.7],
         ];
         let [a, b, c] = [[0, 1, 2, 4], [0, 1, 4, 5], [0, 1, 5, 3]].map(|t| positive(&positions, t));
-        let (mut kept, mut fillable) = (vec![a, c], vec![b]);
-        assert_eq!(singularities(&boundary_of(&kept)).0, 1);
-        let mut planes = vec![Planes::new(); positions.len()];
-        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
-        let mut t = Triangulation {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
+        assert_eq!(singularities(&boundary_of(&[a, c])).0, 1);
+        let mut o = Owned {
+            kept: vec![a, c],
+            fillable: vec![b],
+            ..Owned::at(positions)
         };
-        let (s, _) = resolve(&mut t, 4, 0.1, EdgeGaps::Whole, None);
+        let (s, _) = resolve(&mut o.view(), 4, 0.1, EdgeGaps::Whole, None);
         assert_eq!(s.edge_gaps, 1, "{s:?}");
         // the gap may be kept whole: no new points
         assert_eq!((s.tets, s.points), (1, 0));
-        assert_eq!(singularities(&boundary_of(&kept)), (0, 0));
+        assert_eq!(singularities(&boundary_of(&o.kept)), (0, 0));
     }
 
     #[test]
