@@ -254,12 +254,9 @@ fn resolve_singularities(
             max_toggles,
         );
         if off_plane.0 .0 < kept.0 .0 {
-            let (mut grown, toggled) = (kept.1, kept.2);
+            let (mut grown, mut toggled) = (kept.1, kept.2);
             grown.add(&off_plane.1);
-            let toggled = ToggleStats {
-                added: toggled.added + off_plane.2.added,
-                removed: toggled.removed + off_plane.2.removed,
-            };
+            toggled.add(&off_plane.2);
             (off_plane.0, grown, toggled, off_plane.3)
         } else {
             before.restore(k);
@@ -268,8 +265,7 @@ fn resolve_singularities(
     };
     let (_, grown, toggled, left) = kept;
     out.grown = grown;
-    out.toggled.added += toggled.added;
-    out.toggled.removed += toggled.removed;
+    out.toggled.add(&toggled);
     left
 }
 

@@ -29,6 +29,14 @@ pub struct ToggleStats {
     pub removed: u64,
 }
 
+impl ToggleStats {
+    /// The toggles of a later pass added in.
+    pub fn add(&mut self, later: &ToggleStats) {
+        self.added += later.added;
+        self.removed += later.removed;
+    }
+}
+
 /// The whole triangulation with a kept flag per tetrahedron, its faces and vertex stars.
 struct Labelled<'a> {
     tets: Vec<[u32; 4]>,
