@@ -53,6 +53,29 @@ pub struct Assembled {
     pub hull_slivers: u64,
     /// The prisms over the sections near every plane (`collar`).
     pub collar: super::collar::CollarStats,
+    /// Wall-clock seconds of each stage of the assembly, in order.
+    pub stage_seconds: Vec<(&'static str, f64)>,
+}
+
+/// Wall-clock time of consecutive stages: `lap(name)` ends the stage running since the last lap.
+struct Laps {
+    last: std::time::Instant,
+    laps: Vec<(&'static str, f64)>,
+}
+
+impl Laps {
+    fn start() -> Self {
+        Laps {
+            last: std::time::Instant::now(),
+            laps: Vec::new(),
+        }
+    }
+
+    fn lap(&mut self, name: &'static str) {
+        let now = std::time::Instant::now();
+        self.laps.push((name, (now - self.last).as_secs_f64()));
+        self.last = now;
+    }
 }
 
 /// Thickness of a flat zone's slab, relative to the bounding-box diagonal (less where the apex
@@ -120,6 +143,7 @@ pub fn assemble(
     fill_voids: bool,
     collar: f64,
 ) -> Assembled {
+    let mut laps = Laps::start();
     let mut positions = pool.positions.clone();
     let maps = global_maps(results, &mut positions);
     let mut out = Assembled::default();
@@ -152,22 +176,30 @@ pub fn assemble(
         internal: &mut internal,
     };
     let diag = diagonal(&pool.positions);
+    laps.lap("join");
     out.hull_slivers = super::refine::drop_hull_slivers(&mut k);
+    laps.lap("hull_slivers");
     if slabs && out.flat_triangles > 0 {
         out.slabs = super::slab::thicken(&mut k, &faces, SLAB_THICKNESS * diag);
     }
+    laps.lap("slabs");
     if fill_voids {
         out.voids = super::voids::fill(&mut k);
     }
+    laps.lap("voids");
     let nonconforming = nonconforming_vertices(&faces);
     let left = resolve_singularities(&mut k, &nonconforming, diag, &mut out);
+    laps.lap("singularities");
     out.carved = super::carve::carve_pinches(&mut k, left, &nonconforming, CARVE_DISTANCE * diag);
+    laps.lap("carve");
     if fill_voids {
         let again = super::voids::fill(&mut k);
         out.voids.voids_filled += again.voids_filled;
         out.voids.tets_filled += again.tets_filled;
     }
+    laps.lap("voids_again");
     out.folds_closed = super::manifold::close_flat_folds(&mut k, &nonconforming, FLAT_FOLD * diag);
+    laps.lap("flat_folds");
     let mut boundary = None;
     if collar > 0.0 {
         let max_shift = super::collar::MAX_SHIFT_PER_HEIGHT * collar * diag;
@@ -179,6 +211,7 @@ pub fn assemble(
         out.collar.min_height /= diag;
         out.collar.max_shift /= diag;
     }
+    laps.lap("collar");
     let boundary = boundary.unwrap_or_else(|| boundary_of(&tets));
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;
@@ -189,6 +222,8 @@ pub fn assemble(
         vertices: positions,
         tets: tets.iter().map(|t| [t[0], t[1], t[3], t[2]]).collect(),
     };
+    laps.lap("surface");
+    out.stage_seconds = laps.laps;
     out
 }
 
@@ -205,7 +240,7 @@ fn resolve_singularities(
     out.singular_edges_found = edges.len() as u64;
     out.singular_vertices_found = vertices.len() as u64;
     let max_toggles = 4 * k.kept.len() + 1000;
-    let (toggled, sets) = super::manifold::resolve(k, nonconforming, max_toggles);
+    let (toggled, sets) = super::manifold::resolve(k, nonconforming, max_toggles, None);
     out.toggled = toggled;
     // Growth at edges near them only (nothing far from them changes, but it can be refused
     // where a whole gap would fit) or by whole gap tetrahedra (which can pinch K far from the
@@ -288,7 +323,7 @@ fn grow_then_toggle(
         grown.add(&stats);
         known = now;
     }
-    let (toggled, left) = super::manifold::resolve(k, nonconforming, max_toggles);
+    let (toggled, left) = super::manifold::resolve(k, nonconforming, max_toggles, known);
     let count = (left.0.len() + left.1.len()) as u64;
     ((count, grown.points), grown, toggled, left)
 }
@@ -454,6 +489,42 @@ pub(super) fn singular_sets(tets: &[[u32; 4]]) -> Sets {
     super::fill::singular_simplices(&super::faces::boundary(tets))
 }
 
+/// [`singular_sets`] of `tets` after a change that touched only the stars of the sorted vertices
+/// `touched`, from `before` (the sets of the tetrahedra before the change): simplices through no
+/// touched vertex kept their stars, so only the tetrahedra through a touched vertex are looked at.
+/// Equal to `singular_sets(tets)`, in the same order.
+pub(super) fn singular_sets_after(tets: &[[u32; 4]], before: Sets, touched: &[u32]) -> Sets {
+    let is_touched = |v: u32| touched.binary_search(&v).is_ok();
+    let n = tets.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+    let mut mark = vec![false; n];
+    for &v in touched.iter().filter(|&&v| (v as usize) < n) {
+        mark[v as usize] = true;
+    }
+    // every tetrahedron with a face through a touched vertex: the faces' kept owners all are
+    let near: Vec<[u32; 4]> = tets
+        .iter()
+        .copied()
+        .filter(|t| t.iter().any(|&v| mark[v as usize]))
+        .collect();
+    let tris: Vec<[u32; 3]> = super::faces::boundary(&near)
+        .into_iter()
+        .filter(|f| f.iter().any(|&v| mark[v as usize]))
+        .collect();
+    let (near_edges, near_vertices) = super::fill::singular_simplices(&tris);
+    let (mut edges, mut vertices) = before;
+    edges.retain(|&(a, b)| !is_touched(a) && !is_touched(b));
+    edges.extend(
+        near_edges
+            .into_iter()
+            .filter(|&(a, b)| mark[a as usize] || mark[b as usize]),
+    );
+    edges.sort_unstable();
+    vertices.retain(|&v| !is_touched(v));
+    vertices.extend(near_vertices.into_iter().filter(|&v| mark[v as usize]));
+    vertices.sort_unstable();
+    (edges, vertices)
+}
+
 /// (edges with more than two triangles, vertices whose triangles form more than one fan).
 pub fn singularities(tris: &[[u32; 3]]) -> (u64, u64) {
     let (edges, vertices) = super::fill::singular_simplices(tris);
@@ -498,5 +569,60 @@ mod tests {
         // sharing only vertex 0: one pinched vertex, no singular edge
         let vertex = boundary_of(&[[0, 1, 2, 3], [0, 4, 5, 6]]);
         assert_eq!(singularities(&vertex), (0, 1));
+    }
+
+    /// The Kuhn triangulation of an n×n×n grid of cubes (six tetrahedra per cube, conforming).
+    fn kuhn_grid(n: u32) -> Vec<[u32; 4]> {
+        let id = |x: u32, y: u32, z: u32| (x * (n + 1) + y) * (n + 1) + z;
+        let mut out = Vec::new();
+        for (x, y, z) in
+            (0..n).flat_map(|x| (0..n).flat_map(move |y| (0..n).map(move |z| (x, y, z))))
+        {
+            for axes in [
+                [0, 1, 2],
+                [0, 2, 1],
+                [1, 0, 2],
+                [1, 2, 0],
+                [2, 0, 1],
+                [2, 1, 0],
+            ] {
+                // the path from the cube's low corner to its high one, one axis at a time
+                let mut c = [x, y, z];
+                let mut t = [id(x, y, z); 4];
+                for (i, &a) in axes.iter().enumerate() {
+                    c[a] += 1;
+                    t[i + 1] = id(c[0], c[1], c[2]);
+                }
+                out.push(t);
+            }
+        }
+        out
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        /// The sets updated from the touched vertices are the sets computed from scratch: random
+        /// subsets of a grid's tetrahedra (singular everywhere), then random tetrahedra toggled.
+        #[test]
+        fn singular_sets_after_a_change_equal_the_sets_from_scratch(
+            kept in proptest::collection::vec(proptest::bool::weighted(0.6), 6 * 27),
+            toggles in proptest::collection::vec(0usize..6 * 27, 1..12),
+        ) {
+            let grid = kuhn_grid(3);
+            let mut flags = kept;
+            let list = |flags: &[bool]| -> Vec<[u32; 4]> {
+                grid.iter().zip(flags).filter(|(_, &k)| k).map(|(t, _)| *t).collect()
+            };
+            let before = singular_sets(&list(&flags));
+            let mut touched = Vec::new();
+            for &t in &toggles {
+                flags[t] ^= true;
+                touched.extend(grid[t]);
+            }
+            touched.sort_unstable();
+            touched.dedup();
+            let after = list(&flags);
+            proptest::prop_assert_eq!(singular_sets_after(&after, before, &touched), singular_sets(&after));
+        }
     }
 }

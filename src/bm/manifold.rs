@@ -50,22 +50,26 @@ struct Labelled<'a> {
     planes: &'a [Planes],
     internal: &'a FxHashSet<[u32; 3]>,
     nonconforming: &'a FxHashSet<u32>,
+    /// The vertices of every tetrahedron toggled for good (repeats allowed).
+    touched: Vec<u32>,
 }
 
 /// Toggle tetrahedra around the singular simplices of ∂K while that lowers their number, at most
 /// `max_toggles` times; never at the vertices of faces that two cells triangulate differently
-/// (`nonconforming`). Also returns the singular simplices left.
+/// (`nonconforming`). Also returns the singular simplices left. `known`: the singular simplices
+/// of ∂K now, if known.
 pub fn resolve(
     k: &mut Triangulation,
     nonconforming: &FxHashSet<u32>,
     max_toggles: usize,
+    known: Option<super::assembly::Sets>,
 ) -> (ToggleStats, super::assembly::Sets) {
     let lists: [&[[u32; 4]]; 3] = [k.kept, k.fillable, k.external];
     let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
     let mut stats = ToggleStats::default();
-    let (edges, vertices) = super::fill::singular_simplices(&l.boundary());
-    let mut work: Vec<u32> = vertices;
-    work.extend(edges.iter().flat_map(|&(a, b)| [a, b]));
+    let start = known.unwrap_or_else(|| super::fill::singular_simplices(&l.boundary()));
+    let mut work: Vec<u32> = start.1.clone();
+    work.extend(start.0.iter().flat_map(|&(a, b)| [a, b]));
     for _ in 0..SET_PASSES {
         let left = l.toggle_singles(work, max_toggles, &mut stats);
         // local minima of single toggles: a strip of gap tetrahedra joining two fans at a
@@ -80,9 +84,13 @@ pub fn resolve(
             break;
         }
     }
-    let left = super::fill::singular_simplices(&l.boundary());
+    let mut touched = std::mem::take(&mut l.touched);
+    touched.sort_unstable();
+    touched.dedup();
     let (kept, fillable, external) = l.into_lists();
     (*k.kept, *k.fillable, *k.external) = (kept, fillable, external);
+    let left = super::assembly::singular_sets_after(k.kept, start, &touched);
+    debug_assert_eq!(left, super::assembly::singular_sets(k.kept));
     (stats, left)
 }
 
@@ -134,6 +142,7 @@ impl<'a> Labelled<'a> {
             planes,
             internal,
             nonconforming,
+            touched: Vec::new(),
         }
     }
 
@@ -211,6 +220,7 @@ impl<'a> Labelled<'a> {
         }
         if done == set.len() && self.badness(set) < before {
             for &t in set {
+                self.touched.extend(self.tets[t as usize]);
                 if self.kept[t as usize] {
                     stats.added += 1;
                 } else {
@@ -506,7 +516,7 @@ mod tests {
             external: &mut external,
             internal: &mut internal,
         };
-        let (s, _) = resolve(&mut k, &FxHashSet::default(), 100);
+        let (s, _) = resolve(&mut k, &FxHashSet::default(), 100, None);
         let b = super::super::assembly::boundary_of(k.kept);
         let (e, v) = super::super::fill::singular_simplices(&b);
         (s, e.len() + v.len())

@@ -518,6 +518,11 @@ fn assemble_cells(
     report
         .values
         .insert("collar_seconds".into(), k.collar.seconds);
+    for (stage, secs) in &k.stage_seconds {
+        report
+            .values
+            .insert(format!("assembly_seconds.{stage}"), *secs);
+    }
     if k.collar.cells_left_singular > 0 {
         report.warnings.push(format!(
             "collar: {} cells keep their solid as it was (their collar would make the surface singular): sections just off their planes are not protected there",

@@ -48,6 +48,9 @@ pub struct Grown {
     /// Per group of growths asked for: the tetrahedra it added to K (0: refused).
     pub tets_per_group: Vec<u64>,
     pub points: u64,
+    /// The vertices of every tetrahedron K gained or lost (sorted, once each): only their stars
+    /// in K changed, so only simplices through them can have changed on ∂K.
+    pub touched: Vec<u32>,
 }
 
 pub fn key3(mut t: [u32; 3]) -> [u32; 3] {
@@ -109,20 +112,10 @@ pub fn grow(
     let ids = insert_points(t, &points);
     // a simplex is split only where two of its vertices end a split edge
     let ends = marks(t.positions.len(), ids.keys().flat_map(|e| [e.0, e.1]));
-    for list in [&mut *t.kept, &mut *t.fillable, &mut *t.external] {
-        if list.iter().any(|x| touches_two(x, &ends)) {
-            *list = list
-                .iter()
-                .flat_map(|&x| {
-                    if touches_two(&x, &ends) {
-                        split(x, &ids)
-                    } else {
-                        vec![x]
-                    }
-                })
-                .collect();
-        }
-    }
+    let mut touched = Vec::new();
+    split_all(t.kept, &ends, &ids, Some(&mut touched));
+    split_all(t.fillable, &ends, &ids, None);
+    split_all(t.external, &ends, &ids, None);
     let refined: Vec<[u32; 3]> = t
         .internal
         .iter()
@@ -149,13 +142,45 @@ pub fn grow(
         });
         out.tets_per_group.push(added as u64);
     }
-    let moved = |x: &[u32; 4]| grown.contains(&key4(*x));
+    // only a tetrahedron with every vertex on a grown one can be one (no hashing of the rest)
+    let on_grown = marks(t.positions.len(), grown.iter().flatten().copied());
+    let moved = |x: &[u32; 4]| x.iter().all(|&v| on_grown[v as usize]) && grown.contains(&key4(*x));
     let mut taken: Vec<[u32; 4]> = t.fillable.iter().copied().filter(moved).collect();
     taken.extend(t.external.iter().copied().filter(moved));
     t.fillable.retain(|x| !moved(x));
     t.external.retain(|x| !moved(x));
+    touched.extend(taken.iter().flatten());
     t.kept.extend(taken);
+    touched.sort_unstable();
+    touched.dedup();
+    out.touched = touched;
     out
+}
+
+/// Replaces each tetrahedron of `list` with two vertices at `ends` by its children at the split
+/// points `ids`; with `touched`, the vertices of the children are pushed there.
+fn split_all(
+    list: &mut Vec<[u32; 4]>,
+    ends: &[bool],
+    ids: &FxHashMap<(u32, u32), u32>,
+    mut touched: Option<&mut Vec<u32>>,
+) {
+    if !list.iter().any(|x| touches_two(x, ends)) {
+        return;
+    }
+    *list = list
+        .iter()
+        .flat_map(|&x| {
+            if !touches_two(&x, ends) {
+                return vec![x];
+            }
+            let children = split(x, ids);
+            if let Some(touched) = touched.as_deref_mut() {
+                touched.extend(children.iter().flatten());
+            }
+            children
+        })
+        .collect();
 }
 
 /// Per vertex below `n`, whether it is one of `vertices`.
@@ -232,12 +257,10 @@ pub fn drop_hull_slivers(t: &mut Triangulation) -> u64 {
     let table = super::faces::FaceTable::of_lists(&[t.kept, t.fillable, t.external]);
     let n_kept = t.kept.len() as u32;
     let (planes, positions) = (&*t.planes, &*t.positions);
+    // `x` (number `j`) has a face no other tetrahedron shares
     let goes = |j: u32, x: &[u32; 4]| -> bool {
         let fs: [[u32; 3]; 4] = std::array::from_fn(|i| key3(super::complex::outward_face(x, i)));
-        if fs.iter().any(|f| on_a_plane(planes, f))
-            || !fs.iter().any(|f| table.owners(f).len() == 1)
-            || !flat_to_rounding(positions, x)
-        {
+        if fs.iter().any(|f| on_a_plane(planes, f)) || !flat_to_rounding(positions, x) {
             return false;
         }
         if j >= n_kept {
@@ -249,16 +272,35 @@ pub fn drop_hull_slivers(t: &mut Triangulation) -> u64 {
             std::array::from_fn(|i| table.owners(&fs[i]).filter(|&o| o < n_kept).count() == 2);
         (0..4).all(|i| beside_kept[i] == side[i]) || (0..4).all(|i| beside_kept[i] != side[i])
     };
-    let (mut next, mut dropped) = (0u32, 0u64);
-    for list in [&mut *t.kept, &mut *t.fillable, &mut *t.external] {
-        let before = list.len();
-        list.retain(|x| {
-            next += 1;
-            !goes(next - 1, x)
-        });
-        dropped += (before - list.len()) as u64;
+    // only a tetrahedron with a face no other one shares can go: looked up from those faces
+    let tet = |j: u32| {
+        let (nf, j) = (t.fillable.len() as u32, j as usize);
+        match j.checked_sub(n_kept as usize) {
+            None => t.kept[j],
+            Some(f) if f < nf as usize => t.fillable[f],
+            Some(f) => t.external[f - nf as usize],
+        }
+    };
+    let mut outer: Vec<u32> = Vec::new();
+    table.for_each_face(|codes| {
+        if let [c] = codes {
+            outer.push(c >> 2);
+        }
+    });
+    outer.sort_unstable();
+    outer.dedup();
+    let going: Vec<u32> = outer.into_iter().filter(|&j| goes(j, &tet(j))).collect();
+    if going.is_empty() {
+        return 0;
     }
-    dropped
+    let (mut next, mut g) = (0u32, going.iter().peekable());
+    for list in [&mut *t.kept, &mut *t.fillable, &mut *t.external] {
+        list.retain(|_| {
+            next += 1;
+            g.next_if_eq(&&(next - 1)).is_none()
+        });
+    }
+    going.len() as u64
 }
 
 /// Height over its largest face below this fraction of its longest edge: flat up to the rounding
@@ -601,6 +643,7 @@ mod tests {
             fillable: vec![b],
             ..Default::default()
         };
+        let before = crate::bm::assembly::singular_sets(&o.kept);
         let mut t = o.view();
         let mut points = FxHashMap::default();
         for (v, x) in [(0, 3), (0, 4), (1, 3), (1, 4)] {
@@ -616,6 +659,10 @@ mod tests {
         assert!(g.tets_per_group[0] > 0);
         let bnd = boundary_of(&o.kept);
         assert_eq!(singularities(&bnd), (0, 0));
+        // the touched vertices are enough to update the singular sets
+        assert_eq!(before.0, vec![(0, 1)]);
+        let after = crate::bm::assembly::singular_sets_after(&o.kept, before, &g.touched);
+        assert_eq!(after, (vec![], vec![]));
         assert!(o.kept.iter().all(|&k| orient(&o.positions, k) > 0.0));
         // the rest of the gap stays unkept
         assert!(!o.fillable.is_empty());

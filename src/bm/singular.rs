@@ -66,10 +66,18 @@ pub fn resolve(
     // (count, the state then — unless it is the last one —, the stats then)
     let mut best: Option<(u64, Option<Snapshot>, SingularStats)> = None;
     let mut best_is_current = false;
+    // the sets before the last round's growth and the vertices it touched
+    let mut previous: Option<(super::assembly::Sets, Vec<u32>)> = None;
     for round in 0..=rounds {
-        let (edges, vertices) = known
-            .take()
-            .unwrap_or_else(|| super::assembly::singular_sets(t.kept));
+        let (edges, vertices) = match (known.take(), previous.take()) {
+            (Some(sets), _) => sets,
+            (None, Some((before, touched))) => {
+                let sets = super::assembly::singular_sets_after(t.kept, before, &touched);
+                debug_assert_eq!(sets, super::assembly::singular_sets(t.kept));
+                sets
+            }
+            (None, None) => super::assembly::singular_sets(t.kept),
+        };
         stats
             .per_round
             .push((edges.len() as u64, vertices.len() as u64));
@@ -85,9 +93,12 @@ pub fn resolve(
             known = Some((edges, vertices));
             break;
         }
-        if !grow_round(t, &edges, &vertices, distance, edge_gaps, &mut stats) {
-            best_is_current = false;
-            break;
+        match grow_round(t, &edges, &vertices, distance, edge_gaps, &mut stats) {
+            Some(touched) => previous = Some(((edges, vertices), touched)),
+            None => {
+                best_is_current = false;
+                break;
+            }
         }
     }
     if !best_is_current {
@@ -103,7 +114,8 @@ pub fn resolve(
     (stats, known)
 }
 
-/// One round of growth at the given singular edges and vertices; false when nothing grew.
+/// One round of growth at the given singular edges and vertices: the vertices whose stars in K
+/// it changed (`Grown::touched`), or `None` when nothing grew.
 fn grow_round(
     t: &mut Triangulation,
     edges: &[(u32, u32)],
@@ -111,7 +123,7 @@ fn grow_round(
     distance: f64,
     how: EdgeGaps,
     stats: &mut SingularStats,
-) -> bool {
+) -> Option<Vec<u32>> {
     let edge_groups = edge_gaps(t, edges, how);
     let vertex_groups = vertex_gaps(t, vertices);
     let n_edge = edge_groups.len();
@@ -131,7 +143,7 @@ fn grow_round(
     }
     stats.tets += added;
     stats.points += g.points;
-    added > 0
+    (added > 0).then_some(g.touched)
 }
 
 /// A copy of what growth changes in a triangulation.
