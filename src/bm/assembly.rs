@@ -235,12 +235,13 @@ fn resolve_singularities(
     diag: f64,
     out: &mut Assembled,
 ) -> Sets {
-    let (filled, (edges, vertices)) = super::fill::fill_and_drop(k.kept, k.fillable, FILL_ROUNDS);
-    out.tets_filled = filled;
-    out.singular_edges_found = edges.len() as u64;
-    out.singular_vertices_found = vertices.len() as u64;
+    let filled = super::fill::fill_and_drop(k.kept, k.fillable, FILL_ROUNDS);
+    out.tets_filled = filled.added;
+    out.singular_edges_found = filled.found.0.len() as u64;
+    out.singular_vertices_found = filled.found.1.len() as u64;
     let max_toggles = 4 * k.kept.len() + 1000;
-    let (toggled, sets) = super::manifold::resolve(k, nonconforming, max_toggles, None);
+    let (toggled, sets) =
+        super::manifold::resolve(k, nonconforming, max_toggles, Some(filled.left));
     out.toggled = toggled;
     // Growth at edges near them only (nothing far from them changes, but it can be refused
     // where a whole gap would fit) or by whole gap tetrahedra (which can pinch K far from the

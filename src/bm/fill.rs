@@ -26,16 +26,25 @@ pub fn fill_singularities(
     fillable: &[[u32; 4]],
     max_rounds: usize,
 ) -> u64 {
-    fill_and_drop(kept, &mut fillable.to_vec(), max_rounds).0
+    fill_and_drop(kept, &mut fillable.to_vec(), max_rounds).added
 }
 
-/// [`fill_singularities`], then drop from `fillable` the tetrahedra K has (by vertex set); also
-/// returns the boundary's singular simplices before filling.
+/// What [`fill_and_drop`] did and found.
+pub struct Filled {
+    /// Tetrahedra added to K.
+    pub added: u64,
+    /// The boundary's singular simplices before filling.
+    pub found: super::assembly::Sets,
+    /// Those after filling.
+    pub left: super::assembly::Sets,
+}
+
+/// [`fill_singularities`], then drop from `fillable` the tetrahedra K has (by vertex set).
 pub fn fill_and_drop(
     kept: &mut Vec<[u32; 4]>,
     fillable: &mut Vec<[u32; 4]>,
     max_rounds: usize,
-) -> (u64, super::assembly::Sets) {
+) -> Filled {
     // one index over kept ++ fillable: filling only moves fillable tetrahedra into K
     let mut ix = Index::new(kept, fillable);
     for j in 0..fillable.len() {
@@ -43,17 +52,18 @@ pub fn fill_and_drop(
     }
     let mut added = 0u64;
     let mut found = None;
+    let mut now = singular_simplices(&ix.boundary());
     for _ in 0..max_rounds {
-        let (edges, vertices) = singular_simplices(&ix.boundary());
+        let (edges, vertices) = &now;
         let stop = edges.is_empty() && vertices.is_empty();
-        found.get_or_insert_with(|| (edges.clone(), vertices.clone()));
+        found.get_or_insert_with(|| now.clone());
         if stop {
             break;
         }
         let mut to_add: FxHashSet<[u32; 4]> = FxHashSet::default();
-        for gap in edge_gaps(&ix, &edges)
+        for gap in edge_gaps(&ix, edges)
             .into_iter()
-            .chain(vertex_gaps(&ix, &vertices))
+            .chain(vertex_gaps(&ix, vertices))
         {
             to_add.extend(gap.iter().map(|&t| key4(t)));
         }
@@ -63,22 +73,30 @@ pub fn fill_and_drop(
         let chosen: Vec<usize> = (0..fillable.len())
             .filter(|&j| ix.candidate[j] && to_add.contains(&key4(fillable[j])))
             .collect();
+        let mut touched = Vec::new();
         for j in chosen {
             // an equal tetrahedron may have been added just before
             if !ix.in_k(j) {
                 kept.push(fillable[j]);
+                touched.extend(fillable[j]);
                 ix.add(j);
                 added += 1;
             }
         }
+        touched.sort_unstable();
+        touched.dedup();
+        now = super::assembly::singular_sets_after(kept, now, &touched);
     }
     let mut j = 0;
     fillable.retain(|_| {
         j += 1;
         ix.candidate[j - 1]
     });
-    let found = found.unwrap_or_else(|| singular_simplices(&ix.boundary()));
-    (added, found)
+    Filled {
+        added,
+        found: found.unwrap_or_else(|| now.clone()),
+        left: now,
+    }
 }
 
 /// K's tetrahedra and the fillable ones, with their faces and vertex stars, which of them K

@@ -64,6 +64,11 @@ pub fn resolve(
     max_toggles: usize,
     known: Option<super::assembly::Sets>,
 ) -> (ToggleStats, super::assembly::Sets) {
+    if let Some(none @ (edges, vertices)) = &known {
+        if edges.is_empty() && vertices.is_empty() {
+            return (ToggleStats::default(), none.clone());
+        }
+    }
     let lists: [&[[u32; 4]]; 3] = [k.kept, k.fillable, k.external];
     let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
     let mut stats = ToggleStats::default();
