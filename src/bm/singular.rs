@@ -129,7 +129,15 @@ fn grow_round(
     let n_edge = edge_groups.len();
     let groups: Vec<Vec<Growth>> = edge_groups.into_iter().chain(vertex_groups).collect();
     let on_plane_edges = how != EdgeGaps::OffPlane;
-    let points = split_points(t.positions, t.planes, &groups, distance, on_plane_edges);
+    let near = points_near_cores(t, &groups);
+    let points = split_points(
+        t.positions,
+        t.planes,
+        &groups,
+        distance,
+        on_plane_edges,
+        &near,
+    );
     let g = grow(t, &groups, points);
     let added: u64 = g.tets_per_group.iter().sum();
     for (i, &n) in g.tets_per_group.iter().enumerate() {
@@ -179,16 +187,108 @@ impl Snapshot {
     }
 }
 
+/// Split points keep at least this fraction of the growth distance (1e-8 of the diagonal) from
+/// each other and from the vertices around their cores. Edges from one core to near-duplicate
+/// vertices (a contour jittering within 1e-7) point the same way, and points at one distance
+/// along them would be near-duplicates too, which tools that weld vertices closer than about 1e-8
+/// (trimesh) merge into a non-manifold surface.
+const MIN_GAP: f64 = 1e-5;
+
+/// Per core vertex of `groups`, the positions of the other vertices of its tetrahedra (with it).
+fn points_near_cores(t: &Triangulation, groups: &[Vec<Growth>]) -> Vec<([f64; 3], u32)> {
+    let n = t.positions.len();
+    let mut core = vec![false; n];
+    for g in groups.iter().flatten() {
+        for &c in &g.core {
+            core[c as usize] = true;
+        }
+    }
+    let mut out: Vec<(u32, u32)> = Vec::new();
+    let all = t
+        .kept
+        .iter()
+        .chain(t.fillable.iter())
+        .chain(t.external.iter());
+    for x in all.filter(|x| x.iter().any(|&v| core[v as usize])) {
+        for &c in x.iter().filter(|&&c| core[c as usize]) {
+            out.extend(x.iter().filter(|&&v| v != c).map(|&v| (v, c)));
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out.into_iter()
+        .map(|(v, c)| (t.positions[v as usize], c))
+        .collect()
+}
+
+/// Points around cores, kept apart by at least `gap`: a grid of cells of that size.
+struct Spaced {
+    gap: f64,
+    cells: FxHashMap<[i64; 3], Vec<([f64; 3], u32)>>,
+}
+
+impl Spaced {
+    fn new(gap: f64, points: &[([f64; 3], u32)]) -> Spaced {
+        let mut s = Spaced {
+            gap,
+            cells: FxHashMap::default(),
+        };
+        for &(p, c) in points {
+            s.insert(p, c);
+        }
+        s
+    }
+
+    fn cell(&self, p: [f64; 3]) -> [i64; 3] {
+        p.map(|x| (x / self.gap).floor() as i64)
+    }
+
+    fn insert(&mut self, p: [f64; 3], core: u32) {
+        let c = self.cell(p);
+        self.cells.entry(c).or_default().push((p, core));
+    }
+
+    /// Whether a point around `core` lies closer than `gap` (at most the grid's) to `p` (one
+    /// equal to it too).
+    fn crowds(&self, p: [f64; 3], core: u32, gap: f64) -> bool {
+        let c = self.cell(p);
+        let g2 = gap.min(self.gap).powi(2);
+        (0..27).any(|i| {
+            let k = [i % 3 - 1, i / 3 % 3 - 1, i / 9 - 1];
+            let key = [c[0] + k[0], c[1] + k[1], c[2] + k[2]];
+            self.cells.get(&key).is_some_and(|ps| {
+                ps.iter().any(|&(q, qc)| {
+                    let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+                    qc == core && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < g2
+                })
+            })
+        })
+    }
+}
+
+/// On an edge shorter than the gap over this, the gap is this fraction of the edge: near-duplicate
+/// points come from long edges converging at a core, not from a contour drawn at a far smaller
+/// scale than the diagonal, whose own vertices are that close.
+const SHORT_EDGE: f64 = 1e-2;
+
+/// Shifts of the split distance tried, in order, where a point would crowd another
+/// (`MIN_GAP`): near-parallel edges then part along their length.
+const STAGGER: [f64; 5] = [1.0, 1.01, 0.99, 1.02, 0.98];
+
 /// Per growth, the edges from its core to its other vertices, split at `distance` from the core
-/// vertex (at most halfway); an edge asked for twice keeps its first point.
+/// vertex (at most halfway); an edge asked for twice keeps its first point. A point that would
+/// lie within `MIN_GAP` (or `SHORT_EDGE` of its edge) of another split point of its core or of a
+/// vertex around its core (`near`) moves along its edge (`STAGGER`) where that clears it.
 fn split_points(
     positions: &[[f64; 3]],
     planes: &[Planes],
     groups: &[Vec<Growth>],
     distance: f64,
     on_plane_edges: bool,
+    near: &[([f64; 3], u32)],
 ) -> FxHashMap<(u32, u32), [f64; 3]> {
     let mut out = FxHashMap::default();
+    let mut spaced = Spaced::new(MIN_GAP * distance, near);
     let on_a_plane_edge = |a: u32, b: u32| {
         planes[a as usize]
             .iter()
@@ -203,13 +303,20 @@ fn split_points(
                 let (p, q) = (positions[c as usize], positions[x as usize]);
                 let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
                 let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                if len > 0.0 {
-                    let s = (distance / len).min(0.5);
-                    out.entry(edge(c, x)).or_insert([
-                        p[0] + s * d[0],
-                        p[1] + s * d[1],
-                        p[2] + s * d[2],
-                    ]);
+                if len > 0.0 && !out.contains_key(&edge(c, x)) {
+                    let at = |k: f64| {
+                        let s = (k * distance / len).min(0.5);
+                        [p[0] + s * d[0], p[1] + s * d[1], p[2] + s * d[2]]
+                    };
+                    // short edges (a contour at a far smaller scale) are dense by nature
+                    let gap = SHORT_EDGE * len;
+                    let point = STAGGER
+                        .iter()
+                        .map(|&k| at(k))
+                        .find(|&y| !spaced.crowds(y, c, gap))
+                        .unwrap_or_else(|| at(1.0));
+                    spaced.insert(point, c);
+                    out.insert(edge(c, x), point);
                 }
             }
         }
@@ -637,5 +744,53 @@ mod tests {
         };
         assert_eq!(s, none);
         assert_eq!(kept.len(), 2);
+    }
+
+    #[test]
+    fn split_points_towards_near_duplicate_vertices_stay_apart() {
+        // core 0; vertices 1, 2, 3 within 2e-7 of each other, 1 away (a jittering contour), and 4
+        let positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 2e-7, 0.0],
+            [1.0, 1e-7, 1e-7],
+            [0.0, 1.0, 0.0],
+        ];
+        let planes = vec![Planes::new(); 5];
+        let core: SmallVec<[u32; 3]> = [0].into_iter().collect();
+        let groups = vec![
+            vec![Growth {
+                tet: [0, 1, 2, 4],
+                core: core.clone(),
+            }],
+            vec![Growth {
+                tet: [0, 1, 3, 4],
+                core,
+            }],
+        ];
+        let distance = 1e-3;
+        let near = [(positions[4], 0)];
+        let points = split_points(&positions, &planes, &groups, distance, true, &near);
+        assert_eq!(points.len(), 4);
+        let ps: Vec<[f64; 3]> = points.values().copied().collect();
+        for (i, a) in ps.iter().enumerate() {
+            for b in &ps[i + 1..] {
+                let d = (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
+                assert!(d >= MIN_GAP * distance, "{a:?} {b:?}: {d:e}");
+            }
+        }
+        // each on its edge, between a quarter and two growth distances from the core
+        for (&(a, b), p) in &points {
+            let (x, y) = (positions[a as usize], positions[b as usize]);
+            let len = (0..3).map(|k| (y[k] - x[k]).powi(2)).sum::<f64>().sqrt();
+            let t = (0..3).map(|k| (p[k] - x[k]).powi(2)).sum::<f64>().sqrt();
+            assert!((0.25 * distance..=2.0 * distance).contains(&t), "{t}");
+            let cross = [
+                (p[1] - x[1]) * (y[2] - x[2]) - (p[2] - x[2]) * (y[1] - x[1]),
+                (p[2] - x[2]) * (y[0] - x[0]) - (p[0] - x[0]) * (y[2] - x[2]),
+                (p[0] - x[0]) * (y[1] - x[1]) - (p[1] - x[1]) * (y[0] - x[0]),
+            ];
+            assert!(cross.iter().all(|c| c.abs() < 1e-15 * len), "{cross:?}");
+        }
     }
 }

@@ -207,3 +207,35 @@ pub fn section_area(sections: &Sections) -> f64 {
         })
         .sum()
 }
+
+/// The smallest distance between two vertices of `mesh`, relative to its bounding-box diagonal
+/// (tools such as trimesh weld vertices closer than about 1e-8 and so break a surface there).
+#[allow(dead_code)]
+pub fn closest_vertex_gap(mesh: &slice2solid::TriMesh) -> f64 {
+    let v = &mesh.vertices;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in v {
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+    // sorted by x, each vertex against those after it within the best distance so far
+    let mut order: Vec<usize> = (0..v.len()).collect();
+    order.sort_by(|&a, &b| v[a][0].total_cmp(&v[b][0]));
+    let mut best = f64::INFINITY;
+    for (i, &a) in order.iter().enumerate() {
+        for &b in &order[i + 1..] {
+            if v[b][0] - v[a][0] >= best {
+                break;
+            }
+            let d = (0..3)
+                .map(|k| (v[a][k] - v[b][k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            best = best.min(d);
+        }
+    }
+    best / diag
+}
