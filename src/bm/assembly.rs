@@ -256,7 +256,7 @@ fn resolve_singularities(
         diag,
         max_toggles,
     );
-    let kept = if near_first.0 .0 == 0 {
+    let kept = if near_first.is_clean() {
         near_first
     } else {
         let after_near = Snapshot::of(k);
@@ -269,7 +269,7 @@ fn resolve_singularities(
             diag,
             max_toggles,
         );
-        if near_first.0 < whole_first.0 {
+        if near_first.rank() < whole_first.rank() {
             after_near.restore(k);
             near_first
         } else {
@@ -277,37 +277,62 @@ fn resolve_singularities(
         }
     };
     // where some are left, the saddle bridges (growth that keeps off the planes) from there
-    let kept = if kept.0 .0 == 0 {
+    let kept = if kept.is_clean() {
         kept
     } else {
         let before = Snapshot::of(k);
         let off_plane = grow_then_toggle(
             k,
             [EdgeGaps::OffPlane, EdgeGaps::NearEdge],
-            kept.3.clone(),
+            kept.left.clone(),
             nonconforming,
             diag,
             max_toggles,
         );
-        if off_plane.0 .0 < kept.0 .0 {
-            let (mut grown, mut toggled) = (kept.1, kept.2);
-            grown.add(&off_plane.1);
-            toggled.add(&off_plane.2);
-            (off_plane.0, grown, toggled, off_plane.3)
+        if off_plane.count() < kept.count() {
+            kept.then(off_plane)
         } else {
             before.restore(k);
             kept
         }
     };
-    let (_, grown, toggled, left) = kept;
-    out.grown = grown;
-    out.toggled.add(&toggled);
-    left
+    out.grown = kept.grown;
+    out.toggled.add(&kept.toggled);
+    kept.left
 }
 
-/// Growth at the singular simplices in the two ways of `order`, then the toggles; with
-/// (singular simplices left, points added), what each did, and the singular simplices left.
-/// `sets`: the singular simplices of ∂K now.
+/// What a pass of growth and toggles did, and the singular simplices it left.
+struct Resolved {
+    grown: SingularStats,
+    toggled: ToggleStats,
+    left: Sets,
+}
+
+impl Resolved {
+    fn count(&self) -> u64 {
+        (self.left.0.len() + self.left.1.len()) as u64
+    }
+
+    fn is_clean(&self) -> bool {
+        self.count() == 0
+    }
+
+    /// Better is lower: fewer singular simplices left, then fewer points added.
+    fn rank(&self) -> (u64, u64) {
+        (self.count(), self.grown.points)
+    }
+
+    /// This pass followed by `later` (which started where this one ended).
+    fn then(mut self, later: Resolved) -> Resolved {
+        self.grown.add(&later.grown);
+        self.toggled.add(&later.toggled);
+        self.left = later.left;
+        self
+    }
+}
+
+/// Growth at the singular simplices in the two ways of `order`, then the toggles. `sets`: the
+/// singular simplices of ∂K now.
 fn grow_then_toggle(
     k: &mut Triangulation,
     order: [EdgeGaps; 2],
@@ -315,7 +340,7 @@ fn grow_then_toggle(
     nonconforming: &FxHashSet<u32>,
     diag: f64,
     max_toggles: usize,
-) -> ((u64, u64), SingularStats, ToggleStats, Sets) {
+) -> Resolved {
     let mut grown = SingularStats::default();
     let mut known = Some(sets);
     for how in order {
@@ -325,8 +350,11 @@ fn grow_then_toggle(
         known = now;
     }
     let (toggled, left) = super::manifold::resolve(k, nonconforming, max_toggles, known);
-    let count = (left.0.len() + left.1.len()) as u64;
-    ((count, grown.points), grown, toggled, left)
+    Resolved {
+        grown,
+        toggled,
+        left,
+    }
 }
 
 /// Singular edges and pinched vertices of ∂K (`fill::singular_simplices`).
