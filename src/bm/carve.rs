@@ -241,14 +241,13 @@ fn take_tips(t: &mut Triangulation, core: &[u32], tips: &[[u32; 4]]) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bm::refine::test_support::positive;
-    use crate::bm::refine::Planes;
+    use crate::bm::refine::test_support::{positive, Owned};
 
     /// Two tetrahedra meeting at the origin only (a pinched vertex): the smaller cone loses its
     /// tip, the boundary becomes two closed surfaces without a singular vertex.
     #[test]
     fn two_cones_touching_at_a_vertex_are_separated() {
-        let mut positions = vec![
+        let positions = vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
@@ -258,23 +257,17 @@ mod tests {
             [0.0, 0.0, -1.0],
             [-1.0, -1.0, -1.0],
         ];
-        let mut planes: Vec<Planes> = vec![Planes::new(); positions.len()];
         // one cone at the origin of one tet, the other of one tet and one beyond it
-        let mut kept = vec![
+        let kept = vec![
             positive(&positions, [0, 1, 2, 3]),
             positive(&positions, [0, 4, 5, 6]),
             positive(&positions, [4, 5, 6, 7]),
         ];
-        let (mut fillable, mut external) = (Vec::new(), Vec::new());
-        let mut internal = FxHashSet::default();
-        let mut t = Triangulation {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
+        let mut o = Owned {
+            kept,
+            ..Owned::at(positions)
         };
+        let mut t = o.view();
         let singular = singular_simplices(&boundary_of(t.kept));
         assert_eq!(singular.1, vec![0]);
         let stats = carve_pinches(&mut t, singular, &FxHashSet::default(), 0.1);

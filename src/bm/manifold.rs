@@ -485,6 +485,7 @@ impl<'a> Labelled<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bm::refine::test_support::Owned;
     use smallvec::smallvec;
 
     /// Octahedron around vertex 0 at the origin split into eight tets, one per octant; vertices
@@ -504,25 +505,19 @@ mod tests {
 
     fn run(kept: &[usize], planes: Vec<Planes>, internal: &[[u32; 3]]) -> (ToggleStats, usize) {
         let all = octants();
-        let mut positions = vec![[0.0; 3]; 7];
-        let mut planes = planes;
-        let mut k_kept: Vec<[u32; 4]> = kept.iter().map(|&i| all[i]).collect();
-        let mut fillable: Vec<[u32; 4]> = (0..8)
-            .filter(|i| !kept.contains(i))
-            .map(|i| all[i])
-            .collect();
-        let mut external = Vec::new();
-        let mut internal: FxHashSet<[u32; 3]> = internal.iter().map(|&f| key3(f)).collect();
-        let mut k = Triangulation {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut k_kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
+        let mut o = Owned {
+            positions: vec![[0.0; 3]; 7],
+            planes,
+            kept: kept.iter().map(|&i| all[i]).collect(),
+            fillable: (0..8)
+                .filter(|i| !kept.contains(i))
+                .map(|i| all[i])
+                .collect(),
+            internal: internal.iter().map(|&f| key3(f)).collect(),
+            ..Default::default()
         };
-        let (s, _) = resolve(&mut k, &FxHashSet::default(), 100, None);
-        let b = super::super::assembly::boundary_of(k.kept);
+        let (s, _) = resolve(&mut o.view(), &FxHashSet::default(), 100, None);
+        let b = super::super::assembly::boundary_of(&o.kept);
         let (e, v) = super::super::fill::singular_simplices(&b);
         (s, e.len() + v.len())
     }
@@ -543,22 +538,15 @@ mod tests {
             [0.3, 0.3, -1.0],
         ];
         let (a, b, c, d, top, bottom) = (0, 1, 2, 3, 4, 5);
-        let mut kept: Vec<[u32; 4]> = [[a, b, d, top], [a, b, c, bottom]]
-            .map(|t| oriented(&p, t))
-            .to_vec();
-        let mut external = vec![oriented(&p, [a, b, c, d])];
-        let (mut positions, mut planes) = (p, vec![smallvec![]; 6]);
-        let (mut fillable, mut internal) = (Vec::new(), FxHashSet::default());
-        let mut k = Triangulation {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
+        let mut o = Owned {
+            kept: [[a, b, d, top], [a, b, c, bottom]]
+                .map(|t| oriented(&p, t))
+                .to_vec(),
+            external: vec![oriented(&p, [a, b, c, d])],
+            ..Owned::at(p)
         };
-        let s = close_flat_folds(&mut k, &FxHashSet::default(), 1e-8);
-        let boundary = super::super::assembly::boundary_of(k.kept);
+        let s = close_flat_folds(&mut o.view(), &FxHashSet::default(), 1e-8);
+        let boundary = super::super::assembly::boundary_of(&o.kept);
         (s, super::super::assembly::singularities(&boundary).0)
     }
 

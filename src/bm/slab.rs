@@ -351,6 +351,7 @@ fn split_points(
 mod tests {
     use super::*;
     use crate::bm::assembly::{boundary_of, singularities};
+    use crate::bm::refine::test_support::Owned;
     use crate::bm::refine::Triangulation;
 
     fn planes_share(f: &[u32; 3], g: u32, planes: &[Planes]) -> bool {
@@ -443,24 +444,16 @@ mod tests {
         // second try splits the edges on the planes and keeps the whole prism
         let (mut positions, faces) = standing();
         positions[3] = [0.0, 0.0, 1.0];
-        let mut pl = planes(&[&[0, 1, 2], &[0, 1], &[0, 2], &[1, 2]]);
-        let mut kept = Vec::new();
-        let mut external = Vec::new();
-        let mut fillable = Vec::new();
-        let mut internal: FxHashSet<[u32; 3]> =
-            [[0, 1, 2], [0, 1, 3], [0, 2, 3]].into_iter().collect();
-        let mut t = Triangulation {
-            positions: &mut positions,
-            planes: &mut pl,
-            kept: &mut kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
+        let mut o = Owned {
+            positions,
+            planes: planes(&[&[0, 1, 2], &[0, 1], &[0, 2], &[1, 2]]),
+            internal: [[0, 1, 2], [0, 1, 3], [0, 2, 3]].into_iter().collect(),
+            ..Default::default()
         };
-        let s = thicken(&mut t, &faces, 0.01);
+        let s = thicken(&mut o.view(), &faces, 0.01);
         assert_eq!((s.thickened, s.left, s.tets, s.points), (1, 0, 3, 3));
-        assert_eq!(singularities(&boundary_of(&kept)), (0, 0));
-        assert!(positions[4..].iter().all(|p| (p[2] - 0.01).abs() < 1e-12));
+        assert_eq!(singularities(&boundary_of(&o.kept)), (0, 0));
+        assert!(o.positions[4..].iter().all(|p| (p[2] - 0.01).abs() < 1e-12));
     }
 
     #[test]

@@ -134,8 +134,8 @@ fn regions(tets: &[[u32; 4]], faces: &FaceTable) -> Regions {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bm::refine::test_support::Owned;
     use crate::bm::refine::Planes;
-    use crate::fxhash::FxHashSet;
     use smallvec::smallvec;
 
     /// A tetrahedron (0,1,2,3) split at an interior vertex 4 into four.
@@ -150,22 +150,16 @@ mod tests {
         planes: Vec<Planes>,
         internal: &[[u32; 3]],
     ) -> (VoidStats, usize) {
-        let mut positions = vec![[0.0; 3]; planes.len()];
-        let mut planes = planes;
-        let mut kept = kept;
-        let mut fillable = unkept;
-        let mut external = Vec::new();
-        let mut internal: FxHashSet<[u32; 3]> = internal.iter().map(|&t| key3(t)).collect();
-        let mut k = Triangulation {
-            positions: &mut positions,
-            planes: &mut planes,
-            kept: &mut kept,
-            fillable: &mut fillable,
-            external: &mut external,
-            internal: &mut internal,
+        let mut o = Owned {
+            positions: vec![[0.0; 3]; planes.len()],
+            planes,
+            kept,
+            fillable: unkept,
+            internal: internal.iter().map(|&t| key3(t)).collect(),
+            ..Default::default()
         };
-        let s = fill(&mut k);
-        (s, kept.len())
+        let s = fill(&mut o.view());
+        (s, o.kept.len())
     }
 
     #[test]
