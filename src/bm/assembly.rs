@@ -71,10 +71,13 @@ impl Laps {
         }
     }
 
-    fn lap(&mut self, name: &'static str) {
+    /// Ends stage `name`; its seconds.
+    fn lap(&mut self, name: &'static str) -> f64 {
         let now = std::time::Instant::now();
-        self.laps.push((name, (now - self.last).as_secs_f64()));
+        let seconds = (now - self.last).as_secs_f64();
+        self.laps.push((name, seconds));
         self.last = now;
+        seconds
     }
 }
 
@@ -203,15 +206,16 @@ pub fn assemble(
     let mut boundary = None;
     if collar > 0.0 {
         let max_shift = super::collar::MAX_SHIFT_PER_HEIGHT * collar * diag;
-        let start = std::time::Instant::now();
         let (stats, b) = super::collar::build(&mut k, &arr.planes, collar * diag, max_shift);
         out.collar = stats;
         boundary = b;
-        out.collar.seconds = start.elapsed().as_secs_f64();
         out.collar.min_height /= diag;
         out.collar.max_shift /= diag;
     }
-    laps.lap("collar");
+    let seconds = laps.lap("collar");
+    if collar > 0.0 {
+        out.collar.seconds = seconds;
+    }
     let boundary = boundary.unwrap_or_else(|| boundary_of(&tets));
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;
@@ -523,12 +527,19 @@ pub(super) fn singular_sets(tets: &[[u32; 4]]) -> Sets {
 /// touched vertex kept their stars, so only the tetrahedra through a touched vertex are looked at.
 /// Equal to `singular_sets(tets)`, in the same order.
 pub(super) fn singular_sets_after(tets: &[[u32; 4]], before: Sets, touched: &[u32]) -> Sets {
-    let is_touched = |v: u32| touched.binary_search(&v).is_ok();
-    let n = tets.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+    // a touched vertex may have left every tetrahedron: marks cover it too
+    let n = tets
+        .iter()
+        .flatten()
+        .chain(touched)
+        .max()
+        .map_or(0, |&v| v as usize + 1);
     let mut mark = vec![false; n];
-    for &v in touched.iter().filter(|&&v| (v as usize) < n) {
+    for &v in touched {
         mark[v as usize] = true;
     }
+    // a vertex of `before` beyond the marks is in no tetrahedron and was not touched
+    let is_touched = |v: u32| mark.get(v as usize).copied().unwrap_or(false);
     // every tetrahedron with a face through a touched vertex: the faces' kept owners all are
     let near: Vec<[u32; 4]> = tets
         .iter()
@@ -545,11 +556,11 @@ pub(super) fn singular_sets_after(tets: &[[u32; 4]], before: Sets, touched: &[u3
     edges.extend(
         near_edges
             .into_iter()
-            .filter(|&(a, b)| mark[a as usize] || mark[b as usize]),
+            .filter(|&(a, b)| is_touched(a) || is_touched(b)),
     );
     edges.sort_unstable();
     vertices.retain(|&v| !is_touched(v));
-    vertices.extend(near_vertices.into_iter().filter(|&v| mark[v as usize]));
+    vertices.extend(near_vertices.into_iter().filter(|&v| is_touched(v)));
     vertices.sort_unstable();
     (edges, vertices)
 }

@@ -51,12 +51,11 @@ pub fn fill_and_drop(
         ix.candidate[j] = !ix.in_k(j);
     }
     let mut added = 0u64;
-    let mut found = None;
     let mut now = singular_simplices(&ix.boundary());
+    let found = now.clone();
     for _ in 0..max_rounds {
         let (edges, vertices) = &now;
         let stop = edges.is_empty() && vertices.is_empty();
-        found.get_or_insert_with(|| now.clone());
         if stop {
             break;
         }
@@ -94,7 +93,7 @@ pub fn fill_and_drop(
     });
     Filled {
         added,
-        found: found.unwrap_or_else(|| now.clone()),
+        found,
         left: now,
     }
 }

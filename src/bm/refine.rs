@@ -631,11 +631,11 @@ mod tests {
 
     use super::test_support::{orient, positive};
 
-    #[test]
-    fn growing_into_a_gap_at_an_edge_joins_its_two_sectors() {
-        let (positions, planes) = fan();
+    /// The fan's gap b between the kept a and c, grown at the edge (0,1) with its four edges to the
+    /// gap's other vertices split a tenth of the way: the triangulation after, and what grew.
+    fn grow_the_fans_gap(planes: Vec<Planes>) -> (test_support::Owned, Grown) {
+        let (positions, _) = fan();
         let [a, b, c] = [[0, 1, 2, 3], [0, 1, 3, 4], [0, 1, 4, 5]].map(|t| positive(&positions, t));
-        assert_eq!(singularities(&boundary_of(&[a, c])).0, 1);
         let mut o = test_support::Owned {
             positions,
             planes,
@@ -643,7 +643,6 @@ mod tests {
             fillable: vec![b],
             ..Default::default()
         };
-        let before = crate::bm::assembly::singular_sets(&o.kept);
         let mut t = o.view();
         let mut points = FxHashMap::default();
         for (v, x) in [(0, 3), (0, 4), (1, 3), (1, 4)] {
@@ -655,6 +654,16 @@ mod tests {
             core: [0, 1].into_iter().collect(),
         };
         let g = grow(&mut t, &[vec![growth]], points);
+        (o, g)
+    }
+
+    #[test]
+    fn growing_into_a_gap_at_an_edge_joins_its_two_sectors() {
+        let (positions, planes) = fan();
+        let [a, c] = [[0, 1, 2, 3], [0, 1, 4, 5]].map(|t| positive(&positions, t));
+        let before = crate::bm::assembly::singular_sets(&[a, c]);
+        assert_eq!(singularities(&boundary_of(&[a, c])).0, 1);
+        let (o, g) = grow_the_fans_gap(planes);
         assert_eq!(g.points, 4);
         assert!(g.tets_per_group[0] > 0);
         let bnd = boundary_of(&o.kept);
@@ -671,27 +680,9 @@ mod tests {
     #[test]
     fn no_growth_puts_a_face_on_a_plane_outside_its_section() {
         // the same gap, but its face (0,1,3) lies on plane 0 and is not a section triangle
-        let (positions, mut planes) = fan();
+        let (_, mut planes) = fan();
         planes[3] = [0].into_iter().collect();
-        let [a, b, c] = [[0, 1, 2, 3], [0, 1, 3, 4], [0, 1, 4, 5]].map(|t| positive(&positions, t));
-        let mut o = test_support::Owned {
-            positions,
-            planes,
-            kept: vec![a, c],
-            fillable: vec![b],
-            ..Default::default()
-        };
-        let mut t = o.view();
-        let mut points = FxHashMap::default();
-        for (v, x) in [(0, 3), (0, 4), (1, 3), (1, 4)] {
-            let (p, q) = (t.positions[v as usize], t.positions[x as usize]);
-            points.insert(edge(v, x), [0, 1, 2].map(|i| p[i] + 0.1 * (q[i] - p[i])));
-        }
-        let growth = Growth {
-            tet: b,
-            core: [0, 1].into_iter().collect(),
-        };
-        let g = grow(&mut t, &[vec![growth]], points);
+        let (o, g) = grow_the_fans_gap(planes);
         assert_eq!(g.tets_per_group, vec![0]);
         assert_eq!(
             o.kept.len(),
