@@ -52,6 +52,8 @@ struct Labelled<'a> {
     nonconforming: &'a FxHashSet<u32>,
     /// The vertices of every tetrahedron toggled for good (repeats allowed).
     touched: Vec<u32>,
+    /// Every tetrahedron toggled for good, in order (undoing them backwards restores `kept`).
+    log: Vec<u32>,
 }
 
 /// Toggle tetrahedra around the singular simplices of ∂K while that lowers their number, at most
@@ -148,6 +150,7 @@ impl<'a> Labelled<'a> {
             internal,
             nonconforming,
             touched: Vec::new(),
+            log: Vec::new(),
         }
     }
 
@@ -226,6 +229,7 @@ impl<'a> Labelled<'a> {
         if done == set.len() && self.badness(set) < before {
             for &t in set {
                 self.touched.extend(self.tets[t as usize]);
+                self.log.push(t);
                 if self.kept[t as usize] {
                     stats.added += 1;
                 } else {

@@ -33,17 +33,21 @@ pub fn close_flat_folds(
         return stats;
     }
     let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
+    // the sets whose repair failed once are not repaired again (a repair can cost a lot around
+    // a vertex with a large star, and passes find the same wedges again)
+    let mut refused: FxHashSet<Vec<u32>> = FxHashSet::default();
     for _ in 0..FOLD_PASSES {
         let before = stats;
         for w in l.flat_wedges(&flat) {
             // an earlier toggle of this pass may have changed the wedge's side
             let side = l.kept[w[0] as usize];
-            if w.iter().all(|&t| l.kept[t as usize] == side) && !l.try_unfold(&w, &flat, &mut stats)
+            if w.iter().all(|&t| l.kept[t as usize] == side)
+                && !l.try_unfold(&w, &flat, &mut refused, &mut stats)
             {
                 // the fold may move to the flat tetrahedra behind the wedge: all of them at once
                 let blob = l.flat_component(&w, &flat);
                 if blob.len() > w.len() {
-                    l.try_unfold(&blob, &flat, &mut stats);
+                    l.try_unfold(&blob, &flat, &mut refused, &mut stats);
                 }
             }
         }
@@ -58,6 +62,11 @@ pub fn close_flat_folds(
 
 /// Passes of [`close_flat_folds`] (each toggle can uncover a fold behind it).
 const FOLD_PASSES: usize = 8;
+
+/// Toggles of the singular simplices' search after one unfolding (`repair_after_unfold`), and its
+/// rounds of set moves.
+const REPAIR_TOGGLES: usize = 64;
+const REPAIR_PASSES: usize = 2;
 
 /// Largest set of flat tetrahedra toggled at once.
 const FLAT_COMPONENT: usize = 256;
@@ -87,31 +96,43 @@ impl Flat<'_> {
 impl Labelled<'_> {
     /// Toggle every tetrahedron of `set` if each is allowed, the folds at their edges get fewer and
     /// the singular simplices at them no more; else leave them. Toggling changes ∂K only at the
-    /// set's faces, so these local counts are the changes of the global ones.
-    fn try_unfold(&mut self, set: &[u32], flat: &Flat, stats: &mut ToggleStats) -> bool {
+    /// set's faces, so these local counts are the changes of the global ones. Where the toggle
+    /// lowers the folds but leaves a singular simplex (a crack filled up to a vertex where the
+    /// outside goes on), the singular simplices' own toggles run there, and the whole change
+    /// stays only if, over every vertex it touched, it leaves no more singular simplices and
+    /// fewer folds than before.
+    fn try_unfold(
+        &mut self,
+        set: &[u32],
+        flat: &Flat,
+        refused: &mut FxHashSet<Vec<u32>>,
+        stats: &mut ToggleStats,
+    ) -> bool {
         if !set.iter().all(|&t| self.may_toggle(t)) {
             return false;
         }
-        let edges: FxHashSet<(u32, u32)> = set
-            .iter()
-            .flat_map(|&t| {
-                let v = self.tets[t as usize];
-                [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
-                    .map(|(i, j)| refine::edge(v[i], v[j]))
-            })
-            .collect();
+        let edges = self.edges_of(set);
         let before = (self.badness(set), self.folds_at(&edges, flat));
         for &t in set {
             self.kept[t as usize] ^= true;
         }
         let after = (self.badness(set), self.folds_at(&edges, flat));
-        if after.0 > before.0 || after.1 >= before.1 {
-            for &t in set {
-                self.kept[t as usize] ^= true;
-            }
+        if after.1 >= before.1 {
+            self.undo(set);
             return false;
         }
+        if after.0 > before.0 {
+            let mut key = set.to_vec();
+            key.sort_unstable();
+            if refused.contains(&key) || !self.repair_after_unfold(set, flat, stats) {
+                refused.insert(key);
+                self.undo(set);
+                return false;
+            }
+        }
         for &t in set {
+            self.touched.extend(self.tets[t as usize]);
+            self.log.push(t);
             if self.kept[t as usize] {
                 stats.added += 1;
             } else {
@@ -119,6 +140,66 @@ impl Labelled<'_> {
             }
         }
         true
+    }
+
+    fn undo(&mut self, set: &[u32]) {
+        for &t in set {
+            self.kept[t as usize] ^= true;
+        }
+    }
+
+    /// The edges of the tetrahedra of `set`.
+    fn edges_of(&self, set: &[u32]) -> FxHashSet<(u32, u32)> {
+        set.iter()
+            .flat_map(|&t| {
+                let v = self.tets[t as usize];
+                [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
+                    .map(|(i, j)| refine::edge(v[i], v[j]))
+            })
+            .collect()
+    }
+
+    /// After `set` was toggled (fewer folds, more singular simplices at it): the singular
+    /// simplices' toggles at its vertices, at most `REPAIR_TOGGLES` of them. Keeps them and
+    /// returns true if, over the vertices of `set` and of every tetrahedron they toggled, the
+    /// singular simplices are no more and the folds fewer than before `set` was toggled; else
+    /// undoes them (not `set`) and returns false. Their toggles are added to `stats`.
+    fn repair_after_unfold(&mut self, set: &[u32], flat: &Flat, stats: &mut ToggleStats) -> bool {
+        let (touched, logged) = (self.touched.len(), self.log.len());
+        let mut scratch = ToggleStats::default();
+        let mut work: Vec<u32> = set.iter().flat_map(|&t| self.tets[t as usize]).collect();
+        for _ in 0..REPAIR_PASSES {
+            let left = self.toggle_singles(work, REPAIR_TOGGLES, &mut scratch);
+            work = left
+                .into_iter()
+                .filter(|&v| self.fans_at(v) > 1 && self.join_or_carve(v, &mut scratch))
+                .collect();
+            if work.is_empty() {
+                break;
+            }
+        }
+        // everything toggled since before `set` was
+        let mut changed: Vec<u32> = self.log[logged..].to_vec();
+        changed.extend_from_slice(set);
+        let edges = self.edges_of(&changed);
+        let after = (self.badness(&changed), self.folds_at(&edges, flat));
+        let undo_repair = |l: &mut Self| {
+            for &t in l.log[logged..].iter().rev() {
+                l.kept[t as usize] ^= true;
+            }
+        };
+        undo_repair(self);
+        self.undo(set);
+        let before = (self.badness(&changed), self.folds_at(&edges, flat));
+        self.undo(set);
+        if after.0 <= before.0 && after.1 < before.1 {
+            undo_repair(self); // toggles are their own inverse: redo
+            stats.add(&scratch);
+            return true;
+        }
+        self.touched.truncate(touched);
+        self.log.truncate(logged);
+        false
     }
 
     /// How many of `edges` are folds of ∂K: a flat wedge on one side between two of its surface
