@@ -52,7 +52,7 @@ struct Labelled<'a> {
     nonconforming: &'a FxHashSet<u32>,
     /// The vertices of every tetrahedron toggled for good (repeats allowed).
     touched: Vec<u32>,
-    /// Every tetrahedron toggled for good, in order (undoing them backwards restores `kept`).
+    /// Every tetrahedron toggled for good, in order (toggling them again restores `kept`).
     log: Vec<u32>,
 }
 
@@ -221,12 +221,10 @@ impl<'a> Labelled<'a> {
         if before == 0 {
             return false;
         }
-        let mut done = 0;
-        while done < set.len() && self.may_toggle(set[done]) {
-            self.kept[set[done] as usize] ^= true;
-            done += 1;
+        if !self.toggle_allowed(set) {
+            return false;
         }
-        if done == set.len() && self.badness(set) < before {
+        if self.badness(set) < before {
             for &t in set {
                 self.touched.extend(self.tets[t as usize]);
                 self.log.push(t);
@@ -238,10 +236,29 @@ impl<'a> Labelled<'a> {
             }
             return true;
         }
-        for &t in &set[..done] {
+        self.flip(set);
+        false
+    }
+
+    /// Toggle the tetrahedra of `set` in turn, each only if allowed (`may_toggle`) after those
+    /// before it (two kept tetrahedra on both sides of a section triangle may not both go), and
+    /// return true; else undo them and return false.
+    fn toggle_allowed(&mut self, set: &[u32]) -> bool {
+        for (done, &t) in set.iter().enumerate() {
+            if !self.may_toggle(t) {
+                self.flip(&set[..done]);
+                return false;
+            }
             self.kept[t as usize] ^= true;
         }
-        false
+        true
+    }
+
+    /// Toggle every tetrahedron of `set` (its own inverse).
+    fn flip(&mut self, set: &[u32]) {
+        for &t in set {
+            self.kept[t as usize] ^= true;
+        }
     }
 
     /// Tetrahedra sharing a face with `t`.
@@ -568,6 +585,26 @@ mod tests {
         );
         // 0.1 thick: a gap the fold search leaves alone (the singular edge is the toggles' job)
         assert_eq!(crack(0.1), (ToggleStats::default(), 1));
+    }
+
+    #[test]
+    fn two_kept_tetrahedra_on_both_sides_of_a_section_triangle_may_not_both_go() {
+        // triangle 0 1 2 on plane 9 (a section triangle), apex 3 above it and 4 below, both kept
+        let planes: Vec<Planes> = (0..5)
+            .map(|v| if v < 3 { smallvec![9] } else { smallvec![] })
+            .collect();
+        let internal: FxHashSet<[u32; 3]> = [[0, 1, 2]].into_iter().collect();
+        let kept = [[0, 1, 2, 3], [0, 2, 1, 4]];
+        let none = FxHashSet::default();
+        let mut l = Labelled::new([&kept, &[], &[]], &planes, &internal, &none);
+        // each alone may go (the other keeps the triangle in R), not both
+        assert!(l.toggle_allowed(&[0]));
+        assert_eq!(l.kept, [false, true]);
+        l.flip(&[0]);
+        assert!(!l.toggle_allowed(&[0, 1]));
+        assert_eq!(l.kept, [true, true], "a refused set is undone");
+        assert!(!l.toggle_allowed(&[1, 0]));
+        assert_eq!(l.kept, [true, true]);
     }
 
     #[test]

@@ -10,9 +10,9 @@ use crate::sections::{dot, sub};
 /// of ∂K between its two surface triangles, on one side, are all flat (their four vertices within
 /// `tol` of one plane: rounded coplanar points that no plane tag makes flat), the two triangles
 /// fold flat onto each other (a double sheet; a crack when that side is outside K, a fin when it
-/// is inside). Toggling that wedge removes the fold; it is done when the sections allow it and no
-/// singular simplex is added, in passes until none is left or a pass changes nothing. Returns the
-/// toggles done.
+/// is inside). Toggling that wedge removes the fold; it is done when the sections allow it and,
+/// with the singular simplices' toggles run where it adds one, no singular simplex is added, in
+/// passes until none is left or a pass changes nothing. Returns the toggles done.
 pub fn close_flat_folds(
     k: &mut Triangulation,
     nonconforming: &FxHashSet<u32>,
@@ -35,7 +35,7 @@ pub fn close_flat_folds(
     let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
     // the sets whose repair failed once are not repaired again (a repair can cost a lot around
     // a vertex with a large star, and passes find the same wedges again)
-    let mut refused: FxHashSet<Vec<u32>> = FxHashSet::default();
+    let mut refused: FxHashSet<(bool, Vec<u32>)> = FxHashSet::default();
     for _ in 0..FOLD_PASSES {
         let before = stats;
         for w in l.flat_wedges(&flat) {
@@ -63,9 +63,11 @@ pub fn close_flat_folds(
 /// Passes of [`close_flat_folds`] (each toggle can uncover a fold behind it).
 const FOLD_PASSES: usize = 8;
 
-/// Toggles of the singular simplices' search after one unfolding (`repair_after_unfold`), and its
-/// rounds of set moves.
+/// Single toggles of the singular simplices' search after one unfolding (`repair_after_unfold`),
+/// per round.
 const REPAIR_TOGGLES: usize = 64;
+
+/// Rounds of that search (single toggles, then a strip or a fan at each pinched vertex left).
 const REPAIR_PASSES: usize = 2;
 
 /// Largest set of flat tetrahedra toggled at once.
@@ -105,28 +107,30 @@ impl Labelled<'_> {
         &mut self,
         set: &[u32],
         flat: &Flat,
-        refused: &mut FxHashSet<Vec<u32>>,
+        refused: &mut FxHashSet<(bool, Vec<u32>)>,
         stats: &mut ToggleStats,
     ) -> bool {
-        if !set.iter().all(|&t| self.may_toggle(t)) {
+        let Some(&first) = set.first() else {
             return false;
-        }
+        };
         let edges = self.edges_of(set);
         let before = (self.badness(set), self.folds_at(&edges, flat));
-        for &t in set {
-            self.kept[t as usize] ^= true;
+        // which way: filling a crack and cutting the same tetrahedra as a fin are two moves
+        let adding = !self.kept[first as usize];
+        if !self.toggle_allowed(set) {
+            return false;
         }
         let after = (self.badness(set), self.folds_at(&edges, flat));
         if after.1 >= before.1 {
-            self.undo(set);
+            self.flip(set);
             return false;
         }
         if after.0 > before.0 {
-            let mut key = set.to_vec();
-            key.sort_unstable();
+            let mut key = (adding, set.to_vec());
+            key.1.sort_unstable();
             if refused.contains(&key) || !self.repair_after_unfold(set, flat, stats) {
                 refused.insert(key);
-                self.undo(set);
+                self.flip(set);
                 return false;
             }
         }
@@ -142,12 +146,6 @@ impl Labelled<'_> {
         true
     }
 
-    fn undo(&mut self, set: &[u32]) {
-        for &t in set {
-            self.kept[t as usize] ^= true;
-        }
-    }
-
     /// The edges of the tetrahedra of `set`.
     fn edges_of(&self, set: &[u32]) -> FxHashSet<(u32, u32)> {
         set.iter()
@@ -160,7 +158,8 @@ impl Labelled<'_> {
     }
 
     /// After `set` was toggled (fewer folds, more singular simplices at it): the singular
-    /// simplices' toggles at its vertices, at most `REPAIR_TOGGLES` of them. Keeps them and
+    /// simplices' toggles at its vertices (`REPAIR_PASSES` rounds of at most `REPAIR_TOGGLES`
+    /// single toggles, then a strip or a fan at each pinched vertex left). Keeps them and
     /// returns true if, over the vertices of `set` and of every tetrahedron they toggled, the
     /// singular simplices are no more and the folds fewer than before `set` was toggled; else
     /// undoes them (not `set`) and returns false. Their toggles are added to `stats`.
@@ -170,10 +169,13 @@ impl Labelled<'_> {
         let mut work: Vec<u32> = set.iter().flat_map(|&t| self.tets[t as usize]).collect();
         for _ in 0..REPAIR_PASSES {
             let left = self.toggle_singles(work, REPAIR_TOGGLES, &mut scratch);
-            work = left
-                .into_iter()
-                .filter(|&v| self.fans_at(v) > 1 && self.join_or_carve(v, &mut scratch))
-                .collect();
+            // each pinched vertex left: join its fans by a strip or carve the smallest
+            work = Vec::new();
+            for v in left {
+                if self.fans_at(v) > 1 && self.join_or_carve(v, &mut scratch) {
+                    work.push(v);
+                }
+            }
             if work.is_empty() {
                 break;
             }
@@ -183,17 +185,14 @@ impl Labelled<'_> {
         changed.extend_from_slice(set);
         let edges = self.edges_of(&changed);
         let after = (self.badness(&changed), self.folds_at(&edges, flat));
-        let undo_repair = |l: &mut Self| {
-            for &t in l.log[logged..].iter().rev() {
-                l.kept[t as usize] ^= true;
-            }
-        };
-        undo_repair(self);
-        self.undo(set);
+        // toggles are their own inverse: the same flips undo the repair and redo it
+        let repair: Vec<u32> = self.log[logged..].to_vec();
+        self.flip(&repair);
+        self.flip(set);
         let before = (self.badness(&changed), self.folds_at(&edges, flat));
-        self.undo(set);
+        self.flip(set);
         if after.0 <= before.0 && after.1 < before.1 {
-            undo_repair(self); // toggles are their own inverse: redo
+            self.flip(&repair);
             stats.add(&scratch);
             return true;
         }
