@@ -80,6 +80,14 @@ pub struct ReconstructArgs {
     /// Reconstruct only this label (default: every region that is not a hole)
     #[arg(long, conflicts_with = "roi")]
     pub label: Option<i32>,
+    /// Reconstruct every label at once as a partition of space (implicit method): one surface per
+    /// label, `OUT.labelL.EXT`, with shared interfaces
+    #[arg(long, conflicts_with_all = ["label", "roi", "tets"])]
+    pub all_labels: bool,
+    /// With --all-labels: write the interface network (.ply, the two labels of each triangle as
+    /// face properties `label0 label1`; the exterior is label 0)
+    #[arg(long, requires = "all_labels")]
+    pub interfaces: Option<PathBuf>,
     /// DICOM RT Structure Set input: reconstruct only the ROI of this name (ROIs may overlap, so
     /// the others are not even validated)
     #[arg(long)]

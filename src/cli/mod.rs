@@ -8,6 +8,7 @@ pub mod compare_methods;
 pub mod delaunay;
 pub mod info;
 pub mod reconstruct;
+pub mod reconstruct_labels;
 pub mod render;
 pub mod slice;
 pub mod warnings;

@@ -5,6 +5,9 @@ use std::io::IsTerminal;
 use std::process::ExitCode;
 
 pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
+    if args.all_labels {
+        return super::reconstruct_labels::run(args);
+    }
     let sections = read_sections_of_roi(
         &args.input,
         &ReadOptions {

@@ -4,6 +4,7 @@
 pub mod extract;
 pub mod fixtures;
 pub mod indicator;
+pub mod labels;
 pub mod mvc;
 pub mod octree;
 

@@ -23,7 +23,8 @@ mod write;
 use read::{parse_medit, parse_vtk};
 pub use read::{parse_obj, parse_off, parse_ply, parse_stl};
 pub use write::{
-    to_medit_string, to_obj_string, to_off_string, to_ply_bytes, to_stl_bytes, to_vtk_string,
+    to_labelled_ply_bytes, to_medit_string, to_obj_string, to_off_string, to_ply_bytes,
+    to_stl_bytes, to_vtk_string,
 };
 
 /// Read a triangle mesh: STL (ASCII or binary), OBJ, PLY (ASCII or binary), OFF.
@@ -75,6 +76,20 @@ pub fn write_trimesh(path: &Path, mesh: &TriMesh) -> Result<()> {
         }
     };
     write_file(path, &bytes)
+}
+
+/// Write an interface network (`.ply` only): every triangle with the labels on its two sides as
+/// face properties `label0` (behind) and `label1` (in front), see [`to_labelled_ply_bytes`].
+pub fn write_labelled_network(path: &Path, mesh: &TriMesh, labels: &[[i32; 2]]) -> Result<()> {
+    let name = path.display().to_string();
+    if extension(path) != "ply" {
+        return Err(Error::input(
+            name,
+            "an interface network is written as .ply (a label pair per face)",
+        ));
+    }
+    check_trimesh(mesh, &name)?;
+    write_file(path, &to_labelled_ply_bytes(mesh, labels))
 }
 
 /// Write a tetrahedral mesh: .vtk (legacy unstructured grid) or .mesh (MEDIT).
@@ -230,6 +245,8 @@ mod tests {
         let m = tetra();
         assert_eq!(parse_obj(&to_obj_string(&m), "t.obj").unwrap(), m);
         assert_eq!(parse_ply(&to_ply_bytes(&m), "t.ply").unwrap(), m);
+        let labelled = to_labelled_ply_bytes(&m, &vec![[0, 3]; m.triangles.len()]);
+        assert_eq!(parse_ply(&labelled, "t.ply").unwrap(), m);
         assert_eq!(parse_off(&to_off_string(&m), "t.off").unwrap(), m);
     }
 

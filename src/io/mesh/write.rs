@@ -53,6 +53,42 @@ pub fn to_ply_bytes(mesh: &TriMesh) -> Vec<u8> {
     b
 }
 
+/// Binary PLY whose faces carry two int properties `label0 label1`: the labels on a triangle's back
+/// and front (an interface network between labelled domains; the normal points from `label0` into
+/// `label1`). `labels` has one pair per triangle.
+pub fn to_labelled_ply_bytes(mesh: &TriMesh, labels: &[[i32; 2]]) -> Vec<u8> {
+    assert_eq!(
+        labels.len(),
+        mesh.triangles.len(),
+        "one label pair per triangle"
+    );
+    let header = format!(
+        "ply\nformat binary_little_endian 1.0\ncomment slice2solid interface network\n\
+         element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
+         element face {}\nproperty list uchar int vertex_indices\nproperty int label0\n\
+         property int label1\nend_header\n",
+        mesh.vertices.len(),
+        mesh.triangles.len()
+    );
+    let mut b = header.into_bytes();
+    b.reserve(24 * mesh.vertices.len() + 21 * mesh.triangles.len());
+    for p in &mesh.vertices {
+        for c in p {
+            b.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    for (t, l) in mesh.triangles.iter().zip(labels) {
+        b.push(3);
+        for &i in t {
+            b.extend_from_slice(&(i as i32).to_le_bytes());
+        }
+        for &x in l {
+            b.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    b
+}
+
 /// Binary STL (coordinates rounded to f32, facet normals computed from the corners).
 pub fn to_stl_bytes(mesh: &TriMesh) -> Vec<u8> {
     let mut b = Vec::with_capacity(84 + 50 * mesh.triangles.len());
