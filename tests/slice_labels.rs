@@ -5,7 +5,7 @@
 //! contours share vertices and edges whose total length is the interface's cut length.
 mod common;
 use common::shared_reference;
-use slice2solid::eval::partition::{check_pair, section_contacts, Location, MeshLocator};
+use slice2solid::eval::partition::section_contacts;
 use slice2solid::io::csl::{parse_csl, to_csl_string};
 use slice2solid::io::mesh::read_trimesh;
 use slice2solid::sections::{cross, dot, sub};
@@ -290,47 +290,10 @@ fn overlapping_boxes_the_first_listed_keeps_the_overlap() {
     run_all(&overlapping_boxes(), [2, 9, 8]);
 }
 
-/// A ball inside the figure eight: the inside candidate of a 9³ grid farthest from the mesh's
-/// vertices, radius half that distance, halved until the ball's vertices are all inside and no
-/// triangle of it crosses the mesh.
-fn ball_inside(mesh: &TriMesh) -> ([f64; 3], f64) {
-    let b = slice2solid::eval::bvh::Aabb::of_points(&mesh.vertices);
-    let locator = MeshLocator::new(mesh);
-    let mut best = ([0.0; 3], 0.0);
-    for i in 1..10 {
-        for j in 1..10 {
-            for k in 1..10 {
-                let f = [i, j, k].map(|x| x as f64 / 10.0);
-                let c: [f64; 3] = std::array::from_fn(|a| b.lo[a] + f[a] * (b.hi[a] - b.lo[a]));
-                if locator.locate(c) != Location::Inside {
-                    continue;
-                }
-                let d = mesh
-                    .vertices
-                    .iter()
-                    .map(|&v| length(v, c))
-                    .fold(f64::INFINITY, f64::min);
-                if d > best.1 {
-                    best = (c, d);
-                }
-            }
-        }
-    }
-    let (c, mut r) = (best.0, 0.5 * best.1);
-    loop {
-        let ball = slice2solid::eval::shapes::icosphere(c, r, 3);
-        let p = check_pair(mesh, &ball);
-        if p.crossings == 0 && p.vertices_inside[1] == ball.vertices.len() {
-            return (c, r);
-        }
-        r *= 0.5;
-    }
-}
-
 #[test]
 fn reference_mesh_with_a_ball_carved_out() {
     let mesh = read_trimesh(&shared_reference("eight_15")).unwrap();
-    let (c, r) = ball_inside(&mesh);
+    let (c, r) = common::ball_inside(&mesh);
     eprintln!("ball at {c:?}, radius {r}");
     assert!((r - 0.093860).abs() < 1e-5, "ball radius {r}");
     assert!(r > 0.02 * diagonal(&mesh), "ball radius {r}");
@@ -365,7 +328,7 @@ fn other_modes_on_different_grids_and_overlapping_boxes() {
 #[test]
 fn carved_reference_domains_are_a_partition() {
     let mesh = read_trimesh(&shared_reference("eight_15")).unwrap();
-    let (c, r) = ball_inside(&mesh);
+    let (c, r) = common::ball_inside(&mesh);
     let case = carved("eight_15", &mesh, c, r);
     let domains: Vec<(i32, String, TriMesh)> = case
         .domains

@@ -127,3 +127,41 @@ pub fn check_solid_tets(solid: &slice2solid::Solid) -> (slice2solid::eval::tets:
         .is_some_and(|s| s.boundary_equals_surface);
     (t, equal)
 }
+
+/// A ball inside the figure eight: the inside candidate of a 9³ grid farthest from the mesh's
+/// vertices, radius half that distance, halved until the ball's vertices are all inside and no
+/// triangle of it crosses the mesh.
+pub fn ball_inside(mesh: &slice2solid::TriMesh) -> ([f64; 3], f64) {
+    let b = slice2solid::eval::bvh::Aabb::of_points(&mesh.vertices);
+    use slice2solid::eval::partition::{check_pair, Location, MeshLocator};
+    let locator = MeshLocator::new(mesh);
+    let mut best = ([0.0; 3], 0.0);
+    for i in 1..10 {
+        for j in 1..10 {
+            for k in 1..10 {
+                let f = [i, j, k].map(|x| x as f64 / 10.0);
+                let c: [f64; 3] = std::array::from_fn(|a| b.lo[a] + f[a] * (b.hi[a] - b.lo[a]));
+                if locator.locate(c) != Location::Inside {
+                    continue;
+                }
+                let d = mesh
+                    .vertices
+                    .iter()
+                    .map(|&v| (0..3).map(|a| (v[a] - c[a]).powi(2)).sum::<f64>().sqrt())
+                    .fold(f64::INFINITY, f64::min);
+                if d > best.1 {
+                    best = (c, d);
+                }
+            }
+        }
+    }
+    let (c, mut r) = (best.0, 0.5 * best.1);
+    loop {
+        let ball = slice2solid::eval::shapes::icosphere(c, r, 3);
+        let p = check_pair(mesh, &ball);
+        if p.crossings == 0 && p.vertices_inside[1] == ball.vertices.len() {
+            return (c, r);
+        }
+        r *= 0.5;
+    }
+}
