@@ -388,7 +388,14 @@ fn stays_in_cell(
             hi[i] = hi[i].max(x[i] + shift);
         }
     }
+    // a plane farther from the box's centre than its half diagonal misses the box (one distance
+    // instead of eight: the arrangement of a dense sweep has a thousand planes, most far away)
+    let mid = [0, 1, 2].map(|i| 0.5 * (lo[i] + hi[i]));
+    let radius = 0.5 * dist(lo, hi);
     arr_planes.iter().enumerate().all(|(p, plane)| {
+        if signed_distance(plane, mid).abs() > radius * (1.0 + 1e-9) {
+            return true;
+        }
         let corner = |m: usize| [0, 1, 2].map(|i| if m >> i & 1 == 0 { lo[i] } else { hi[i] });
         let sides = (0..8).map(|m| signed_distance(plane, corner(m)));
         let (min, max) = sides.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), d| {
