@@ -19,6 +19,9 @@
 //!   with opposite orientations (no gap and no overlap between domains), and each label's surface
 //!   is the frontier of a regular neighbourhood of the nodes it holds: closed and 2-manifold.
 //!   Where three labels meet in a tetrahedron, the edges `(face point, centre)` are triple lines.
+//! * **Islands.** A group of nodes of one label enclosed by nodes of other labels, at none of which
+//!   that label's own indicator is positive, is an artefact of the argmax where several labels meet
+//!   (no section of the label is near): its nodes take the best other label before extraction.
 //! * **Which cubes.** The interfaces are found by flooding from the finest cubes that hold a
 //!   contour vertex of any label and the cubes where the one-material indicator changes sign (its
 //!   octree, as for one label), through cube faces whose corners do not all agree. An interface
@@ -131,7 +134,9 @@ pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<P
         union: &union,
         labels: &indicators,
     };
-    let (nodes, cubes) = report.time("flood", || flood(&values, seeds));
+    let (mut nodes, cubes) = report.time("flood", || flood(&values, seeds));
+    let islands = report.time("islands", || relabel_islands(&grid, &mut nodes));
+    report.count("implicit_islands_relabelled", islands);
     report.count("implicit_depth", grid.depth as u64);
     report.count("implicit_label_nodes", nodes.len() as u64);
     report.count("implicit_interface_cubes", cubes.len() as u64);
@@ -251,6 +256,85 @@ fn flood(values: &Values, seeds: Vec<[u32; 3]>) -> (IntMap<u64, Node>, Vec<[u32;
     }
     interface.sort_unstable();
     (nodes, interface)
+}
+
+/// The neighbours of a node along the edges of the Freudenthal tetrahedra (the axes, the face
+/// diagonals (1,1,0), (1,0,1), (0,1,1) and the main diagonal, both ways).
+const NEIGHBOURS: [[i64; 3]; 14] = [
+    [1, 0, 0],
+    [-1, 0, 0],
+    [0, 1, 0],
+    [0, -1, 0],
+    [0, 0, 1],
+    [0, 0, -1],
+    [1, 1, 0],
+    [-1, -1, 0],
+    [1, 0, 1],
+    [-1, 0, -1],
+    [0, 1, 1],
+    [0, -1, -1],
+    [1, 1, 1],
+    [-1, -1, -1],
+];
+
+/// Islands: connected groups of nodes of one label (through Freudenthal edges) whose every
+/// neighbour has been evaluated (so the group is enclosed by other labels, not the band around a
+/// larger domain) and at none of whose nodes the label's own indicator is positive: no section of
+/// the label is near (argmax leaves them where several labels meet, every indicator negative). Each takes, node by node, the
+/// best of the other labels. Returns how many groups were relabelled.
+fn relabel_islands(grid: &Grid, nodes: &mut IntMap<u64, Node>) -> u64 {
+    let step = |k: u64, d: [i64; 3]| -> Option<u64> {
+        let i = Grid::unkey(k);
+        let mut j = [0u32; 3];
+        for a in 0..3 {
+            let x = i[a] as i64 + d[a];
+            if x < 0 || x > grid.cubes[a] as i64 {
+                return None;
+            }
+            j[a] = x as u32;
+        }
+        Some(Grid::key(j))
+    };
+    let mut keys: Vec<u64> = nodes.keys().copied().collect();
+    keys.sort_unstable();
+    let mut seen: IntSet<u64> = IntSet::default();
+    let mut islands = 0;
+    for &start in &keys {
+        if !seen.insert(start) {
+            continue;
+        }
+        let label = nodes[&start].label;
+        let mut group = vec![start];
+        let (mut enclosed, mut witness) = (true, false);
+        let mut at = 0;
+        while at < group.len() {
+            let k = group[at];
+            at += 1;
+            witness |= nodes[&k].values[label] > 0.0;
+            for d in NEIGHBOURS {
+                match step(k, d).and_then(|n| nodes.get(&n).map(|x| (n, x.label))) {
+                    None => enclosed = false,
+                    Some((n, l)) if l == label && seen.insert(n) => group.push(n),
+                    _ => {}
+                }
+            }
+        }
+        if !enclosed || witness {
+            continue;
+        }
+        islands += 1;
+        for k in group {
+            let node = nodes.get_mut(&k).expect("evaluated");
+            let mut best = usize::from(label == 0);
+            for (i, &v) in node.values.iter().enumerate() {
+                if i != label && v > node.values[best] {
+                    best = i;
+                }
+            }
+            node.label = best;
+        }
+    }
+    islands
 }
 
 /// The sign of the permutation `p` of 0..4.
