@@ -634,6 +634,133 @@ fn compact(positions: &[[f64; 3]], tris: &[[u32; 3]]) -> TriMesh {
 mod tests {
     use super::*;
 
+    /// Every node of a 4³-cube grid label 1, the centre label 2 with `centre` values.
+    fn grid_with_centre(centre: Vec<f64>) -> (Grid, IntMap<u64, Node>) {
+        let grid = Grid::new([0.0; 3], [1.0; 3], 2);
+        let mut nodes = IntMap::default();
+        for x in 0..5 {
+            for y in 0..5 {
+                for z in 0..5 {
+                    let node = if [x, y, z] == [2, 2, 2] {
+                        Node {
+                            values: centre.clone(),
+                            label: 2,
+                        }
+                    } else {
+                        Node {
+                            values: vec![-1.0, 0.5, -0.5],
+                            label: 1,
+                        }
+                    };
+                    nodes.insert(Grid::key([x, y, z]), node);
+                }
+            }
+        }
+        (grid, nodes)
+    }
+
+    #[test]
+    fn an_enclosed_group_whose_own_indicator_is_negative_is_an_island() {
+        let (grid, mut nodes) = grid_with_centre(vec![-1.0, -0.3, -0.2]);
+        assert_eq!(relabel_islands(&grid, &mut nodes), 1);
+        assert_eq!(nodes[&Grid::key([2, 2, 2])].label, 1);
+        // its own indicator positive somewhere: witnessed, kept
+        let (grid, mut nodes) = grid_with_centre(vec![-1.0, -0.3, 0.1]);
+        assert_eq!(relabel_islands(&grid, &mut nodes), 0);
+        assert_eq!(nodes[&Grid::key([2, 2, 2])].label, 2);
+        // a neighbour not evaluated: the band around something larger, kept
+        let (grid, mut nodes) = grid_with_centre(vec![-1.0, -0.3, -0.2]);
+        nodes.remove(&Grid::key([3, 3, 3]));
+        assert_eq!(relabel_islands(&grid, &mut nodes), 0);
+    }
+
+    /// Signed volume of a closed triangle mesh.
+    fn volume(m: &TriMesh) -> f64 {
+        m.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| m.vertices[v as usize]);
+                (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                    + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                    / 6.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn three_labels_meeting_make_closed_oriented_surfaces_sharing_their_interfaces() {
+        // 5³ nodes; the box's boundary exterior; inside, label by x (1, 2) and for x = 3 by y
+        // (3 where y = 1, else 1 again), so three labels and the exterior meet along lines
+        let grid = Grid::new([0.0; 3], [1.0; 3], 2);
+        let mut nodes = IntMap::default();
+        let mut cubes = Vec::new();
+        for x in 0..5u32 {
+            for y in 0..5u32 {
+                for z in 0..5u32 {
+                    let inner = [x, y, z].iter().all(|&c| (1..4).contains(&c));
+                    let label: usize = match (inner, x, y) {
+                        (false, ..) => 0,
+                        (true, 1, _) => 1,
+                        (true, 2, _) => 2,
+                        (true, _, 1) => 3,
+                        _ => 1,
+                    };
+                    // own value 0.6, the others graded by position so the roots vary
+                    let values = (0..4)
+                        .map(|l| {
+                            if l == label {
+                                0.6
+                            } else {
+                                -0.2 - 0.1 * ((x as usize + y as usize + z as usize + l) % 3) as f64
+                            }
+                        })
+                        .collect();
+                    nodes.insert(Grid::key([x, y, z]), Node { values, label });
+                    if x < 4 && y < 4 && z < 4 {
+                        cubes.push([x, y, z]);
+                    }
+                }
+            }
+        }
+        let p = extract(&grid, &nodes, &cubes, &[1, 2, 3]);
+        for (i, s) in p.surfaces.iter().enumerate() {
+            let mut directed: std::collections::HashMap<(u32, u32), i32> = Default::default();
+            for t in &s.triangles {
+                for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                    *directed.entry((a, b)).or_default() += 1;
+                }
+            }
+            for (&(a, b), &n) in &directed {
+                assert_eq!(
+                    n,
+                    1,
+                    "label {}: edge ({a}, {b}) used {n} times one way",
+                    i + 1
+                );
+                assert_eq!(
+                    directed.get(&(b, a)),
+                    Some(&1),
+                    "label {}: open edge",
+                    i + 1
+                );
+            }
+            assert!(volume(s) > 0.0, "label {}: volume {}", i + 1, volume(s));
+        }
+        // the interfaces are shared: every network triangle is in both labels' surfaces
+        let pairs: std::collections::HashSet<[i32; 2]> =
+            p.interface_labels.iter().copied().collect();
+        for want in [[0, 1], [0, 2], [0, 3], [1, 2], [2, 3], [1, 3]] {
+            assert!(pairs.contains(&want), "no interface {want:?}: {pairs:?}");
+        }
+        let total: usize = p.surfaces.iter().map(|s| s.triangles.len()).sum();
+        let exterior = p
+            .interface_labels
+            .iter()
+            .filter(|l| l[0] == EXTERIOR)
+            .count();
+        assert_eq!(total, 2 * p.interface_labels.len() - exterior);
+    }
+
     #[test]
     fn every_freudenthal_tetrahedron_has_an_orientation() {
         for t in TETS {
