@@ -6,7 +6,8 @@
 
 Sections come from `.csl`/`.json` files (`read`) or numpy arrays (`sections_from_arrays`); both
 are validated and repaired by the Rust library as the command line does. `reconstruct` takes the
-options of `slice2solid reconstruct`; `check` and `compare` are the library's measuring
+options of `slice2solid reconstruct`; `reconstruct_all_labels` every label at once as a partition
+of space (implicit method, `--all-labels`); `check` and `compare` are the library's measuring
 instruments on numpy meshes. Errors are `slice2solid.Error` subclasses (`InputError` keeps the
 library's location text, also as `.location` and `.reason`).
 """
@@ -22,6 +23,7 @@ from ._slice2solid import (
     compare,
     read,
     reconstruct,
+    reconstruct_all_labels,
     sections_from_arrays,
 )
 
@@ -36,5 +38,6 @@ __all__ = [
     "compare",
     "read",
     "reconstruct",
+    "reconstruct_all_labels",
     "sections_from_arrays",
 ]

@@ -8,6 +8,7 @@ use pyo3::prelude::*;
 
 mod arrays;
 mod measure;
+mod partition;
 mod sections;
 mod solid;
 
@@ -71,6 +72,7 @@ fn _slice2solid(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sections::read, m)?)?;
     m.add_function(wrap_pyfunction!(sections::sections_from_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(solid::reconstruct, m)?)?;
+    m.add_function(wrap_pyfunction!(partition::reconstruct_all_labels, m)?)?;
     m.add_function(wrap_pyfunction!(measure::check, m)?)?;
     m.add_function(wrap_pyfunction!(measure::compare, m)?)?;
     Ok(())

@@ -98,3 +98,27 @@ def test_the_engine_runs_without_the_gil(eight):
     margin = 0.2 * (end - start)
     inside = [s for s in stamps if start + margin < s < end - margin]
     assert len(inside) > 100, f"{len(inside)} iterations during {end - start:.3f} s of reconstruct"
+
+
+def test_all_labels_is_a_partition():
+    """The shipped multi-label example through reconstruct_all_labels: a closed surface per label,
+    the interfaces shared (every network triangle between the two labels is in both surfaces,
+    opposite orientation), and the check of each surface closed."""
+    import pathlib
+
+    path = pathlib.Path(__file__).resolve().parents[2] / "data" / "nested_fan.csl"
+    p = slice2solid.reconstruct_all_labels(slice2solid.read(path), depth=6)
+    assert p["labels"] == [1, 2]
+    for label in (1, 2):
+        v, f = p["surfaces"][label]
+        mesh = trimesh.Trimesh(v, f, process=False)
+        assert mesh.is_watertight and mesh.is_winding_consistent and mesh.volume > 0
+    v, f = p["interface"]
+    pairs = p["interface_labels"]
+    assert pairs.shape == (len(f), 2)
+    between = f[(pairs[:, 0] == 1) & (pairs[:, 1] == 2)]
+    assert len(between) > 0
+    core_v, core_f = p["surfaces"][1]
+    core = {tuple(sorted(map(tuple, core_v[t]))) for t in core_f}
+    assert all(tuple(sorted(map(tuple, v[t]))) in core for t in between)
+    assert p["report"]["method"] == "implicit"
