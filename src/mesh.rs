@@ -9,6 +9,25 @@ pub struct TriMesh {
 }
 
 impl TriMesh {
+    /// The triangles `tris` over `positions`, keeping only the vertices they use, in increasing
+    /// index.
+    pub fn with_used_vertices(positions: &[[f64; 3]], tris: &[[u32; 3]]) -> TriMesh {
+        let mut used = vec![false; positions.len()];
+        for &v in tris.iter().flatten() {
+            used[v as usize] = true;
+        }
+        let mut index = vec![u32::MAX; positions.len()];
+        let mut vertices = Vec::new();
+        for (v, _) in used.iter().enumerate().filter(|(_, &u)| u) {
+            index[v] = vertices.len() as u32;
+            vertices.push(positions[v]);
+        }
+        TriMesh {
+            vertices,
+            triangles: tris.iter().map(|t| t.map(|v| index[v as usize])).collect(),
+        }
+    }
+
     /// Why this mesh cannot be measured, if it cannot: a triangle index past the vertices or a
     /// coordinate that is not finite (meshes made by callers, e.g. from arrays, not read from files).
     pub fn problem(&self) -> Option<String> {

@@ -23,17 +23,7 @@ const DEPTH: u32 = 7;
 fn area(m: &TriMesh) -> f64 {
     m.triangles
         .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|v| m.vertices[v as usize]);
-            let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-            let w = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-            let n = [
-                u[1] * w[2] - u[2] * w[1],
-                u[2] * w[0] - u[0] * w[2],
-                u[0] * w[1] - u[1] * w[0],
-            ];
-            0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
-        })
+        .map(|t| slice2solid::geom::triangle_area(t.map(|v| m.vertices[v as usize])))
         .sum()
 }
 

@@ -220,7 +220,7 @@ pub fn assemble(
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;
     out.singular_vertices = vertices;
-    out.surface = compact_surface(&positions, &boundary);
+    out.surface = TriMesh::with_used_vertices(&positions, &boundary);
     // TetMesh wants positive volume (orient3d < 0): swap two vertices
     out.tets = TetMesh {
         vertices: positions,
@@ -569,22 +569,6 @@ pub(super) fn singular_sets_after(tets: &[[u32; 4]], before: Sets, touched: &[u3
 pub fn singularities(tris: &[[u32; 3]]) -> (u64, u64) {
     let (edges, vertices) = super::fill::singular_simplices(tris);
     (edges.len() as u64, vertices.len() as u64)
-}
-
-/// The surface with only the vertices it uses, in increasing global id.
-fn compact_surface(positions: &[[f64; 3]], tris: &[[u32; 3]]) -> TriMesh {
-    let mut used: Vec<u32> = tris.iter().flatten().copied().collect();
-    used.sort_unstable();
-    used.dedup();
-    let index: FxHashMap<u32, u32> = used
-        .iter()
-        .enumerate()
-        .map(|(i, &g)| (g, i as u32))
-        .collect();
-    TriMesh {
-        vertices: used.iter().map(|&g| positions[g as usize]).collect(),
-        triangles: tris.iter().map(|t| t.map(|v| index[&v])).collect(),
-    }
 }
 
 #[cfg(test)]

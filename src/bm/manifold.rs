@@ -77,20 +77,7 @@ pub fn resolve(
     let start = known.unwrap_or_else(|| super::fill::singular_simplices(&l.boundary()));
     let mut work: Vec<u32> = start.1.clone();
     work.extend(start.0.iter().flat_map(|&(a, b)| [a, b]));
-    for _ in 0..SET_PASSES {
-        let left = l.toggle_singles(work, max_toggles, &mut stats);
-        // local minima of single toggles: a strip of gap tetrahedra joining two fans at a
-        // pinched vertex, or the smallest fan's tetrahedra removed
-        work = Vec::new();
-        for v in left {
-            if l.fans_at(v) > 1 && l.join_or_carve(v, &mut stats) {
-                work.push(v);
-            }
-        }
-        if work.is_empty() {
-            break;
-        }
-    }
+    l.toggle_rounds(work, SET_PASSES, max_toggles, &mut stats);
     let mut touched = std::mem::take(&mut l.touched);
     touched.sort_unstable();
     touched.dedup();
@@ -166,6 +153,31 @@ impl<'a> Labelled<'a> {
             }
         }
         (kept, fillable, external)
+    }
+
+    /// Up to `passes` rounds of single toggles from `work` (at most `max_toggles` in all), each
+    /// followed, at every pinched vertex left, by the way out of a local minimum of single
+    /// toggles: a strip of gap tetrahedra joining two fans, or the smallest fan's tetrahedra
+    /// removed; the next round starts at the vertices so changed, until there are none.
+    fn toggle_rounds(
+        &mut self,
+        mut work: Vec<u32>,
+        passes: usize,
+        max_toggles: usize,
+        stats: &mut ToggleStats,
+    ) {
+        for _ in 0..passes {
+            let left = self.toggle_singles(work, max_toggles, stats);
+            work = Vec::new();
+            for v in left {
+                if self.fans_at(v) > 1 && self.join_or_carve(v, stats) {
+                    work.push(v);
+                }
+            }
+            if work.is_empty() {
+                break;
+            }
+        }
     }
 
     /// Single toggles around the vertices of `work` (and those they touch) while they lower the

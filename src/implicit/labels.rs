@@ -27,7 +27,7 @@
 //!   octree, as for one label), through cube faces whose corners do not all agree. An interface
 //!   that touches no plane and no one-material surface cube is not found (as for one label).
 use super::extract::TETS;
-use super::octree::{corner, Field, Grid, IntMap, IntSet, Refinement};
+use super::octree::{corner, Field, Grid, IntMap, IntSet, Refinement, CUBE_FACES};
 use super::{contour_points, indicator::Indicator};
 use crate::arrangement::{Arrangement, CellScope};
 use crate::error::{Error, Result};
@@ -189,16 +189,6 @@ impl Values<'_> {
         Node { values, label }
     }
 }
-
-/// The six faces of a cube: axis, side, the corners on it.
-const CUBE_FACES: [(usize, u32, [usize; 4]); 6] = [
-    (0, 0, [0, 2, 4, 6]),
-    (0, 1, [1, 3, 5, 7]),
-    (1, 0, [0, 1, 4, 5]),
-    (1, 1, [2, 3, 6, 7]),
-    (2, 0, [0, 1, 2, 3]),
-    (2, 1, [4, 5, 6, 7]),
-];
 
 /// From `seeds`, every finest cube whose corners do not all take one label, reached through cube
 /// faces whose corners do not all agree; the nodes evaluated on the way.
@@ -602,32 +592,15 @@ fn assemble(
     }
     let surfaces = per_label[1..]
         .iter()
-        .map(|tris| compact(&positions, tris))
+        .map(|tris| TriMesh::with_used_vertices(&positions, tris))
         .collect();
     Partition {
         labels: Vec::new(),
         surfaces,
-        interfaces: compact(&positions, &network),
+        interfaces: TriMesh::with_used_vertices(&positions, &network),
         interface_labels: pairs,
         report: Report::default(),
     }
-}
-
-/// The triangles `tris` over only the vertices they use.
-fn compact(positions: &[[f64; 3]], tris: &[[u32; 3]]) -> TriMesh {
-    let mut map = vec![u32::MAX; positions.len()];
-    let mut mesh = TriMesh::default();
-    for t in tris {
-        let t = t.map(|v| {
-            if map[v as usize] == u32::MAX {
-                map[v as usize] = mesh.vertices.len() as u32;
-                mesh.vertices.push(positions[v as usize]);
-            }
-            map[v as usize]
-        });
-        mesh.triangles.push(t);
-    }
-    mesh
 }
 
 #[cfg(test)]

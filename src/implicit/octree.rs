@@ -134,6 +134,16 @@ pub fn corner(i: [u32; 3], s: u32, c: usize) -> [u32; 3] {
     ]
 }
 
+/// The six faces of a cube: axis, side (0 low, 1 high), the corners on it (bits x=1, y=2, z=4).
+pub const CUBE_FACES: [(usize, u32, [usize; 4]); 6] = [
+    (0, 0, [0, 2, 4, 6]),
+    (0, 1, [1, 3, 5, 7]),
+    (1, 0, [0, 1, 4, 5]),
+    (1, 1, [2, 3, 6, 7]),
+    (2, 0, [0, 1, 2, 3]),
+    (2, 1, [4, 5, 6, 7]),
+];
+
 pub fn is_inside(v: f64) -> bool {
     v > 0.0
 }
@@ -401,15 +411,6 @@ impl Field {
                 frontier.push(i);
             }
         }
-        // Faces of a cube as (axis, side, corner list).
-        const FACES: [(usize, u32, [usize; 4]); 6] = [
-            (0, 0, [0, 2, 4, 6]),
-            (0, 1, [1, 3, 5, 7]),
-            (1, 0, [0, 1, 4, 5]),
-            (1, 1, [2, 3, 6, 7]),
-            (2, 0, [0, 1, 2, 3]),
-            (2, 1, [4, 5, 6, 7]),
-        ];
         while !frontier.is_empty() {
             let keys: Vec<u64> = frontier
                 .iter()
@@ -430,7 +431,7 @@ impl Field {
                     continue;
                 }
                 self.surface_cubes.push(i);
-                for (axis, side, cs) in FACES {
+                for (axis, side, cs) in CUBE_FACES {
                     let fi = cs.iter().filter(|&&c| inside[c]).count();
                     if fi == 0 || fi == 4 {
                         continue;

@@ -166,20 +166,8 @@ impl Labelled<'_> {
     fn repair_after_unfold(&mut self, set: &[u32], flat: &Flat, stats: &mut ToggleStats) -> bool {
         let (touched, logged) = (self.touched.len(), self.log.len());
         let mut scratch = ToggleStats::default();
-        let mut work: Vec<u32> = set.iter().flat_map(|&t| self.tets[t as usize]).collect();
-        for _ in 0..REPAIR_PASSES {
-            let left = self.toggle_singles(work, REPAIR_TOGGLES, &mut scratch);
-            // each pinched vertex left: join its fans by a strip or carve the smallest
-            work = Vec::new();
-            for v in left {
-                if self.fans_at(v) > 1 && self.join_or_carve(v, &mut scratch) {
-                    work.push(v);
-                }
-            }
-            if work.is_empty() {
-                break;
-            }
-        }
+        let work: Vec<u32> = set.iter().flat_map(|&t| self.tets[t as usize]).collect();
+        self.toggle_rounds(work, REPAIR_PASSES, REPAIR_TOGGLES, &mut scratch);
         // everything toggled since before `set` was
         let mut changed: Vec<u32> = self.log[logged..].to_vec();
         changed.extend_from_slice(set);

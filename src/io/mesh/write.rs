@@ -30,27 +30,7 @@ pub fn to_off_string(mesh: &TriMesh) -> String {
 
 /// Binary little-endian PLY: vertex `double x y z`, face `list uchar int vertex_indices`.
 pub fn to_ply_bytes(mesh: &TriMesh) -> Vec<u8> {
-    let header = format!(
-        "ply\nformat binary_little_endian 1.0\ncomment slice2solid\nelement vertex {}\n\
-         property double x\nproperty double y\nproperty double z\nelement face {}\n\
-         property list uchar int vertex_indices\nend_header\n",
-        mesh.vertices.len(),
-        mesh.triangles.len()
-    );
-    let mut b = header.into_bytes();
-    b.reserve(24 * mesh.vertices.len() + 13 * mesh.triangles.len());
-    for p in &mesh.vertices {
-        for c in p {
-            b.extend_from_slice(&c.to_le_bytes());
-        }
-    }
-    for t in &mesh.triangles {
-        b.push(3);
-        for &i in t {
-            b.extend_from_slice(&(i as i32).to_le_bytes());
-        }
-    }
-    b
+    ply_bytes(mesh, "slice2solid", None)
 }
 
 /// Binary PLY whose faces carry two int properties `label0 label1`: the labels on a triangle's back
@@ -62,27 +42,37 @@ pub fn to_labelled_ply_bytes(mesh: &TriMesh, labels: &[[i32; 2]]) -> Vec<u8> {
         mesh.triangles.len(),
         "one label pair per triangle"
     );
+    ply_bytes(mesh, "slice2solid interface network", Some(labels))
+}
+
+/// Binary little-endian PLY with `comment`, and with `labels`, two int face properties.
+fn ply_bytes(mesh: &TriMesh, comment: &str, labels: Option<&[[i32; 2]]>) -> Vec<u8> {
+    let label_properties = if labels.is_some() {
+        "property int label0\nproperty int label1\n"
+    } else {
+        ""
+    };
     let header = format!(
-        "ply\nformat binary_little_endian 1.0\ncomment slice2solid interface network\n\
-         element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
-         element face {}\nproperty list uchar int vertex_indices\nproperty int label0\n\
-         property int label1\nend_header\n",
+        "ply\nformat binary_little_endian 1.0\ncomment {comment}\nelement vertex {}\n\
+         property double x\nproperty double y\nproperty double z\nelement face {}\n\
+         property list uchar int vertex_indices\n{label_properties}end_header\n",
         mesh.vertices.len(),
         mesh.triangles.len()
     );
+    let face_bytes = if labels.is_some() { 21 } else { 13 };
     let mut b = header.into_bytes();
-    b.reserve(24 * mesh.vertices.len() + 21 * mesh.triangles.len());
+    b.reserve(24 * mesh.vertices.len() + face_bytes * mesh.triangles.len());
     for p in &mesh.vertices {
         for c in p {
             b.extend_from_slice(&c.to_le_bytes());
         }
     }
-    for (t, l) in mesh.triangles.iter().zip(labels) {
+    for (k, t) in mesh.triangles.iter().enumerate() {
         b.push(3);
         for &i in t {
             b.extend_from_slice(&(i as i32).to_le_bytes());
         }
-        for &x in l {
+        for &x in labels.map_or(&[][..], |l| &l[k][..]) {
             b.extend_from_slice(&x.to_le_bytes());
         }
     }
