@@ -193,7 +193,6 @@ impl Values<'_> {
 /// From `seeds`, every finest cube whose corners do not all take one label, reached through cube
 /// faces whose corners do not all agree; the nodes evaluated on the way.
 fn flood(values: &Values, seeds: Vec<[u32; 3]>) -> (IntMap<u64, Node>, Vec<[u32; 3]>) {
-    let cubes_n = values.grid.cubes;
     let mut nodes: IntMap<u64, Node> = IntMap::default();
     let mut visited: IntSet<u64> = IntSet::default();
     let mut frontier: Vec<[u32; 3]> = seeds
@@ -226,19 +225,10 @@ fn flood(values: &Values, seeds: Vec<[u32; 3]>) -> (IntMap<u64, Node>, Vec<[u32;
                 if face.iter().all(|&k| label(k) == label(face[0])) {
                     continue;
                 }
-                let mut n = c;
-                if side == 1 {
-                    n[axis] += 1;
-                    if n[axis] >= cubes_n[axis] {
-                        continue;
+                if let Some(n) = values.grid.face_neighbour(c, axis, side) {
+                    if visited.insert(Grid::key(n)) {
+                        next.push(n);
                     }
-                } else if n[axis] == 0 {
-                    continue;
-                } else {
-                    n[axis] -= 1;
-                }
-                if visited.insert(Grid::key(n)) {
-                    next.push(n);
                 }
             }
         }

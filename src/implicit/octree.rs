@@ -88,6 +88,21 @@ impl Grid {
             self.origin[2] + i[2] as f64 * self.h,
         ]
     }
+    /// The finest cube across face (`axis`, `side`: 0 low, 1 high) of finest cube `c`, if inside
+    /// the grid.
+    pub fn face_neighbour(&self, c: [u32; 3], axis: usize, side: u32) -> Option<[u32; 3]> {
+        let mut n = c;
+        if side == 0 {
+            n[axis] = n[axis].checked_sub(1)?;
+        } else {
+            n[axis] += 1;
+            if n[axis] >= self.cubes[axis] {
+                return None;
+            }
+        }
+        Some(n)
+    }
+
     /// The finest cube holding `p` (clamped to the grid).
     pub fn cube_of(&self, p: [f64; 3]) -> [u32; 3] {
         let mut c = [0u32; 3];
@@ -403,7 +418,6 @@ impl Field {
         seeds: Vec<[u32; 3]>,
         progress: &dyn Fn(&str, u64),
     ) {
-        let cubes = self.grid.cubes;
         let mut visited: IntSet<u64> = IntSet::default();
         let mut frontier = Vec::new();
         for i in active.into_iter().chain(seeds) {
@@ -436,20 +450,10 @@ impl Field {
                     if fi == 0 || fi == 4 {
                         continue;
                     }
-                    let mut nb = i;
-                    if side == 0 {
-                        if nb[axis] == 0 {
-                            continue;
+                    if let Some(nb) = self.grid.face_neighbour(i, axis, side) {
+                        if visited.insert(Grid::key(nb)) {
+                            next.push(nb);
                         }
-                        nb[axis] -= 1;
-                    } else {
-                        nb[axis] += 1;
-                        if nb[axis] >= cubes[axis] {
-                            continue;
-                        }
-                    }
-                    if visited.insert(Grid::key(nb)) {
-                        next.push(nb);
                     }
                 }
             }
