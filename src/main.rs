@@ -119,7 +119,7 @@ pub struct ReconstructArgs {
     #[arg(long, default_value_t = slice2solid::COLLAR_HEIGHT, value_name = "H")]
     pub collar: f64,
     /// Delaunay method: keep the raw Boissonnat–Memari topology (by default, voids between the
-    /// planes that no section witnesses are filled)
+    /// planes and handles that no section witnesses are filled and closed)
     #[arg(long)]
     pub keep_topology: bool,
     /// Delaunay method: each cell inserts its own diagram samples only, not those of the other

@@ -45,7 +45,8 @@ pub struct DelaunayOptions {
     /// differently (counted as `nonconforming_faces`, warned): to study what sharing contributes.
     pub shared_samples: bool,
     /// Keep the raw Boissonnat–Memari topology: voids between the planes that no section witnesses
-    /// are otherwise taken into the solid (`bm::voids`).
+    /// are otherwise taken into the solid (`bm::voids`), and handles that none witnesses closed by
+    /// membranes of tetrahedra (`bm::tunnels`).
     pub keep_topology: bool,
     /// Height of the collar, relative to the bounding-box diagonal (0: none): near every plane the
     /// solid is the prism over its section (`bm::collar`), so that sections just off a plane are the

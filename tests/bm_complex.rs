@@ -123,7 +123,8 @@ fn the_solid_is_the_boundary_of_one_conforming_complex() {
 
 /// Voids between the planes that no section witnesses are filled by default; `keep_topology`
 /// keeps the raw result, where hand's boundary has 2 such bubbles (negative volume) besides the
-/// solid, and the solid is otherwise the same (same sections, same genus of the main component).
+/// solid, and the solid is otherwise the same but for the membranes that close the handles no
+/// section witnesses (same sections, a lower genus of the main component by default).
 /// (12 while gaps at singular edges were only grown into by whole tetrahedra, which enclosed
 /// bubbles far from the edges.)
 #[test]
@@ -147,8 +148,11 @@ fn unwitnessed_voids_are_filled_unless_the_raw_topology_is_kept() {
         .filter(|&v| v < 0.0)
         .collect();
     assert_eq!(voids.len(), 2);
+    // what the default adds beyond the voids: the membranes closing unwitnessed handles
+    // (`bm::tunnels`), a sliver of the volume (today 2.4e-3 of it)
     let gap = f.volume - (r.volume - voids.iter().sum::<f64>());
-    assert!(gap.abs() < 1e-12, "{gap}");
+    assert!(gap > 0.0 && gap < 3e-3 * f.volume, "{gap} of {}", f.volume);
+    assert!(filled.report.counts["tunnels_closed"] > 0);
     let main = |c: &slice2solid::eval::check::CheckReport| {
         c.component_details
             .iter()
@@ -156,7 +160,7 @@ fn unwitnessed_voids_are_filled_unless_the_raw_topology_is_kept() {
             .unwrap()
             .genus
     };
-    assert_eq!(main(&f), main(&r));
+    assert!(main(&f) < main(&r), "{:?} {:?}", main(&f), main(&r));
     for c in [&f, &r] {
         assert!(c.closed && c.manifold && c.self_intersections == 0);
         assert!(c.worst_section.as_ref().unwrap().relative < 1e-9);

@@ -51,6 +51,8 @@ pub struct Assembled {
     pub carved: super::carve::CarveStats,
     /// Slivers on the outer boundary of the cells' triangulations, taken out (`refine`).
     pub hull_slivers: u64,
+    /// Handles no section witnesses, closed by membranes of step-1 survivors (`tunnels`).
+    pub tunnels: super::tunnels::TunnelStats,
     /// The prisms over the sections near every plane (`collar`).
     pub collar: super::collar::CollarStats,
     /// Wall-clock seconds of each stage of the assembly, in order.
@@ -119,6 +121,11 @@ pub(super) fn global_maps(
 /// bounding-box diagonal; at most halfway along an edge).
 const GROW_ROUNDS: usize = 8;
 pub const SINGULAR_GROWTH: f64 = 1e-3;
+
+/// Points that settling a tunnel's membrane adds keep at least this distance (relative to the
+/// diagonal) from the other vertices of their tetrahedra: twice what the shared files' tests
+/// demand of any constructed point, above the closest input contour vertices' 7.6e-8.
+const TUNNEL_MIN_GAP: f64 = 1e-7;
 
 /// Tetrahedra flatter than this (relative to the diagonal) fold ∂K flat where three or four of
 /// their faces are on it (`manifold::close_flat_folds`): 10× the tolerance at which `check`
@@ -203,6 +210,16 @@ pub fn assemble(
     laps.lap("voids_again");
     out.folds_closed = super::manifold::close_flat_folds(&mut k, &nonconforming, FLAT_FOLD * diag);
     laps.lap("flat_folds");
+    if fill_voids {
+        let on_hole = hole_vertices(results, &maps, k.positions.len());
+        let settle = super::tunnels::Settle {
+            growth_rounds: GROW_ROUNDS,
+            growth_distance: SINGULAR_GROWTH * diag,
+            min_gap: TUNNEL_MIN_GAP * diag,
+        };
+        out.tunnels = super::tunnels::close(&mut k, &on_hole, settle);
+    }
+    laps.lap("tunnels");
     let mut boundary = None;
     if collar > 0.0 {
         let max_shift = super::collar::MAX_SHIFT_PER_HEIGHT * collar * diag;
@@ -229,6 +246,39 @@ pub fn assemble(
     laps.lap("surface");
     out.stage_seconds = laps.laps;
     out
+}
+
+/// Per global vertex: whether it lies on a hole of a section (a loop of a face's section whose
+/// orientation is opposite to the face's largest loop, which is an outer boundary).
+fn hole_vertices(results: &[Option<CellResult>], maps: &[Vec<u32>], n: usize) -> Vec<bool> {
+    let mut on_hole = vec![false; n];
+    for (c, r) in results.iter().enumerate() {
+        let Some(input) = r.as_ref().and_then(|r| r.input.as_ref()) else {
+            continue;
+        };
+        for slot in &input.slots {
+            let area = |l: &Vec<u32>| {
+                let pts: Vec<[f64; 2]> = l.iter().map(|&v| slot.uv[v as usize]).collect();
+                crate::sections::polygon_signed_area(&pts)
+            };
+            let areas: Vec<f64> = slot.loops.iter().map(area).collect();
+            let Some(outer) = areas
+                .iter()
+                .copied()
+                .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+            else {
+                continue;
+            };
+            for (l, a) in slot.loops.iter().zip(&areas) {
+                if a * outer < 0.0 {
+                    for &v in l {
+                        on_hole[maps[c][v as usize] as usize] = true;
+                    }
+                }
+            }
+        }
+    }
+    on_hole
 }
 
 /// Singular edges and pinched vertices of ∂K: filled with whole step-1 survivors where a gap of

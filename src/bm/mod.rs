@@ -12,7 +12,8 @@
 //! tags) + prune (`prune`, steps 1–3) → `assembly`: the kept tetrahedra as one complex; flat zones
 //! get slabs of tetrahedra (`slab`), singular edges and pinched vertices are filled (`fill`), grown
 //! into (`refine`, `singular`) or toggled away (`manifold`), enclosed voids no section witnesses
-//! are filled (`voids`), never by moving a vertex.
+//! are filled (`voids`) and handles none witnesses closed by membranes of tetrahedra (`tunnels`),
+//! never by moving a vertex.
 //!
 //! Decisions (see each module's doc): flat tets (four vertices on one plane by tags) are left out in
 //! the cells; tet types by the tag rule in `classify`; step 3 uses the paper's face-count rule plus
@@ -48,6 +49,7 @@ pub mod refine;
 pub mod shared_samples;
 pub mod singular;
 pub mod slab;
+pub mod tunnels;
 pub mod voids;
 
 use crate::arrangement::Arrangement;
@@ -505,6 +507,13 @@ fn assemble_cells(
     report.count("pinches_not_carved", k.carved.refused);
     report.count("voids_filled", k.voids.voids_filled);
     report.count("void_tets_filled", k.voids.tets_filled);
+    report.count("tunnel_candidates", k.tunnels.candidates);
+    report.count("tunnel_membranes", k.tunnels.membranes);
+    report.count("tunnels_closed", k.tunnels.tunnels_closed);
+    report.count("tunnel_membranes_refused", k.tunnels.membranes_refused);
+    report.count("tunnel_batches_undone", k.tunnels.batches_undone);
+    report.count("tunnel_membranes_untested", k.tunnels.membranes_untested);
+    report.count("tunnel_tets_added", k.tunnels.tets_added);
     report.count("collar_cells", k.collar.cells);
     report.count("collar_cells_refused", k.collar.cells_refused);
     report.count("collar_prisms", k.collar.prisms);
@@ -522,6 +531,17 @@ fn assemble_cells(
         report
             .values
             .insert(format!("assembly_seconds.{stage}"), *secs);
+    }
+    if k.tunnels.skipped_singular {
+        report.warnings.push(
+            "tunnels: handles that no section witnesses are left open (the boundary of the complex is not a manifold)".into(),
+        );
+    }
+    if k.tunnels.membranes_untested > 0 {
+        report.warnings.push(format!(
+            "tunnels: {} membranes closing handles no section witnesses were not tried (the budget of batches ran out): those handles stay",
+            k.tunnels.membranes_untested
+        ));
     }
     if k.collar.cells_left_singular > 0 {
         report.warnings.push(format!(

@@ -156,7 +156,7 @@ fn grow_round(
 
 /// A copy of what growth changes in a triangulation.
 #[derive(Default)]
-pub(super) struct Snapshot {
+pub(crate) struct Snapshot {
     positions: Vec<[f64; 3]>,
     planes: Vec<Planes>,
     kept: Vec<[u32; 4]>,
@@ -166,7 +166,7 @@ pub(super) struct Snapshot {
 }
 
 impl Snapshot {
-    pub(super) fn of(t: &Triangulation) -> Snapshot {
+    pub(crate) fn of(t: &Triangulation) -> Snapshot {
         Snapshot {
             positions: t.positions.clone(),
             planes: t.planes.clone(),
@@ -177,7 +177,7 @@ impl Snapshot {
         }
     }
 
-    pub(super) fn restore(self, t: &mut Triangulation) {
+    pub(crate) fn restore(self, t: &mut Triangulation) {
         *t.positions = self.positions;
         *t.planes = self.planes;
         *t.kept = self.kept;

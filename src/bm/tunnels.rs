@@ -1,0 +1,785 @@
+//! Handles that no section witnesses, closed inside the complex (issue 19): K's extra handles
+//! are loops of tetrahedra standing on sections whose other side is empty, so K cannot lose them
+//! (R ∩ P = A); a handle is closed the other way, by a disk of unkept tetrahedra spanning its
+//! tunnel. Such a disk cannot be grown one tetrahedron at a time (every tetrahedron of it but the
+//! last leaves the topology as it is), so it is found by carving instead.
+//!
+//! 1. *Thinning.* Start from S = K ∪ the step-1 survivors (`Triangulation::fillable`: no grounded
+//!    simplex outside its section, so S ∩ P ⊆ A on every plane) and remove survivors one at a time,
+//!    farthest from K first (face steps within S), while a removal cannot create a tunnel or a
+//!    cavity: t goes when X = t ∩ (S − t), a subcomplex of t's boundary sphere, is not the whole
+//!    sphere and each of its components is contractible (Euler characteristic 1). By
+//!    Mayer–Vietoris H₁ and H₂ of S − t then inject into those of S: a removal never adds a handle
+//!    or a cavity; it may cut a handle or split a component. What is left beside K are the
+//!    *membranes*: disks closing tunnels of K that S does not have, where the tunnels are narrowest.
+//! 2. *Witnesses.* A tunnel through a hole of a section is witnessed: the section says the solid
+//!    has a hole there. Survivors with all four vertices on holes of sections (the tube of
+//!    tetrahedra joining a hole to the next plane's hole) are left out of S, so no membrane spans a
+//!    hole.
+//! 3. *Plugs.* A membrane is thin (tetrahedra meeting at edges and vertices): with it, ∂K is not a
+//!    manifold. Membranes are taken into K in batches, each followed by the resolution's fill of
+//!    gaps and growth at singular simplices (which only add); a batch stays when ∂K is then a
+//!    manifold, has no more components (no new cavity) and its genus fell by at least one per
+//!    membrane; otherwise it is undone, and the rest is tried without the membranes next to what
+//!    stayed singular or bounds the new component (they are tried alone after), or else in halves;
+//!    a single membrane that fails is refused (counted). Membranes that add no Euler characteristic
+//!    close nothing of K and are refused unseen; a budget of batches bounds the cost (each is a
+//!    few passes over K), what it leaves untried is counted and warned.
+use super::faces::FaceTable;
+use super::refine::{edge, key4, Triangulation};
+use super::singular::{EdgeGaps, Snapshot};
+use crate::fxhash::{FxHashMap, FxHashSet};
+use crate::mesh::Stars;
+use std::collections::{BinaryHeap, VecDeque};
+
+/// What closing tunnels did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TunnelStats {
+    /// Step-1 survivors in S (those not spanning holes).
+    pub candidates: u64,
+    /// Membranes thinning left, those taken (each closed a handle or more), and those refused.
+    pub membranes: u64,
+    pub tunnels_closed: u64,
+    pub membranes_refused: u64,
+    /// Batches of membranes undone (a refused membrane costs a few).
+    pub batches_undone: u64,
+    /// Membranes not tried: the budget of batches (`TESTS_BASE`) was spent.
+    pub membranes_untested: u64,
+    /// How many tetrahedra K grew by: membranes and what settling added around them.
+    pub tets_added: u64,
+    /// ∂K had singular simplices: nothing was tried.
+    pub skipped_singular: bool,
+    /// Total genus of ∂K before and after (0 when there was nothing to close).
+    pub genus_before: i64,
+    pub genus_after: i64,
+}
+
+/// The faces of a tetrahedron, opposite each local vertex.
+const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+const EDGES: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
+
+/// S during thinning: which tetrahedra are in it and how many of them hold each vertex and edge.
+struct Thinning<'a> {
+    tets: &'a [[u32; 4]],
+    faces: &'a FaceTable,
+    stars: &'a Stars<u32>,
+    in_s: Vec<bool>,
+    vertex_count: Vec<u32>,
+    edge_count: FxHashMap<(u32, u32), u32>,
+}
+
+impl<'a> Thinning<'a> {
+    fn new(
+        tets: &'a [[u32; 4]],
+        faces: &'a FaceTable,
+        stars: &'a Stars<u32>,
+        n_vertices: usize,
+    ) -> Self {
+        let mut vertex_count = vec![0u32; n_vertices];
+        let mut edge_count: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+        for tet in tets {
+            for &v in tet {
+                vertex_count[v as usize] += 1;
+            }
+            for [a, b] in EDGES {
+                *edge_count.entry(edge(tet[a], tet[b])).or_default() += 1;
+            }
+        }
+        Thinning {
+            tets,
+            faces,
+            stars,
+            in_s: vec![true; tets.len()],
+            vertex_count,
+            edge_count,
+        }
+    }
+
+    /// The tetrahedron across face `i` of `t` that is in S.
+    fn across(&self, t: usize, i: usize) -> Option<usize> {
+        let tet = &self.tets[t];
+        let mut f = FACES[i].map(|j| tet[j]);
+        f.sort_unstable();
+        self.faces
+            .owners(&f)
+            .map(|o| o as usize)
+            .find(|&o| o != t && self.in_s[o])
+    }
+
+    /// Whether removing `t` leaves no new tunnel and no new cavity (the module's rule).
+    fn removable(&self, t: usize) -> bool {
+        let tet = &self.tets[t];
+        let face_in: [bool; 4] = std::array::from_fn(|i| self.across(t, i).is_some());
+        if face_in.iter().all(|&b| b) {
+            return false;
+        }
+        let vert_in: [bool; 4] = std::array::from_fn(|i| self.vertex_count[tet[i] as usize] > 1);
+        let edge_in: [bool; 6] = std::array::from_fn(|e| {
+            let [a, b] = EDGES[e];
+            self.edge_count[&edge(tet[a], tet[b])] > 1
+        });
+        // components of X over its vertices, joined by its edges
+        let mut comp = [0usize, 1, 2, 3];
+        fn find(c: &mut [usize; 4], mut x: usize) -> usize {
+            while c[x] != x {
+                x = c[x];
+            }
+            x
+        }
+        for (e, [a, b]) in EDGES.iter().enumerate() {
+            if edge_in[e] {
+                let (ra, rb) = (find(&mut comp, *a), find(&mut comp, *b));
+                if ra != rb {
+                    comp[ra.max(rb)] = ra.min(rb);
+                }
+            }
+        }
+        // Euler characteristic per component (indexed by its root)
+        let mut chi = [0i32; 4];
+        for v in 0..4 {
+            if vert_in[v] {
+                chi[find(&mut comp, v)] += 1;
+            }
+        }
+        for (e, [a, _]) in EDGES.iter().enumerate() {
+            if edge_in[e] {
+                chi[find(&mut comp, *a)] -= 1;
+            }
+        }
+        for (i, f) in FACES.iter().enumerate() {
+            if face_in[i] {
+                chi[find(&mut comp, f[0])] += 1;
+            }
+        }
+        (0..4).all(|v| !vert_in[v] || find(&mut comp, v) != v || chi[v] == 1)
+    }
+
+    /// Take `t` out of S; the survivors whose X changed go to `push`.
+    fn remove(&mut self, t: usize, mut push: impl FnMut(usize)) {
+        self.in_s[t] = false;
+        let tet = self.tets[t];
+        for i in 0..4 {
+            if let Some(o) = self.across(t, i) {
+                push(o);
+            }
+        }
+        let last_holder = |this: &Self, need: &[u32]| {
+            this.stars[need[0] as usize]
+                .iter()
+                .map(|&o| o as usize)
+                .find(|&o| this.in_s[o] && need.iter().all(|v| this.tets[o].contains(v)))
+        };
+        for [a, b] in EDGES {
+            let key = edge(tet[a], tet[b]);
+            let c = self.edge_count.get_mut(&key).expect("edge of S");
+            *c -= 1;
+            if *c == 1 {
+                if let Some(o) = last_holder(self, &[key.0, key.1]) {
+                    push(o);
+                }
+            }
+        }
+        for v in tet {
+            self.vertex_count[v as usize] -= 1;
+            if self.vertex_count[v as usize] == 1 {
+                if let Some(o) = last_holder(self, &[v]) {
+                    push(o);
+                }
+            }
+        }
+    }
+}
+
+/// What it takes to settle ∂K after membranes are added (the resolution's growth).
+#[derive(Clone, Copy, Debug)]
+pub struct Settle {
+    pub growth_rounds: usize,
+    pub growth_distance: f64,
+    /// A point growth adds closer than this to another vertex of its tetrahedra fails the batch
+    /// (growth halves short edges: repeated, it would crowd points below what viewers weld).
+    pub min_gap: f64,
+}
+
+/// Close K's unwitnessed tunnels (the module's steps): membranes move from `fillable` into
+/// `kept` where they leave ∂K a manifold with fewer handles. `on_hole`: per vertex, whether it
+/// lies on a hole of a section. Nothing is tried when ∂K is not a manifold (`skipped_singular`).
+pub fn close(k: &mut Triangulation, on_hole: &[bool], settle: Settle) -> TunnelStats {
+    let mut stats = TunnelStats::default();
+    // each batch must leave ∂K a manifold: where the resolution left it singular, nothing is tried
+    let (edges, vertices) = super::assembly::singular_sets(k.kept);
+    if !edges.is_empty() || !vertices.is_empty() {
+        stats.skipped_singular = true;
+        return stats;
+    }
+    let membranes = thin(k, on_hole, &mut stats);
+    if membranes.is_empty() {
+        return stats;
+    }
+    let mut now = Topology::of(k.kept);
+    stats.genus_before = now.genus;
+    let mut budget = TESTS_BASE + membranes.len() / 8;
+    take_batch(k, &membranes, settle, &mut now, &mut stats, &mut budget);
+    stats.genus_after = now.genus;
+    stats
+}
+
+/// Step 1: the membranes (groups of survivors joined through shared vertices) that thinning S
+/// leaves beside K.
+fn thin(k: &Triangulation, on_hole: &[bool], stats: &mut TunnelStats) -> Vec<Vec<[u32; 4]>> {
+    let n_kept = k.kept.len();
+    // step 2: a survivor with every vertex on holes could close a tunnel they witness
+    let candidates = k
+        .fillable
+        .iter()
+        .filter(|t| !t.iter().all(|&v| on_hole[v as usize]));
+    let tets: Vec<[u32; 4]> = k.kept.iter().chain(candidates).copied().collect();
+    stats.candidates = (tets.len() - n_kept) as u64;
+    if tets.len() == n_kept {
+        return Vec::new();
+    }
+    let faces = FaceTable::new(&tets);
+    let stars = Stars::<u32>::new(k.positions.len(), &tets);
+    let mut s = Thinning::new(&tets, &faces, &stars, k.positions.len());
+    let depth = depths(&s, n_kept);
+    let mut heap: BinaryHeap<(u32, usize)> = (n_kept..tets.len()).map(|t| (depth[t], t)).collect();
+    while let Some((_, t)) = heap.pop() {
+        if !s.in_s[t] || !s.removable(t) {
+            continue;
+        }
+        s.remove(t, |o| {
+            if o >= n_kept {
+                heap.push((depth[o], o));
+            }
+        });
+    }
+    let mut groups = membranes(&s, n_kept);
+    stats.membranes = groups.len() as u64;
+    // one that adds no Euler characteristic closes no handle of K (it is left for S's sake)
+    groups.retain(|m| euler_gain(&s, n_kept, m) >= 1);
+    stats.membranes_refused = stats.membranes - groups.len() as u64;
+    groups
+        .into_iter()
+        .map(|m| m.into_iter().map(|t| tets[t]).collect())
+        .collect()
+}
+
+/// Step 3 for `batch`: take it if [`try_batch`] keeps it; else without the membranes blamed for
+/// the failure, then each of those alone; else each half.
+fn take_batch(
+    k: &mut Triangulation,
+    batch: &[Vec<[u32; 4]>],
+    settle: Settle,
+    now: &mut Topology,
+    stats: &mut TunnelStats,
+    budget: &mut usize,
+) {
+    if batch.is_empty() {
+        return;
+    }
+    if *budget == 0 {
+        stats.membranes_untested += batch.len() as u64;
+        return;
+    }
+    *budget -= 1;
+    let blamed = match try_batch(k, batch, settle, now) {
+        Ok(grown) => {
+            stats.tunnels_closed += batch.len() as u64;
+            stats.tets_added += grown;
+            return;
+        }
+        Err(blamed) => blamed,
+    };
+    stats.batches_undone += 1;
+    if batch.len() == 1 {
+        stats.membranes_refused += 1;
+        return;
+    }
+    if !blamed.is_empty() && blamed.len() < batch.len() {
+        let (rest, suspects): (Vec<usize>, Vec<usize>) =
+            (0..batch.len()).partition(|i| !blamed.contains(i));
+        let rest: Vec<Vec<[u32; 4]>> = rest.into_iter().map(|i| batch[i].clone()).collect();
+        take_batch(k, &rest, settle, now, stats, budget);
+        for i in suspects {
+            take_batch(
+                k,
+                std::slice::from_ref(&batch[i]),
+                settle,
+                now,
+                stats,
+                budget,
+            );
+        }
+        return;
+    }
+    let (a, b) = batch.split_at(batch.len() / 2);
+    take_batch(k, a, settle, now, stats, budget);
+    take_batch(k, b, settle, now, stats, budget);
+}
+
+/// Take the membranes of `batch` into K and settle ∂K. Kept (`Ok`: how many tetrahedra K grew by)
+/// when ∂K is then a manifold with no more components than `now` and at least one handle fewer
+/// per membrane (`now` updated); else undone, with the membranes to blame (indices: those next to
+/// what stayed singular or to a new small component; none when the genus did not fall enough).
+fn try_batch(
+    k: &mut Triangulation,
+    batch: &[Vec<[u32; 4]>],
+    settle: Settle,
+    now: &mut Topology,
+) -> Result<u64, Vec<usize>> {
+    let before = Snapshot::of(k);
+    let (kept_before, points_before) = (k.kept.len(), k.positions.len());
+    let keys: FxHashSet<[u32; 4]> = batch.iter().flatten().map(|&t| key4(t)).collect();
+    k.fillable.retain(|t| !keys.contains(&key4(*t)));
+    k.kept.extend(batch.iter().flatten().copied());
+    let mut left = settled(k, settle);
+    left.1
+        .extend(crowded_points(k, points_before, settle.min_gap));
+    let clean = left.0.is_empty() && left.1.is_empty();
+    let after = Topology::of(k.kept);
+    if clean && after.components <= now.components && after.genus + batch.len() as i64 <= now.genus
+    {
+        *now = after;
+        return Ok(k.kept.len().saturating_sub(kept_before) as u64);
+    }
+    let blamed = if !clean {
+        blame(k, batch, &left)
+    } else if after.components > now.components {
+        // a membrane closed a pocket into a cavity a section witnesses: it is on its boundary
+        let on_small = minor_boundary_vertices(k.kept);
+        (0..batch.len())
+            .filter(|&i| batch[i].iter().flatten().any(|v| on_small.contains(v)))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    before.restore(k);
+    Err(blamed)
+}
+
+/// The points from `first` on with an edge of a kept tetrahedron shorter than `min_gap`.
+fn crowded_points(k: &Triangulation, first: usize, min_gap: f64) -> Vec<u32> {
+    let mut out = Vec::new();
+    for t in k
+        .kept
+        .iter()
+        .filter(|t| t.iter().any(|&v| v as usize >= first))
+    {
+        for [a, b] in EDGES {
+            let (a, b) = (t[a], t[b]);
+            if (a as usize) < first && (b as usize) < first {
+                continue;
+            }
+            let d = crate::sections::sub(k.positions[a as usize], k.positions[b as usize]);
+            if crate::sections::dot(d, d) < min_gap * min_gap {
+                out.push(a.max(b));
+            }
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The membranes of `batch` (indices) next to the singular simplices `left`: the one with a
+/// vertex of the simplex, or else the one with the nearest vertex.
+fn blame(k: &Triangulation, batch: &[Vec<[u32; 4]>], left: &super::assembly::Sets) -> Vec<usize> {
+    let mut owner: FxHashMap<u32, usize> = FxHashMap::default();
+    for (i, m) in batch.iter().enumerate() {
+        for t in m {
+            for &v in t {
+                owner.insert(v, i);
+            }
+        }
+    }
+    let at = left.1.iter().copied().chain(left.0.iter().map(|e| e.0));
+    let mut blamed: Vec<usize> = at
+        .filter_map(|v| {
+            owner.get(&v).copied().or_else(|| {
+                let p = k.positions[v as usize];
+                owner
+                    .iter()
+                    .map(|(&w, &i)| {
+                        (
+                            {
+                                let d = crate::sections::sub(p, k.positions[w as usize]);
+                                crate::sections::dot(d, d)
+                            },
+                            i,
+                        )
+                    })
+                    .min_by(|a, b| a.0.total_cmp(&b.0))
+                    .map(|x| x.1)
+            })
+        })
+        .collect();
+    blamed.sort_unstable();
+    blamed.dedup();
+    blamed
+}
+
+/// The resolution's fill and growth after membranes were added; the singular simplices of ∂K
+/// left (a manifold when there are none).
+fn settled(k: &mut Triangulation, settle: Settle) -> super::assembly::Sets {
+    let filled = super::fill::fill_and_drop(k.kept, k.fillable, FILL_ROUNDS);
+    let mut left = filled.left;
+    for how in [EdgeGaps::NearEdge, EdgeGaps::Whole] {
+        if left.0.is_empty() && left.1.is_empty() {
+            break;
+        }
+        let (_, now) = super::singular::resolve(
+            k,
+            settle.growth_rounds,
+            settle.growth_distance,
+            how,
+            Some(left),
+        );
+        left = now.unwrap_or_else(|| super::assembly::singular_sets(k.kept));
+    }
+    // a membrane can close a pocket into a cavity: filled when no section witnesses it
+    super::voids::fill(k);
+    left
+}
+
+/// Most batches tried (each costs a few passes over K): this many, plus one per eight membranes;
+/// membranes left when they are spent are counted as untested.
+const TESTS_BASE: usize = 24;
+
+/// Most rounds of filling gaps after membranes were added.
+const FILL_ROUNDS: usize = 8;
+
+/// Components and total genus of ∂K (a manifold surface).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Topology {
+    components: usize,
+    genus: i64,
+}
+
+impl Topology {
+    fn of(tets: &[[u32; 4]]) -> Topology {
+        let tris = super::faces::boundary(tets);
+        let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+        let mut parent: Vec<u32> = (0..n as u32).collect();
+        let mut edges = FxHashSet::default();
+        for t in &tris {
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                edges.insert(edge(a, b));
+                union(&mut parent, a, b);
+            }
+        }
+        // per component: vertices − edges + triangles
+        let mut chi: FxHashMap<u32, i64> = FxHashMap::default();
+        let mut seen = vec![false; n];
+        for t in &tris {
+            for &v in t {
+                if !std::mem::replace(&mut seen[v as usize], true) {
+                    *chi.entry(find(&mut parent, v)).or_default() += 1;
+                }
+            }
+            *chi.entry(find(&mut parent, t[0])).or_default() += 1;
+        }
+        for &(a, _) in &edges {
+            *chi.entry(find(&mut parent, a)).or_default() -= 1;
+        }
+        Topology {
+            components: chi.len(),
+            genus: chi.values().map(|c| (2 - c) / 2).sum(),
+        }
+    }
+}
+
+/// The vertices of ∂K outside its component with the most triangles.
+fn minor_boundary_vertices(tets: &[[u32; 4]]) -> FxHashSet<u32> {
+    let tris = super::faces::boundary(tets);
+    let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    for t in &tris {
+        for i in 0..3 {
+            union(&mut parent, t[i], t[(i + 1) % 3]);
+        }
+    }
+    let mut size: FxHashMap<u32, usize> = FxHashMap::default();
+    for t in &tris {
+        *size.entry(find(&mut parent, t[0])).or_default() += 1;
+    }
+    let major = size
+        .iter()
+        .max_by_key(|(&r, &c)| (c, std::cmp::Reverse(r)))
+        .map(|(&r, _)| r);
+    tris.iter()
+        .flatten()
+        .copied()
+        .filter(|&v| Some(find(&mut parent, v)) != major)
+        .collect()
+}
+
+fn find(p: &mut [u32], mut x: u32) -> u32 {
+    while p[x as usize] != x {
+        p[x as usize] = p[p[x as usize] as usize];
+        x = p[x as usize];
+    }
+    x
+}
+
+fn union(p: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(p, a), find(p, b));
+    if ra != rb {
+        p[ra.max(rb) as usize] = ra.min(rb);
+    }
+}
+
+/// The survivors that thinning left, in groups joined through shared vertices.
+fn membranes(s: &Thinning, n_kept: usize) -> Vec<Vec<usize>> {
+    let mut group = vec![false; s.tets.len()];
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    for t0 in n_kept..s.tets.len() {
+        if !s.in_s[t0] || group[t0] {
+            continue;
+        }
+        group[t0] = true;
+        let mut members = vec![t0];
+        let mut i = 0;
+        while i < members.len() {
+            let t = members[i];
+            i += 1;
+            for &v in &s.tets[t] {
+                for &o in &s.stars[v as usize] {
+                    let o = o as usize;
+                    if o >= n_kept && s.in_s[o] && !group[o] {
+                        group[o] = true;
+                        members.push(o);
+                    }
+                }
+            }
+        }
+        out.push(members);
+    }
+    out
+}
+
+/// χ(K ∪ m) − χ(K) for a membrane `m`: the simplices of `m` that K (the first `n_kept`) does
+/// not have, with their signs.
+fn euler_gain(s: &Thinning, n_kept: usize, m: &[usize]) -> i64 {
+    let in_k = |need: &[u32]| {
+        s.stars[need[0] as usize]
+            .iter()
+            .any(|&o| (o as usize) < n_kept && need.iter().all(|v| s.tets[o as usize].contains(v)))
+    };
+    let (mut v, mut e, mut f) = (
+        FxHashSet::default(),
+        FxHashSet::default(),
+        FxHashSet::default(),
+    );
+    for &t in m {
+        let tet = s.tets[t];
+        v.extend(tet);
+        for [a, b] in EDGES {
+            e.insert(edge(tet[a], tet[b]));
+        }
+        for fi in FACES {
+            f.insert(key4([tet[fi[0]], tet[fi[1]], tet[fi[2]], u32::MAX]));
+        }
+    }
+    let new_v = v.iter().filter(|&&x| !in_k(&[x])).count() as i64;
+    let new_e = e.iter().filter(|&&(a, b)| !in_k(&[a, b])).count() as i64;
+    let new_f = f.iter().filter(|k| !in_k(&k[..3])).count() as i64;
+    new_v - new_e + new_f - m.len() as i64
+}
+
+/// Per tetrahedron of S, its distance in face steps within S from K (the first `n_kept`); those
+/// that no path reaches get the largest depth (they go first).
+fn depths(s: &Thinning, n_kept: usize) -> Vec<u32> {
+    let mut depth = vec![u32::MAX; s.tets.len()];
+    let mut queue: VecDeque<usize> = (0..n_kept).collect();
+    for d in &mut depth[..n_kept] {
+        *d = 0;
+    }
+    while let Some(t) = queue.pop_front() {
+        for i in 0..4 {
+            if let Some(o) = s.across(t, i) {
+                if depth[o] == u32::MAX {
+                    depth[o] = depth[t] + 1;
+                    queue.push_back(o);
+                }
+            }
+        }
+    }
+    depth
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fxhash::FxHashSet;
+
+    /// Positions, K's tetrahedra and the step-1 survivors of a test complex.
+    type Complex = (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<[u32; 4]>);
+
+    /// A solid torus of tetrahedra: a ring of `n` triangular prisms (3 tets each), plus the tets
+    /// of the ring's hole as step-1 survivors (a disk of them spans it).
+    fn ring(n: u32) -> Complex {
+        // vertices: per station i, three around the ring tube: 3i, 3i+1, 3i+2; plus centre c
+        let mut pos = Vec::new();
+        for i in 0..n {
+            let a = i as f64 / n as f64 * std::f64::consts::TAU;
+            let (c, s) = (a.cos(), a.sin());
+            pos.push([2.0 * c, 2.0 * s, 0.0]);
+            pos.push([3.0 * c, 3.0 * s, 0.0]);
+            pos.push([2.5 * c, 2.5 * s, 1.0]);
+        }
+        pos.push([0.0, 0.0, 0.0]);
+        pos.push([0.0, 0.0, 1.0]);
+        let (c0, c1) = (3 * n, 3 * n + 1);
+        let mut kept = Vec::new();
+        let mut fill = Vec::new();
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let [a, b, c] = [3 * i, 3 * i + 1, 3 * i + 2];
+            let [d, e, f] = [3 * j, 3 * j + 1, 3 * j + 2];
+            // prism abc-def as three tets
+            kept.push([a, b, c, d]);
+            kept.push([b, c, d, e]);
+            kept.push([c, d, e, f]);
+            // the hole: a fan of tets from the axis to the inner wall (a, d, c, f)
+            fill.push([c0, c1, a, d]);
+            fill.push([c1, a, d, c]);
+            fill.push([c1, d, c, f]);
+        }
+        (pos, kept, fill)
+    }
+
+    /// Euler characteristic of the complex of `tets` (β0 − β1 + β2).
+    fn euler(tets: &[[u32; 4]]) -> i64 {
+        let (mut v, mut e, mut f) = (
+            FxHashSet::default(),
+            FxHashSet::default(),
+            FxHashSet::default(),
+        );
+        for t in tets {
+            v.extend(t.iter().copied());
+            for [a, b] in EDGES {
+                e.insert(edge(t[a], t[b]));
+            }
+            for fi in FACES {
+                f.insert(key4([t[fi[0]], t[fi[1]], t[fi[2]], u32::MAX]));
+            }
+        }
+        v.len() as i64 - e.len() as i64 + f.len() as i64 - tets.len() as i64
+    }
+
+    fn triangulation<'a>(
+        pos: &'a mut Vec<[f64; 3]>,
+        planes: &'a mut Vec<super::super::refine::Planes>,
+        kept: &'a mut Vec<[u32; 4]>,
+        fill: &'a mut Vec<[u32; 4]>,
+        external: &'a mut Vec<[u32; 4]>,
+        internal: &'a mut FxHashSet<[u32; 3]>,
+    ) -> Triangulation<'a> {
+        Triangulation {
+            positions: pos,
+            planes,
+            kept,
+            fillable: fill,
+            external,
+            internal,
+        }
+    }
+
+    #[test]
+    fn thinning_leaves_a_membrane_across_a_ring() {
+        let (mut pos, mut kept, mut fill) = ring(8);
+        assert_eq!(euler(&kept), 0);
+        let all: Vec<[u32; 4]> = kept.iter().chain(&fill).copied().collect();
+        assert_eq!(euler(&all), 1);
+        let mut planes = vec![Default::default(); pos.len()];
+        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
+        let k = triangulation(
+            &mut pos,
+            &mut planes,
+            &mut kept,
+            &mut fill,
+            &mut external,
+            &mut internal,
+        );
+        let mut stats = TunnelStats::default();
+        let n = k.positions.len();
+        let membranes = thin(&k, &vec![false; n], &mut stats);
+        assert_eq!((stats.candidates, stats.membranes), (24, 1));
+        let m = &membranes[0];
+        assert!(!m.is_empty() && m.len() < 24, "{m:?}");
+        // K with the membrane: one component, no handle, no cavity
+        let with: Vec<[u32; 4]> = k.kept.iter().chain(m).copied().collect();
+        assert_eq!(euler(&with), 1);
+    }
+
+    #[test]
+    fn a_tunnel_through_holes_keeps_no_membrane() {
+        let (mut pos, mut kept, mut fill) = ring(8);
+        let mut planes = vec![Default::default(); pos.len()];
+        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
+        let k = triangulation(
+            &mut pos,
+            &mut planes,
+            &mut kept,
+            &mut fill,
+            &mut external,
+            &mut internal,
+        );
+        // the inner wall (3i, 3i + 2) and the axis lie on holes: the tube is witnessed
+        let n = k.positions.len();
+        let on_hole: Vec<bool> = (0..n).map(|v| v >= n - 2 || v % 3 != 1).collect();
+        let mut stats = TunnelStats::default();
+        assert!(thin(&k, &on_hole, &mut stats).is_empty());
+        assert_eq!(stats.candidates, 0);
+    }
+
+    #[test]
+    fn topology_of_a_ring() {
+        let (_, kept, _) = ring(8);
+        assert_eq!(
+            Topology::of(&kept),
+            Topology {
+                components: 1,
+                genus: 1
+            }
+        );
+    }
+
+    #[test]
+    fn survivors_beside_a_ball_all_go() {
+        // two tets of K sharing a face; survivors glued to it that close no loop
+        let mut pos = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [-1.0, -1.0, -1.0],
+            [2.0, 0.0, 0.0],
+        ];
+        let mut kept = vec![[0, 1, 2, 3], [1, 2, 3, 4]];
+        let mut fill = vec![[0, 1, 2, 5], [1, 2, 4, 6], [1, 3, 4, 6]];
+        let mut planes = vec![Default::default(); pos.len()];
+        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
+        let mut k = triangulation(
+            &mut pos,
+            &mut planes,
+            &mut kept,
+            &mut fill,
+            &mut external,
+            &mut internal,
+        );
+        let settle = Settle {
+            growth_rounds: 1,
+            growth_distance: 1e-3,
+            min_gap: 1e-7,
+        };
+        let stats = close(&mut k, &[false; 7], settle);
+        assert_eq!(
+            (stats.candidates, stats.membranes, stats.tets_added),
+            (3, 0, 0)
+        );
+        assert_eq!(k.kept.len(), 2);
+        assert_eq!(k.fillable.len(), 3);
+    }
+}
