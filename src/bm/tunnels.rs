@@ -334,23 +334,23 @@ fn try_batch(
     let mut left = settled(k, settle);
     left.1
         .extend(crowded_points(k, points_before, settle.min_gap));
-    let clean = left.0.is_empty() && left.1.is_empty();
-    let after = Topology::of(k.kept);
-    if clean && after.components <= now.components && after.genus + batch.len() as i64 <= now.genus
-    {
-        *now = after;
-        return Ok(k.kept.len().saturating_sub(kept_before) as u64);
-    }
-    let blamed = if !clean {
+    let blamed = if !left.0.is_empty() || !left.1.is_empty() {
         blame(k, batch, &left)
-    } else if after.components > now.components {
-        // a membrane closed a pocket into a cavity a section witnesses: it is on its boundary
-        let on_small = minor_boundary_vertices(k.kept);
-        (0..batch.len())
-            .filter(|&i| batch[i].iter().flatten().any(|v| on_small.contains(v)))
-            .collect()
     } else {
-        Vec::new()
+        let after = Topology::of(k.kept);
+        if after.components <= now.components && after.genus + batch.len() as i64 <= now.genus {
+            *now = after;
+            return Ok(k.kept.len().saturating_sub(kept_before) as u64);
+        }
+        if after.components > now.components {
+            // a membrane closed a pocket into a cavity a section witnesses: it is on its boundary
+            let on_small = minor_boundary_vertices(k.kept);
+            (0..batch.len())
+                .filter(|&i| batch[i].iter().flatten().any(|v| on_small.contains(v)))
+                .collect()
+        } else {
+            Vec::new()
+        }
     };
     before.restore(k);
     Err(blamed)
