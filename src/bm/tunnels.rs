@@ -202,10 +202,10 @@ pub struct Settle {
 
 /// Close K's unwitnessed tunnels (the module's steps): membranes move from `fillable` into
 /// `kept` where they leave ∂K a manifold with fewer handles. `on_hole`: per vertex, whether it
-/// lies on a hole of a section. Nothing is tried when ∂K is not a manifold (`skipped_singular`).
+/// lies on a hole of a section. Nothing is tried when ∂K is not a manifold (`skipped_singular`):
+/// settling membranes beside what the resolution left singular made double sheets (odd033).
 pub fn close(k: &mut Triangulation, on_hole: &[bool], settle: Settle) -> TunnelStats {
     let mut stats = TunnelStats::default();
-    // each batch must leave ∂K a manifold: where the resolution left it singular, nothing is tried
     let (edges, vertices) = super::assembly::singular_sets(k.kept);
     if !edges.is_empty() || !vertices.is_empty() {
         stats.skipped_singular = true;
@@ -215,11 +215,16 @@ pub fn close(k: &mut Triangulation, on_hole: &[bool], settle: Settle) -> TunnelS
     if membranes.is_empty() {
         return stats;
     }
-    let mut now = Topology::of(k.kept);
+    let now = Topology::of(k.kept);
     stats.genus_before = now.genus;
-    let mut budget = TESTS_BASE + membranes.len() / 8;
-    take_batch(k, &membranes, settle, &mut now, &mut stats, &mut budget);
-    stats.genus_after = now.genus;
+    let mut batches = Batches {
+        settle,
+        now,
+        budget: TESTS_BASE + membranes.len() / 8,
+        stats: &mut stats,
+    };
+    batches.take(k, &membranes);
+    stats.genus_after = batches.now.genus;
     stats
 }
 
@@ -263,97 +268,94 @@ fn thin(k: &Triangulation, on_hole: &[bool], stats: &mut TunnelStats) -> Vec<Vec
         .collect()
 }
 
-/// Step 3 for `batch`: take it if [`try_batch`] keeps it; else without the membranes blamed for
-/// the failure, then each of those alone; else each half.
-fn take_batch(
-    k: &mut Triangulation,
-    batch: &[Vec<[u32; 4]>],
+/// Step 3's state: how to settle, ∂K's topology now, the batches left.
+struct Batches<'a> {
     settle: Settle,
-    now: &mut Topology,
-    stats: &mut TunnelStats,
-    budget: &mut usize,
-) {
-    if batch.is_empty() {
-        return;
-    }
-    if *budget == 0 {
-        stats.membranes_untested += batch.len() as u64;
-        return;
-    }
-    *budget -= 1;
-    let blamed = match try_batch(k, batch, settle, now) {
-        Ok(grown) => {
-            stats.tunnels_closed += batch.len() as u64;
-            stats.tets_added += grown;
-            return;
-        }
-        Err(blamed) => blamed,
-    };
-    stats.batches_undone += 1;
-    if batch.len() == 1 {
-        stats.membranes_refused += 1;
-        return;
-    }
-    if !blamed.is_empty() && blamed.len() < batch.len() {
-        let (rest, suspects): (Vec<usize>, Vec<usize>) =
-            (0..batch.len()).partition(|i| !blamed.contains(i));
-        let rest: Vec<Vec<[u32; 4]>> = rest.into_iter().map(|i| batch[i].clone()).collect();
-        take_batch(k, &rest, settle, now, stats, budget);
-        for i in suspects {
-            take_batch(
-                k,
-                std::slice::from_ref(&batch[i]),
-                settle,
-                now,
-                stats,
-                budget,
-            );
-        }
-        return;
-    }
-    let (a, b) = batch.split_at(batch.len() / 2);
-    take_batch(k, a, settle, now, stats, budget);
-    take_batch(k, b, settle, now, stats, budget);
+    now: Topology,
+    budget: usize,
+    stats: &'a mut TunnelStats,
 }
 
-/// Take the membranes of `batch` into K and settle ∂K. Kept (`Ok`: how many tetrahedra K grew by)
-/// when ∂K is then a manifold with no more components than `now` and at least one handle fewer
-/// per membrane (`now` updated); else undone, with the membranes to blame (indices: those next to
-/// what stayed singular or to a new small component; none when the genus did not fall enough).
-fn try_batch(
-    k: &mut Triangulation,
-    batch: &[Vec<[u32; 4]>],
-    settle: Settle,
-    now: &mut Topology,
-) -> Result<u64, Vec<usize>> {
-    let before = Snapshot::of(k);
-    let (kept_before, points_before) = (k.kept.len(), k.positions.len());
-    let keys: FxHashSet<[u32; 4]> = batch.iter().flatten().map(|&t| key4(t)).collect();
-    k.fillable.retain(|t| !keys.contains(&key4(*t)));
-    k.kept.extend(batch.iter().flatten().copied());
-    let mut left = settled(k, settle);
-    left.1
-        .extend(crowded_points(k, points_before, settle.min_gap));
-    let blamed = if !left.0.is_empty() || !left.1.is_empty() {
-        blame(k, batch, &left)
-    } else {
-        let after = Topology::of(k.kept);
-        if after.components <= now.components && after.genus + batch.len() as i64 <= now.genus {
-            *now = after;
-            return Ok(k.kept.len().saturating_sub(kept_before) as u64);
+impl Batches<'_> {
+    /// Step 3 for `batch`: take it if [`Batches::try_batch`] keeps it; else without the membranes
+    /// blamed for the failure, then each of those alone; else each half.
+    fn take(&mut self, k: &mut Triangulation, batch: &[Vec<[u32; 4]>]) {
+        if batch.is_empty() {
+            return;
         }
-        if after.components > now.components {
-            // a membrane closed a pocket into a cavity a section witnesses: it is on its boundary
-            let on_small = minor_boundary_vertices(k.kept);
-            (0..batch.len())
-                .filter(|&i| batch[i].iter().flatten().any(|v| on_small.contains(v)))
-                .collect()
+        if self.budget == 0 {
+            self.stats.membranes_untested += batch.len() as u64;
+            return;
+        }
+        self.budget -= 1;
+        let blamed = match self.try_batch(k, batch) {
+            Ok(grown) => {
+                self.stats.tunnels_closed += batch.len() as u64;
+                self.stats.tets_added += grown;
+                return;
+            }
+            Err(blamed) => blamed,
+        };
+        self.stats.batches_undone += 1;
+        if batch.len() == 1 {
+            self.stats.membranes_refused += 1;
+            return;
+        }
+        if !blamed.is_empty() && blamed.len() < batch.len() {
+            let (rest, suspects): (Vec<usize>, Vec<usize>) =
+                (0..batch.len()).partition(|i| !blamed.contains(i));
+            let rest: Vec<Vec<[u32; 4]>> = rest.into_iter().map(|i| batch[i].clone()).collect();
+            self.take(k, &rest);
+            for i in suspects {
+                self.take(k, std::slice::from_ref(&batch[i]));
+            }
+            return;
+        }
+        let (a, b) = batch.split_at(batch.len() / 2);
+        self.take(k, a);
+        self.take(k, b);
+    }
+
+    /// Take the membranes of `batch` into K and settle ∂K. Kept (`Ok`: how many tetrahedra K
+    /// grew by) when ∂K is then a manifold with no more components than `now` and at least one
+    /// handle fewer per membrane (`now` updated); else undone, with the membranes to blame
+    /// (indices: those next to what stayed singular or to a new small component; none when the
+    /// genus did not fall enough).
+    fn try_batch(
+        &mut self,
+        k: &mut Triangulation,
+        batch: &[Vec<[u32; 4]>],
+    ) -> Result<u64, Vec<usize>> {
+        let (settle, now) = (self.settle, &mut self.now);
+        let before = Snapshot::of(k);
+        let (kept_before, points_before) = (k.kept.len(), k.positions.len());
+        let keys: FxHashSet<[u32; 4]> = batch.iter().flatten().map(|&t| key4(t)).collect();
+        k.fillable.retain(|t| !keys.contains(&key4(*t)));
+        k.kept.extend(batch.iter().flatten().copied());
+        let mut left = settled(k, settle);
+        let crowded = crowded_points(k, points_before, settle.min_gap);
+        left.1.extend(crowded);
+        let blamed = if !left.0.is_empty() || !left.1.is_empty() {
+            blame(k, batch, &left)
         } else {
-            Vec::new()
-        }
-    };
-    before.restore(k);
-    Err(blamed)
+            let after = Topology::of(k.kept);
+            if after.components <= now.components && after.genus + batch.len() as i64 <= now.genus {
+                *now = after;
+                return Ok(k.kept.len().saturating_sub(kept_before) as u64);
+            }
+            if after.components > now.components {
+                // a membrane closed a pocket into a cavity a section witnesses: on its boundary
+                let on_small = minor_boundary_vertices(k.kept);
+                (0..batch.len())
+                    .filter(|&i| batch[i].iter().flatten().any(|v| on_small.contains(v)))
+                    .collect()
+            } else {
+                Vec::new()
+            }
+        };
+        before.restore(k);
+        Err(blamed)
+    }
 }
 
 /// The points from `first` on with an edge of a kept tetrahedron shorter than `min_gap`.
