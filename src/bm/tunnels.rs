@@ -25,9 +25,11 @@
 //!    a single membrane that fails is refused (counted). Membranes that add no Euler characteristic
 //!    close nothing of K and are refused unseen; a budget of batches bounds the cost (each is a
 //!    few passes over K), what it leaves untried is counted and warned.
+use super::complex::{outward_face, TET_EDGES};
 use super::faces::FaceTable;
-use super::refine::{edge, key4, Triangulation};
+use super::refine::{edge, key3, key4, Triangulation};
 use super::singular::{EdgeGaps, Snapshot};
+use crate::eval::topology::UnionFind;
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::mesh::Stars;
 use std::collections::{BinaryHeap, VecDeque};
@@ -54,10 +56,6 @@ pub struct TunnelStats {
     pub genus_after: i64,
 }
 
-/// The faces of a tetrahedron, opposite each local vertex.
-const FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
-const EDGES: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
-
 /// S during thinning: which tetrahedra are in it and how many of them hold each vertex and edge.
 struct Thinning<'a> {
     tets: &'a [[u32; 4]],
@@ -81,7 +79,7 @@ impl<'a> Thinning<'a> {
             for &v in tet {
                 vertex_count[v as usize] += 1;
             }
-            for [a, b] in EDGES {
+            for (a, b) in TET_EDGES {
                 *edge_count.entry(edge(tet[a], tet[b])).or_default() += 1;
             }
         }
@@ -98,7 +96,7 @@ impl<'a> Thinning<'a> {
     /// The tetrahedron across face `i` of `t` that is in S.
     fn across(&self, t: usize, i: usize) -> Option<usize> {
         let tet = &self.tets[t];
-        let mut f = FACES[i].map(|j| tet[j]);
+        let mut f = outward_face(tet, i);
         f.sort_unstable();
         self.faces
             .owners(&f)
@@ -115,7 +113,7 @@ impl<'a> Thinning<'a> {
         }
         let vert_in: [bool; 4] = std::array::from_fn(|i| self.vertex_count[tet[i] as usize] > 1);
         let edge_in: [bool; 6] = std::array::from_fn(|e| {
-            let [a, b] = EDGES[e];
+            let (a, b) = TET_EDGES[e];
             self.edge_count[&edge(tet[a], tet[b])] > 1
         });
         // components of X over its vertices, joined by its edges
@@ -126,9 +124,9 @@ impl<'a> Thinning<'a> {
             }
             x
         }
-        for (e, [a, b]) in EDGES.iter().enumerate() {
+        for (e, &(a, b)) in TET_EDGES.iter().enumerate() {
             if edge_in[e] {
-                let (ra, rb) = (find(&mut comp, *a), find(&mut comp, *b));
+                let (ra, rb) = (find(&mut comp, a), find(&mut comp, b));
                 if ra != rb {
                     comp[ra.max(rb)] = ra.min(rb);
                 }
@@ -141,14 +139,15 @@ impl<'a> Thinning<'a> {
                 chi[find(&mut comp, v)] += 1;
             }
         }
-        for (e, [a, _]) in EDGES.iter().enumerate() {
+        for (e, &(a, _)) in TET_EDGES.iter().enumerate() {
             if edge_in[e] {
-                chi[find(&mut comp, *a)] -= 1;
+                chi[find(&mut comp, a)] -= 1;
             }
         }
-        for (i, f) in FACES.iter().enumerate() {
-            if face_in[i] {
-                chi[find(&mut comp, f[0])] += 1;
+        for (i, &on) in face_in.iter().enumerate() {
+            if on {
+                // any vertex of the face opposite i
+                chi[find(&mut comp, (i + 1) % 4)] += 1;
             }
         }
         (0..4).all(|v| !vert_in[v] || find(&mut comp, v) != v || chi[v] == 1)
@@ -169,7 +168,7 @@ impl<'a> Thinning<'a> {
                 .map(|&o| o as usize)
                 .find(|&o| this.in_s[o] && need.iter().all(|v| this.tets[o].contains(v)))
         };
-        for [a, b] in EDGES {
+        for (a, b) in TET_EDGES {
             let key = edge(tet[a], tet[b]);
             let c = self.edge_count.get_mut(&key).expect("edge of S");
             *c -= 1;
@@ -338,14 +337,15 @@ impl Batches<'_> {
         let blamed = if !left.0.is_empty() || !left.1.is_empty() {
             blame(k, batch, &left)
         } else {
-            let after = Topology::of(k.kept);
+            let mut boundary = Boundary::of(k.kept);
+            let after = boundary.topology();
             if after.components <= now.components && after.genus + batch.len() as i64 <= now.genus {
                 *now = after;
                 return Ok(k.kept.len().saturating_sub(kept_before) as u64);
             }
             if after.components > now.components {
                 // a membrane closed a pocket into a cavity a section witnesses: on its boundary
-                let on_small = minor_boundary_vertices(k.kept);
+                let on_small = boundary.minor_vertices();
                 (0..batch.len())
                     .filter(|&i| batch[i].iter().flatten().any(|v| on_small.contains(v)))
                     .collect()
@@ -366,7 +366,7 @@ fn crowded_points(k: &Triangulation, first: usize, min_gap: f64) -> Vec<u32> {
         .iter()
         .filter(|t| t.iter().any(|&v| v as usize >= first))
     {
-        for [a, b] in EDGES {
+        for (a, b) in TET_EDGES {
             let (a, b) = (t[a], t[b]);
             if (a as usize) < first && (b as usize) < first {
                 continue;
@@ -458,75 +458,70 @@ struct Topology {
 
 impl Topology {
     fn of(tets: &[[u32; 4]]) -> Topology {
+        Boundary::of(tets).topology()
+    }
+}
+
+/// ∂K's triangles and their components (joined through shared edges).
+struct Boundary {
+    tris: Vec<[u32; 3]>,
+    parts: UnionFind,
+}
+
+impl Boundary {
+    fn of(tets: &[[u32; 4]]) -> Boundary {
         let tris = super::faces::boundary(tets);
         let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
-        let mut parent: Vec<u32> = (0..n as u32).collect();
-        let mut edges = FxHashSet::default();
+        let mut parts = UnionFind::new(n);
         for t in &tris {
             for i in 0..3 {
-                let (a, b) = (t[i], t[(i + 1) % 3]);
-                edges.insert(edge(a, b));
-                union(&mut parent, a, b);
+                parts.union(t[i] as usize, t[(i + 1) % 3] as usize);
             }
         }
+        Boundary { tris, parts }
+    }
+
+    fn topology(&mut self) -> Topology {
         // per component: vertices − edges + triangles
-        let mut chi: FxHashMap<u32, i64> = FxHashMap::default();
-        let mut seen = vec![false; n];
-        for t in &tris {
-            for &v in t {
-                if !std::mem::replace(&mut seen[v as usize], true) {
-                    *chi.entry(find(&mut parent, v)).or_default() += 1;
+        let mut chi: FxHashMap<usize, i64> = FxHashMap::default();
+        let mut seen = FxHashSet::default();
+        let mut edges = FxHashSet::default();
+        for t in &self.tris {
+            for i in 0..3 {
+                if seen.insert(t[i]) {
+                    *chi.entry(self.parts.find(t[i] as usize)).or_default() += 1;
+                }
+                if edges.insert(edge(t[i], t[(i + 1) % 3])) {
+                    *chi.entry(self.parts.find(t[i] as usize)).or_default() -= 1;
                 }
             }
-            *chi.entry(find(&mut parent, t[0])).or_default() += 1;
-        }
-        for &(a, _) in &edges {
-            *chi.entry(find(&mut parent, a)).or_default() -= 1;
+            *chi.entry(self.parts.find(t[0] as usize)).or_default() += 1;
         }
         Topology {
             components: chi.len(),
             genus: chi.values().map(|c| (2 - c) / 2).sum(),
         }
     }
-}
 
-/// The vertices of ∂K outside its component with the most triangles.
-fn minor_boundary_vertices(tets: &[[u32; 4]]) -> FxHashSet<u32> {
-    let tris = super::faces::boundary(tets);
-    let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    for t in &tris {
-        for i in 0..3 {
-            union(&mut parent, t[i], t[(i + 1) % 3]);
+    /// The vertices outside the component with the most triangles.
+    fn minor_vertices(&mut self) -> FxHashSet<u32> {
+        let mut size: FxHashMap<usize, usize> = FxHashMap::default();
+        for t in &self.tris {
+            *size.entry(self.parts.find(t[0] as usize)).or_default() += 1;
         }
-    }
-    let mut size: FxHashMap<u32, usize> = FxHashMap::default();
-    for t in &tris {
-        *size.entry(find(&mut parent, t[0])).or_default() += 1;
-    }
-    let major = size
-        .iter()
-        .max_by_key(|(&r, &c)| (c, std::cmp::Reverse(r)))
-        .map(|(&r, _)| r);
-    tris.iter()
-        .flatten()
-        .copied()
-        .filter(|&v| Some(find(&mut parent, v)) != major)
-        .collect()
-}
-
-fn find(p: &mut [u32], mut x: u32) -> u32 {
-    while p[x as usize] != x {
-        p[x as usize] = p[p[x as usize] as usize];
-        x = p[x as usize];
-    }
-    x
-}
-
-fn union(p: &mut [u32], a: u32, b: u32) {
-    let (ra, rb) = (find(p, a), find(p, b));
-    if ra != rb {
-        p[ra.max(rb) as usize] = ra.min(rb);
+        let major = size
+            .iter()
+            .max_by_key(|(&r, &c)| (c, std::cmp::Reverse(r)))
+            .map(|(&r, _)| r);
+        let tris = std::mem::take(&mut self.tris);
+        let minor = tris
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|&v| Some(self.parts.find(v as usize)) != major)
+            .collect();
+        self.tris = tris;
+        minor
     }
 }
 
@@ -567,25 +562,28 @@ fn euler_gain(s: &Thinning, n_kept: usize, m: &[usize]) -> i64 {
             .iter()
             .any(|&o| (o as usize) < n_kept && need.iter().all(|v| s.tets[o as usize].contains(v)))
     };
-    let (mut v, mut e, mut f) = (
-        FxHashSet::default(),
-        FxHashSet::default(),
-        FxHashSet::default(),
-    );
-    for &t in m {
-        let tet = s.tets[t];
-        v.extend(tet);
-        for [a, b] in EDGES {
-            e.insert(edge(tet[a], tet[b]));
-        }
-        for fi in FACES {
-            f.insert(key4([tet[fi[0]], tet[fi[1]], tet[fi[2]], u32::MAX]));
-        }
-    }
+    let (v, e, f) = simplices(m.iter().map(|&t| &s.tets[t]));
     let new_v = v.iter().filter(|&&x| !in_k(&[x])).count() as i64;
     let new_e = e.iter().filter(|&&(a, b)| !in_k(&[a, b])).count() as i64;
-    let new_f = f.iter().filter(|k| !in_k(&k[..3])).count() as i64;
+    let new_f = f.iter().filter(|k| !in_k(&k[..])).count() as i64;
     new_v - new_e + new_f - m.len() as i64
+}
+
+/// The vertices, edges and faces (sorted keys) of some tetrahedra.
+type Simplices = (FxHashSet<u32>, FxHashSet<(u32, u32)>, FxHashSet<[u32; 3]>);
+
+fn simplices<'a>(tets: impl Iterator<Item = &'a [u32; 4]>) -> Simplices {
+    let (mut v, mut e, mut f) = Simplices::default();
+    for t in tets {
+        v.extend(t);
+        for (a, b) in TET_EDGES {
+            e.insert(edge(t[a], t[b]));
+        }
+        for i in 0..4 {
+            f.insert(key3(outward_face(t, i)));
+        }
+    }
+    (v, e, f)
 }
 
 /// Per tetrahedron of S, its distance in face steps within S from K (the first `n_kept`); those
@@ -652,57 +650,51 @@ mod tests {
 
     /// Euler characteristic of the complex of `tets` (β0 − β1 + β2).
     fn euler(tets: &[[u32; 4]]) -> i64 {
-        let (mut v, mut e, mut f) = (
-            FxHashSet::default(),
-            FxHashSet::default(),
-            FxHashSet::default(),
-        );
-        for t in tets {
-            v.extend(t.iter().copied());
-            for [a, b] in EDGES {
-                e.insert(edge(t[a], t[b]));
-            }
-            for fi in FACES {
-                f.insert(key4([t[fi[0]], t[fi[1]], t[fi[2]], u32::MAX]));
-            }
-        }
+        let (v, e, f) = simplices(tets.iter());
         v.len() as i64 - e.len() as i64 + f.len() as i64 - tets.len() as i64
     }
 
-    fn triangulation<'a>(
-        pos: &'a mut Vec<[f64; 3]>,
-        planes: &'a mut Vec<super::super::refine::Planes>,
-        kept: &'a mut Vec<[u32; 4]>,
-        fill: &'a mut Vec<[u32; 4]>,
-        external: &'a mut Vec<[u32; 4]>,
-        internal: &'a mut FxHashSet<[u32; 3]>,
-    ) -> Triangulation<'a> {
-        Triangulation {
-            positions: pos,
-            planes,
-            kept,
-            fillable: fill,
-            external,
-            internal,
+    /// The storage of a test triangulation: a complex, no planes, no sections.
+    struct Owned {
+        positions: Vec<[f64; 3]>,
+        planes: Vec<super::super::refine::Planes>,
+        kept: Vec<[u32; 4]>,
+        fillable: Vec<[u32; 4]>,
+        external: Vec<[u32; 4]>,
+        internal: FxHashSet<[u32; 3]>,
+    }
+
+    impl Owned {
+        fn new((positions, kept, fillable): Complex) -> Owned {
+            Owned {
+                planes: vec![Default::default(); positions.len()],
+                positions,
+                kept,
+                fillable,
+                external: Vec::new(),
+                internal: FxHashSet::default(),
+            }
+        }
+
+        fn triangulation(&mut self) -> Triangulation<'_> {
+            Triangulation {
+                positions: &mut self.positions,
+                planes: &mut self.planes,
+                kept: &mut self.kept,
+                fillable: &mut self.fillable,
+                external: &mut self.external,
+                internal: &mut self.internal,
+            }
         }
     }
 
     #[test]
     fn thinning_leaves_a_membrane_across_a_ring() {
-        let (mut pos, mut kept, mut fill) = ring(8);
-        assert_eq!(euler(&kept), 0);
-        let all: Vec<[u32; 4]> = kept.iter().chain(&fill).copied().collect();
+        let mut owned = Owned::new(ring(8));
+        assert_eq!(euler(&owned.kept), 0);
+        let all: Vec<[u32; 4]> = owned.kept.iter().chain(&owned.fillable).copied().collect();
         assert_eq!(euler(&all), 1);
-        let mut planes = vec![Default::default(); pos.len()];
-        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
-        let k = triangulation(
-            &mut pos,
-            &mut planes,
-            &mut kept,
-            &mut fill,
-            &mut external,
-            &mut internal,
-        );
+        let k = owned.triangulation();
         let mut stats = TunnelStats::default();
         let n = k.positions.len();
         let membranes = thin(&k, &vec![false; n], &mut stats);
@@ -716,17 +708,8 @@ mod tests {
 
     #[test]
     fn a_tunnel_through_holes_keeps_no_membrane() {
-        let (mut pos, mut kept, mut fill) = ring(8);
-        let mut planes = vec![Default::default(); pos.len()];
-        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
-        let k = triangulation(
-            &mut pos,
-            &mut planes,
-            &mut kept,
-            &mut fill,
-            &mut external,
-            &mut internal,
-        );
+        let mut owned = Owned::new(ring(8));
+        let k = owned.triangulation();
         // the inner wall (3i, 3i + 2) and the axis lie on holes: the tube is witnessed
         let n = k.positions.len();
         let on_hole: Vec<bool> = (0..n).map(|v| v >= n - 2 || v % 3 != 1).collect();
@@ -750,7 +733,7 @@ mod tests {
     #[test]
     fn survivors_beside_a_ball_all_go() {
         // two tets of K sharing a face; survivors glued to it that close no loop
-        let mut pos = vec![
+        let positions = vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
@@ -759,18 +742,10 @@ mod tests {
             [-1.0, -1.0, -1.0],
             [2.0, 0.0, 0.0],
         ];
-        let mut kept = vec![[0, 1, 2, 3], [1, 2, 3, 4]];
-        let mut fill = vec![[0, 1, 2, 5], [1, 2, 4, 6], [1, 3, 4, 6]];
-        let mut planes = vec![Default::default(); pos.len()];
-        let (mut external, mut internal) = (Vec::new(), FxHashSet::default());
-        let mut k = triangulation(
-            &mut pos,
-            &mut planes,
-            &mut kept,
-            &mut fill,
-            &mut external,
-            &mut internal,
-        );
+        let kept = vec![[0, 1, 2, 3], [1, 2, 3, 4]];
+        let fill = vec![[0, 1, 2, 5], [1, 2, 4, 6], [1, 3, 4, 6]];
+        let mut owned = Owned::new((positions, kept, fill));
+        let mut k = owned.triangulation();
         let settle = Settle {
             growth_rounds: 1,
             growth_distance: 1e-3,
