@@ -198,13 +198,21 @@ fn plane_effects(ctx: &Ctx, i: u32, face_key: &HashMap<Vec<i8>, u32>) -> Vec<Eff
     let keys: Vec<&Vec<i8>> = face_key.keys().collect();
     let mut eff = vec![Effect::Own; np];
     let mut reps: Vec<u32> = Vec::new();
+    // the planes on which the faces' sides differ, in one pass over the keys (a dense sweep has
+    // a thousand planes and a thousand faces per plane, most planes far from plane i)
+    let first: Vec<i8> = keys.first().map_or_else(|| vec![-1; np], |k| k.to_vec());
+    let mut varies = vec![false; np];
+    for k in &keys[1.min(keys.len())..] {
+        for ((v, a), b) in varies.iter_mut().zip(k.iter()).zip(&first) {
+            *v |= a != b;
+        }
+    }
     for j in 0..np {
         if j as u32 == i {
             continue;
         }
-        let first = keys.first().map_or(-1, |k| k[j]);
-        if keys.iter().all(|k| k[j] == first) {
-            eff[j] = Effect::Const(first);
+        if !varies[j] {
+            eff[j] = Effect::Const(first[j]);
             continue;
         }
         // Same line as an earlier representative: rank [P_i; P_r; P_j] = 2.
