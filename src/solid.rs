@@ -131,6 +131,13 @@ impl Report {
             name: name.to_string(),
             seconds: t.elapsed().as_secs_f64(),
         });
+        // which phase raised the peak (platforms that do not tell get no entry)
+        if let Some(peak) = crate::memory::peak_resident() {
+            self.values.insert(
+                format!("peak_memory_mib.after.{name}"),
+                peak.bytes as f64 / (1024.0 * 1024.0),
+            );
+        }
         out
     }
     pub fn count(&mut self, key: &str, n: u64) {

@@ -81,4 +81,21 @@ fn report_json_has_peak_memory() {
         .expect("peak_memory.bytes");
     assert!(bytes > 1 << 20 && bytes < 8 << 30, "{bytes}");
     assert!(j["peak_memory"]["source"].is_string());
+    // the peak when each phase and assembly stage ended: never falling, the last one the total
+    if cfg!(target_os = "linux") {
+        let values = j["values"].as_object().expect("values");
+        let mib = |k: &str| {
+            values[k]
+                .as_f64()
+                .unwrap_or_else(|| panic!("{k} in the report"))
+        };
+        let phases = ["arrangement", "cells", "assembly"];
+        let after: Vec<f64> = phases
+            .iter()
+            .map(|p| mib(&format!("peak_memory_mib.after.{p}")))
+            .collect();
+        assert!(after.windows(2).all(|w| w[0] <= w[1]), "{after:?}");
+        assert!(mib("assembly_peak_memory_mib.collar") <= after[2]);
+        assert!((after[2] * 1048576.0 - bytes as f64).abs() <= 0.1 * bytes as f64);
+    }
 }

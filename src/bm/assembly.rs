@@ -57,12 +57,16 @@ pub struct Assembled {
     pub collar: super::collar::CollarStats,
     /// Wall-clock seconds of each stage of the assembly, in order.
     pub stage_seconds: Vec<(&'static str, f64)>,
+    /// The process's peak resident memory (bytes) when each stage ended, where the platform
+    /// tells: which stage raised it.
+    pub stage_peak_memory: Vec<(&'static str, u64)>,
 }
 
 /// Wall-clock time of consecutive stages: `lap(name)` ends the stage running since the last lap.
 struct Laps {
     last: std::time::Instant,
     laps: Vec<(&'static str, f64)>,
+    peaks: Vec<(&'static str, u64)>,
 }
 
 impl Laps {
@@ -70,6 +74,7 @@ impl Laps {
         Laps {
             last: std::time::Instant::now(),
             laps: Vec::new(),
+            peaks: Vec::new(),
         }
     }
 
@@ -78,6 +83,9 @@ impl Laps {
         let now = std::time::Instant::now();
         let seconds = (now - self.last).as_secs_f64();
         self.laps.push((name, seconds));
+        if let Some(peak) = crate::memory::peak_resident() {
+            self.peaks.push((name, peak.bytes));
+        }
         self.last = now;
         seconds
     }
@@ -245,6 +253,7 @@ pub fn assemble(
     };
     laps.lap("surface");
     out.stage_seconds = laps.laps;
+    out.stage_peak_memory = laps.peaks;
     out
 }
 

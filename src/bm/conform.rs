@@ -86,8 +86,10 @@ fn segment_of(pool: &VertexPool, a: u32, b: u32) -> [u32; 2] {
 
 /// Boundary loops (outer and holes) of every face, global ids, splits applied.
 pub fn face_loops(arr: &Arrangement, splits: &Splits) -> Vec<Vec<Vec<u32>>> {
+    use rayon::prelude::*;
+    // a dense sweep has most of a million faces, every round
     arr.faces
-        .iter()
+        .par_iter()
         .map(|f| {
             f.pieces
                 .iter()

@@ -288,6 +288,52 @@ pub struct SharingCounts {
     pub cells_missing_contour_edges: u64,
 }
 
+/// What a rerun with shared samples did to its cell's result (with the rerun's times).
+enum Rerun {
+    /// The cell has no input any more: its result stays.
+    NoInput,
+    /// The rerun's result replaced the cell's.
+    Shared(CellTiming),
+    /// The other side's samples took a contour edge away; the cell keeps its finished run.
+    KeptUnshared(CellTiming),
+    /// As `KeptUnshared`, but with no finished run to keep: the rerun's result stays, missing it.
+    MissingEdges(CellTiming),
+}
+
+/// Run cell `c` again with the shared samples, its result `slot` replaced in place.
+#[allow(clippy::too_many_arguments)]
+fn rerun_cell(
+    arr: &Arrangement,
+    pool: &crate::arrangement::VertexPool,
+    loops: &[Vec<Vec<u32>>],
+    sampling: Sampling,
+    shared: &shared_samples::SharedSamples,
+    split: bool,
+    c: usize,
+    slot: &mut Option<CellResult>,
+) -> Result<Rerun> {
+    let start = slot.as_mut().and_then(|r| r.start.take());
+    let Some(input) = CellInput::build(arr, pool, loops, c as u32) else {
+        return Ok(Rerun::NoInput);
+    };
+    let mut r = cell::run_cell_sharing(input, sampling, shared, split, start)?;
+    let timing = r.timing;
+    if !r.missing.is_empty() {
+        // the other side's samples took a contour edge away: keep a finished run without them
+        // if there is one, else this one (its section then misses that edge)
+        if let Some(p) = slot.as_mut().filter(|p| p.pruned) {
+            p.start = r.start.take();
+            return Ok(Rerun::KeptUnshared(timing));
+        }
+        shared.adopt_ids(&mut r);
+        *slot = Some(r);
+        return Ok(Rerun::MissingEdges(timing));
+    }
+    shared.adopt_ids(&mut r);
+    *slot = Some(r);
+    Ok(Rerun::Shared(timing))
+}
+
 /// Most rounds of sharing: each round's cells may split diagram pairs that the other side's
 /// samples took away (new Steiner points, shared in the next round).
 const MAX_SHARING_ROUNDS: usize = 6;
@@ -318,45 +364,39 @@ fn share_samples(
         let dirty: std::collections::HashSet<u32> = dirty_faces.iter().copied().collect();
         // the first round runs every cell to the end (the earlier runs stopped at conformity)
         let first = counts.rounds == 1;
-        let todo = biggest_first(
-            arr,
-            loops,
-            (0..results.len()).filter(|&c| {
+        let run: Vec<bool> = (0..results.len())
+            .map(|c| {
                 results[c].is_some()
                     && (first || arr.cells[c].faces.iter().any(|cf| dirty.contains(&cf.face)))
-            }),
-        );
-        let pool_now = &*pool;
-        let work: Vec<(usize, Option<Box<cell::RunStart>>)> = todo
-            .iter()
-            .map(|&c| (c, results[c].as_mut().and_then(|r| r.start.take())))
-            .collect();
-        let mut out: Vec<(usize, Result<Option<CellResult>>)> = work
-            .into_par_iter()
-            .map(|(c, start)| {
-                let r = CellInput::build(arr, pool_now, loops, c as u32)
-                    .map(|input| cell::run_cell_sharing(input, sampling, &shared, split, start))
-                    .transpose();
-                (c, r)
             })
             .collect();
-        out.sort_unstable_by_key(|o| o.0);
-        for (c, r) in out {
-            let Some(mut r) = r? else { continue };
-            counts.cells_rerun += 1;
-            timing.add(&r.timing);
-            if !r.missing.is_empty() {
-                // the other side's samples took a contour edge away: keep a finished run without
-                // them if there is one, else this one (its section then misses that edge)
-                if let Some(p) = results[c].as_mut().filter(|p| p.pruned) {
-                    p.start = r.start.take();
-                    counts.cells_kept_unshared += 1;
-                    continue;
+        // each rerun replaces its cell's result in place, so that the old and the new results of
+        // every cell are never held at once (on a 1000-frame sweep they were gigabytes)
+        let (pool_now, shared_now) = (&*pool, &shared);
+        let outcomes: Vec<Result<Rerun>> = results
+            .par_iter_mut()
+            .enumerate()
+            .filter(|(c, _)| run[*c])
+            .map(|(c, slot)| rerun_cell(arr, pool_now, loops, sampling, shared_now, split, c, slot))
+            .collect();
+        for outcome in outcomes {
+            match outcome? {
+                Rerun::NoInput => {}
+                Rerun::Shared(t) => {
+                    counts.cells_rerun += 1;
+                    timing.add(&t);
                 }
-                counts.cells_missing_contour_edges += 1;
+                Rerun::KeptUnshared(t) => {
+                    counts.cells_rerun += 1;
+                    counts.cells_kept_unshared += 1;
+                    timing.add(&t);
+                }
+                Rerun::MissingEdges(t) => {
+                    counts.cells_rerun += 1;
+                    counts.cells_missing_contour_edges += 1;
+                    timing.add(&t);
+                }
             }
-            shared.adopt_ids(&mut r);
-            results[c] = Some(r);
         }
         dirty_faces = shared.extend(arr, pool, results);
     }
@@ -419,6 +459,11 @@ pub fn reconstruct(
         name: "cells (delaunay, conformity, pruning)".into(),
         seconds,
     });
+    if let Some(peak) = crate::memory::peak_resident() {
+        report
+            .values
+            .insert("peak_memory_mib.after.cells".into(), mib(peak.bytes));
+    }
     report.count("conformity_rounds", rounds as u64);
     report.count("cell_runs", cell_runs);
     for (name, secs) in timing.entries() {
@@ -455,6 +500,10 @@ pub fn reconstruct(
         *report.values.entry("cell_flat_area".into()).or_insert(0.0) += r.flat_area;
     }
     Ok(assemble_cells(arr, &pool, &results, options, report))
+}
+
+fn mib(bytes: u64) -> f64 {
+    bytes as f64 / (1024.0 * 1024.0)
 }
 
 /// The solid as one complex (`assembly`): the surface is the boundary of the kept tetrahedra.
@@ -527,6 +576,11 @@ fn assemble_cells(
     report
         .values
         .insert("collar_seconds".into(), k.collar.seconds);
+    for (stage, bytes) in &k.stage_peak_memory {
+        report
+            .values
+            .insert(format!("assembly_peak_memory_mib.{stage}"), mib(*bytes));
+    }
     for (stage, secs) in &k.stage_seconds {
         report
             .values
