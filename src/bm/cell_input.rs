@@ -209,6 +209,15 @@ pub fn edge_key(a: u32, b: u32) -> (u32, u32) {
 }
 
 impl CellInput {
+    /// Drop what only the cell's own run reads (the slots' point locators and contour-edge
+    /// sets), once the run is final: the assembly reads ids, points, tags and loops.
+    pub fn slim(&mut self) {
+        for slot in &mut self.slots {
+            slot.locator = SectionLocator::default();
+            slot.contour_edges = IdSet::default();
+        }
+    }
+
     /// Gather the cell's section vertices and faces. `face_loops[f]` are the face's boundary loops in
     /// global ids (Steiner points included). Returns `None` when no face of the cell has a section.
     pub fn build(

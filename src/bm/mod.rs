@@ -330,6 +330,9 @@ fn rerun_cell(
         return Ok(Rerun::MissingEdges(timing));
     }
     shared.adopt_ids(&mut r);
+    if let Some(input) = r.input.as_mut() {
+        input.slim();
+    }
     *slot = Some(r);
     Ok(Rerun::Shared(timing))
 }
