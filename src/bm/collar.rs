@@ -47,6 +47,8 @@ pub struct CollarStats {
     pub cells: u64,
     /// Cells whose image failed a check and kept K as it was.
     pub cells_refused: u64,
+    /// Of those, the cells no map could lift by the full height (`too_sharp`), not tried.
+    pub cells_too_sharp: u64,
     /// Cells whose collar would have made ∂K singular and kept K as it was.
     pub cells_left_singular: u64,
     /// Section triangles given a prism (three tetrahedra each).
@@ -267,9 +269,6 @@ fn best_collar(
     height: f64,
     max_shift: f64,
 ) -> Option<CellCollar> {
-    if too_sharp(part, arr_planes) {
-        return None;
-    }
     let key = |cc: &CellCollar| {
         let lift = (cc.height.min(height) / height * 100.0).floor();
         (-lift, cc.shift)
@@ -526,6 +525,17 @@ fn apply(k: &Triangulation, parts: &[CellPart], collars: &[Option<CellCollar>]) 
     out
 }
 
+/// What became of a cell's collar.
+enum Tried {
+    /// No volume or no section triangle on its faces: nothing to try.
+    Not,
+    /// Two of its section planes meet at a base vertex too sharply (`too_sharp`).
+    TooSharp,
+    /// Every candidate map failed a check.
+    Refused,
+    Collar(CellCollar),
+}
+
 /// Most rounds of leaving out the collars of cells at singular simplices.
 const SINGULAR_ROUNDS: usize = 4;
 
@@ -546,13 +556,21 @@ pub fn build(
     let mut stats = CollarStats::default();
     let parts = cell_parts(k);
     // cells are independent: their collars are found in parallel, beside ∂K's singular count
-    let (found, (e0, v0)): (Vec<Option<Option<CellCollar>>>, _) = rayon::join(
+    let (found, (e0, v0)): (Vec<Tried>, _) = rayon::join(
         || {
             parts
                 .par_iter()
                 .map(|part| {
-                    (part.volume > 0.0 && !part.bases.is_empty())
-                        .then(|| best_collar(k, part, arr_planes, height, max_shift))
+                    if part.volume <= 0.0 || part.bases.is_empty() {
+                        return Tried::Not;
+                    }
+                    if too_sharp(part, arr_planes) {
+                        return Tried::TooSharp;
+                    }
+                    match best_collar(k, part, arr_planes, height, max_shift) {
+                        Some(cc) => Tried::Collar(cc),
+                        None => Tried::Refused,
+                    }
                 })
                 .collect()
         },
@@ -561,8 +579,18 @@ pub fn build(
             (e.len() as u64, v.len() as u64)
         },
     );
-    stats.cells_refused = found.iter().filter(|f| matches!(f, Some(None))).count() as u64;
-    let mut collars: Vec<Option<CellCollar>> = found.into_iter().map(Option::flatten).collect();
+    stats.cells_too_sharp = found
+        .iter()
+        .filter(|f| matches!(f, Tried::TooSharp))
+        .count() as u64;
+    stats.cells_refused =
+        stats.cells_too_sharp + found.iter().filter(|f| matches!(f, Tried::Refused)).count() as u64;
+    let mut collars: Vec<Option<CellCollar>> = (found.into_iter())
+        .map(|f| match f {
+            Tried::Collar(cc) => Some(cc),
+            _ => None,
+        })
+        .collect();
     let allowed = e0 + v0;
     let mut applied = None;
     for _ in 0..SINGULAR_ROUNDS {

@@ -568,6 +568,7 @@ fn assemble_cells(
     report.count("tunnel_tets_added", k.tunnels.tets_added);
     report.count("collar_cells", k.collar.cells);
     report.count("collar_cells_refused", k.collar.cells_refused);
+    report.count("collar_cells_too_sharp", k.collar.cells_too_sharp);
     report.count("collar_prisms", k.collar.prisms);
     report.count("collar_cells_left_singular", k.collar.cells_left_singular);
     report
@@ -606,10 +607,16 @@ fn assemble_cells(
             k.collar.cells_left_singular
         ));
     }
-    if k.collar.cells_refused > 0 {
+    let flipped = k.collar.cells_refused - k.collar.cells_too_sharp;
+    if flipped > 0 {
         report.warnings.push(format!(
-            "collar: {} cells keep their solid as it was (a mapped tetrahedron would flip or leave the cell): sections just off their planes are not protected there",
-            k.collar.cells_refused
+            "collar: {flipped} cells keep their solid as it was (a mapped tetrahedron would flip or leave the cell): sections just off their planes are not protected there",
+        ));
+    }
+    if k.collar.cells_too_sharp > 0 {
+        report.warnings.push(format!(
+            "collar: {} cells keep their solid as it was (two of their section planes meet at a section vertex at an angle too sharp for a collar of the full height): sections just off their planes are not protected there",
+            k.collar.cells_too_sharp
         ));
     }
     report.count("singular_edges", k.singular_edges);
