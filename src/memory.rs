@@ -16,6 +16,13 @@ pub struct PeakMemory {
 }
 
 /// The process's peak resident memory, if the platform tells it.
+impl PeakMemory {
+    /// The peak in MiB.
+    pub fn mib(&self) -> f64 {
+        self.bytes as f64 / (1024.0 * 1024.0)
+    }
+}
+
 pub fn peak_resident() -> Option<PeakMemory> {
     from_proc_status().or_else(from_getrusage)
 }

@@ -131,14 +131,16 @@ impl Report {
             name: name.to_string(),
             seconds: t.elapsed().as_secs_f64(),
         });
-        // which phase raised the peak (platforms that do not tell get no entry)
-        if let Some(peak) = crate::memory::peak_resident() {
-            self.values.insert(
-                format!("peak_memory_mib.after.{name}"),
-                peak.bytes as f64 / (1024.0 * 1024.0),
-            );
-        }
+        self.note_peak_memory(name);
         out
+    }
+
+    /// The peak resident memory now, as value `peak_memory_mib.after.<phase>`: which phase raised
+    /// the peak (platforms that do not tell get no entry).
+    pub fn note_peak_memory(&mut self, phase: &str) {
+        if let Some(peak) = crate::memory::peak_resident() {
+            (self.values).insert(format!("peak_memory_mib.after.{phase}"), peak.mib());
+        }
     }
     pub fn count(&mut self, key: &str, n: u64) {
         *self.counts.entry(key.to_string()).or_insert(0) += n;

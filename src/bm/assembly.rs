@@ -57,16 +57,16 @@ pub struct Assembled {
     pub collar: super::collar::CollarStats,
     /// Wall-clock seconds of each stage of the assembly, in order.
     pub stage_seconds: Vec<(&'static str, f64)>,
-    /// The process's peak resident memory (bytes) when each stage ended, where the platform
+    /// The process's peak resident memory (MiB) when each stage ended, where the platform
     /// tells: which stage raised it.
-    pub stage_peak_memory: Vec<(&'static str, u64)>,
+    pub stage_peak_memory_mib: Vec<(&'static str, f64)>,
 }
 
 /// Wall-clock time of consecutive stages: `lap(name)` ends the stage running since the last lap.
 struct Laps {
     last: std::time::Instant,
     laps: Vec<(&'static str, f64)>,
-    peaks: Vec<(&'static str, u64)>,
+    peaks: Vec<(&'static str, f64)>,
 }
 
 impl Laps {
@@ -84,7 +84,7 @@ impl Laps {
         let seconds = (now - self.last).as_secs_f64();
         self.laps.push((name, seconds));
         if let Some(peak) = crate::memory::peak_resident() {
-            self.peaks.push((name, peak.bytes));
+            self.peaks.push((name, peak.mib()));
         }
         self.last = now;
         seconds
@@ -253,7 +253,7 @@ pub fn assemble(
     };
     laps.lap("surface");
     out.stage_seconds = laps.laps;
-    out.stage_peak_memory = laps.peaks;
+    out.stage_peak_memory_mib = laps.peaks;
     out
 }
 

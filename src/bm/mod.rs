@@ -288,19 +288,18 @@ pub struct SharingCounts {
     pub cells_missing_contour_edges: u64,
 }
 
-/// What a rerun with shared samples did to its cell's result (with the rerun's times).
+/// What a rerun with shared samples did to its cell's result.
 enum Rerun {
-    /// The cell has no input any more: its result stays.
-    NoInput,
     /// The rerun's result replaced the cell's.
-    Shared(CellTiming),
+    Shared,
     /// The other side's samples took a contour edge away; the cell keeps its finished run.
-    KeptUnshared(CellTiming),
+    KeptUnshared,
     /// As `KeptUnshared`, but with no finished run to keep: the rerun's result stays, missing it.
-    MissingEdges(CellTiming),
+    MissingEdges,
 }
 
-/// Run cell `c` again with the shared samples, its result `slot` replaced in place.
+/// Run cell `c` again with the shared samples, its result `slot` replaced in place; what it did
+/// and the rerun's times (`None`: the cell has no input any more, its result stays).
 #[allow(clippy::too_many_arguments)]
 fn rerun_cell(
     arr: &Arrangement,
@@ -311,30 +310,29 @@ fn rerun_cell(
     split: bool,
     c: usize,
     slot: &mut Option<CellResult>,
-) -> Result<Rerun> {
+) -> Result<Option<(Rerun, CellTiming)>> {
     let start = slot.as_mut().and_then(|r| r.start.take());
     let Some(input) = CellInput::build(arr, pool, loops, c as u32) else {
-        return Ok(Rerun::NoInput);
+        return Ok(None);
     };
     let mut r = cell::run_cell_sharing(input, sampling, shared, split, start)?;
     let timing = r.timing;
-    if !r.missing.is_empty() {
+    let what = if r.missing.is_empty() {
+        Rerun::Shared
+    } else if let Some(p) = slot.as_mut().filter(|p| p.pruned) {
         // the other side's samples took a contour edge away: keep a finished run without them
         // if there is one, else this one (its section then misses that edge)
-        if let Some(p) = slot.as_mut().filter(|p| p.pruned) {
-            p.start = r.start.take();
-            return Ok(Rerun::KeptUnshared(timing));
-        }
-        shared.adopt_ids(&mut r);
-        *slot = Some(r);
-        return Ok(Rerun::MissingEdges(timing));
-    }
+        p.start = r.start.take();
+        return Ok(Some((Rerun::KeptUnshared, timing)));
+    } else {
+        Rerun::MissingEdges
+    };
     shared.adopt_ids(&mut r);
     if let Some(input) = r.input.as_mut() {
         input.slim();
     }
     *slot = Some(r);
-    Ok(Rerun::Shared(timing))
+    Ok(Some((what, timing)))
 }
 
 /// Most rounds of sharing: each round's cells may split diagram pairs that the other side's
@@ -376,29 +374,20 @@ fn share_samples(
         // each rerun replaces its cell's result in place, so that the old and the new results of
         // every cell are never held at once (on a 1000-frame sweep they were gigabytes)
         let (pool_now, shared_now) = (&*pool, &shared);
-        let outcomes: Vec<Result<Rerun>> = results
+        let outcomes: Vec<Result<Option<(Rerun, CellTiming)>>> = results
             .par_iter_mut()
             .enumerate()
             .filter(|(c, _)| run[*c])
             .map(|(c, slot)| rerun_cell(arr, pool_now, loops, sampling, shared_now, split, c, slot))
             .collect();
         for outcome in outcomes {
-            match outcome? {
-                Rerun::NoInput => {}
-                Rerun::Shared(t) => {
-                    counts.cells_rerun += 1;
-                    timing.add(&t);
-                }
-                Rerun::KeptUnshared(t) => {
-                    counts.cells_rerun += 1;
-                    counts.cells_kept_unshared += 1;
-                    timing.add(&t);
-                }
-                Rerun::MissingEdges(t) => {
-                    counts.cells_rerun += 1;
-                    counts.cells_missing_contour_edges += 1;
-                    timing.add(&t);
-                }
+            let Some((what, t)) = outcome? else { continue };
+            counts.cells_rerun += 1;
+            timing.add(&t);
+            match what {
+                Rerun::Shared => {}
+                Rerun::KeptUnshared => counts.cells_kept_unshared += 1,
+                Rerun::MissingEdges => counts.cells_missing_contour_edges += 1,
             }
         }
         dirty_faces = shared.extend(arr, pool, results);
@@ -462,11 +451,7 @@ pub fn reconstruct(
         name: "cells (delaunay, conformity, pruning)".into(),
         seconds,
     });
-    if let Some(peak) = crate::memory::peak_resident() {
-        report
-            .values
-            .insert("peak_memory_mib.after.cells".into(), mib(peak.bytes));
-    }
+    report.note_peak_memory("cells");
     report.count("conformity_rounds", rounds as u64);
     report.count("cell_runs", cell_runs);
     for (name, secs) in timing.entries() {
@@ -503,10 +488,6 @@ pub fn reconstruct(
         *report.values.entry("cell_flat_area".into()).or_insert(0.0) += r.flat_area;
     }
     Ok(assemble_cells(arr, &pool, &results, options, report))
-}
-
-fn mib(bytes: u64) -> f64 {
-    bytes as f64 / (1024.0 * 1024.0)
 }
 
 /// The solid as one complex (`assembly`): the surface is the boundary of the kept tetrahedra.
@@ -580,10 +561,10 @@ fn assemble_cells(
     report
         .values
         .insert("collar_seconds".into(), k.collar.seconds);
-    for (stage, bytes) in &k.stage_peak_memory {
+    for (stage, mib) in &k.stage_peak_memory_mib {
         report
             .values
-            .insert(format!("assembly_peak_memory_mib.{stage}"), mib(*bytes));
+            .insert(format!("assembly_peak_memory_mib.{stage}"), *mib);
     }
     for (stage, secs) in &k.stage_seconds {
         report

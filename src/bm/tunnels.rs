@@ -610,7 +610,7 @@ fn depths(s: &Thinning, n_kept: usize) -> Vec<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fxhash::FxHashSet;
+    use crate::bm::refine::test_support::Owned;
 
     /// Positions, K's tetrahedra and the step-1 survivors of a test complex.
     type Complex = (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<[u32; 4]>);
@@ -654,47 +654,22 @@ mod tests {
         v.len() as i64 - e.len() as i64 + f.len() as i64 - tets.len() as i64
     }
 
-    /// The storage of a test triangulation: a complex, no planes, no sections.
-    struct Owned {
-        positions: Vec<[f64; 3]>,
-        planes: Vec<super::super::refine::Planes>,
-        kept: Vec<[u32; 4]>,
-        fillable: Vec<[u32; 4]>,
-        external: Vec<[u32; 4]>,
-        internal: FxHashSet<[u32; 3]>,
-    }
-
-    impl Owned {
-        fn new((positions, kept, fillable): Complex) -> Owned {
-            Owned {
-                planes: vec![Default::default(); positions.len()],
-                positions,
-                kept,
-                fillable,
-                external: Vec::new(),
-                internal: FxHashSet::default(),
-            }
-        }
-
-        fn triangulation(&mut self) -> Triangulation<'_> {
-            Triangulation {
-                positions: &mut self.positions,
-                planes: &mut self.planes,
-                kept: &mut self.kept,
-                fillable: &mut self.fillable,
-                external: &mut self.external,
-                internal: &mut self.internal,
-            }
+    /// A test triangulation owning `complex`: no planes, no sections.
+    fn owned((positions, kept, fillable): Complex) -> Owned {
+        Owned {
+            kept,
+            fillable,
+            ..Owned::at(positions)
         }
     }
 
     #[test]
     fn thinning_leaves_a_membrane_across_a_ring() {
-        let mut owned = Owned::new(ring(8));
+        let mut owned = owned(ring(8));
         assert_eq!(euler(&owned.kept), 0);
         let all: Vec<[u32; 4]> = owned.kept.iter().chain(&owned.fillable).copied().collect();
         assert_eq!(euler(&all), 1);
-        let k = owned.triangulation();
+        let k = owned.view();
         let mut stats = TunnelStats::default();
         let n = k.positions.len();
         let membranes = thin(&k, &vec![false; n], &mut stats);
@@ -708,8 +683,8 @@ mod tests {
 
     #[test]
     fn a_tunnel_through_holes_keeps_no_membrane() {
-        let mut owned = Owned::new(ring(8));
-        let k = owned.triangulation();
+        let mut owned = owned(ring(8));
+        let k = owned.view();
         // the inner wall (3i, 3i + 2) and the axis lie on holes: the tube is witnessed
         let n = k.positions.len();
         let on_hole: Vec<bool> = (0..n).map(|v| v >= n - 2 || v % 3 != 1).collect();
@@ -744,8 +719,8 @@ mod tests {
         ];
         let kept = vec![[0, 1, 2, 3], [1, 2, 3, 4]];
         let fill = vec![[0, 1, 2, 5], [1, 2, 4, 6], [1, 3, 4, 6]];
-        let mut owned = Owned::new((positions, kept, fill));
-        let mut k = owned.triangulation();
+        let mut owned = owned((positions, kept, fill));
+        let mut k = owned.view();
         let settle = Settle {
             growth_rounds: 1,
             growth_distance: 1e-3,
