@@ -18,6 +18,8 @@ use super::fill::singular_simplices;
 use super::refine::{edge, grow, key3, key4, on_a_plane, split, Triangulation};
 use super::singular::Snapshot;
 use crate::fxhash::{FxHashMap, FxHashSet};
+use petgraph::unionfind::UnionFind;
+use smallvec::SmallVec;
 
 /// What the carving did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -52,19 +54,20 @@ pub fn carve_pinches(
             continue;
         }
         // keep the largest cone and carve the others; where that is refused (a section face
-        // of theirs would be exposed), keep the next one instead
-        let n_cones = cones_at(t.kept, &core).len();
+        // of theirs would be exposed), keep the next one instead; a vertex whose kept star is
+        // one cone with several holes gets a strip across it carved instead
         let mut done = false;
-        'tries: for keep in 0..n_cones.min(MAX_CONES) {
+        'tries: for cut in cuts_at(t.kept, &core) {
             for d in [distance, 0.1 * distance] {
                 let start = Snapshot::of(t);
-                let mut tips = carve_core(t, &core, keep, d);
+                let mut tips = carve_core(t, &core, cut, d);
                 let (mut e, mut w) = singular_simplices(&boundary_of(t.kept));
                 // an edge carved away can leave one of its ends pinched: carve that too
                 if tips > 0 && core.len() == 2 && e.len() + w.len() >= count {
                     for &v in core.iter().filter(|v| w.contains(v)) {
-                        tips += (0..MAX_CONES)
-                            .map(|k| carve_core(t, &[v], k, d))
+                        tips += cuts_at(t.kept, &[v])
+                            .into_iter()
+                            .map(|cut| carve_core(t, &[v], cut, d))
                             .find(|&n| n > 0)
                             .unwrap_or(0);
                     }
@@ -92,8 +95,7 @@ pub fn carve_pinches(
                 start.restore(t);
             }
         }
-        // a pinched vertex whose kept star is one cone (its surface link several cycles around
-        // one face-connected star) has nothing to carve: refused too, so the report says so
+        // nothing to carve, or no carving lowered the count: refused, so the report says so
         stats.refused += u64::from(!done);
     }
     stats
@@ -152,18 +154,162 @@ fn cones_at(kept: &[[u32; 4]], core: &[u32]) -> Vec<Vec<[u32; 4]>> {
     cones
 }
 
-/// Split the edges from `core` into every cone but the `keep`-th and take the parts near the core
-/// out of K; the number of tetrahedra taken (0: nothing to carve, a split was refused, or a
-/// section face would be exposed; the caller restores).
-fn carve_core(t: &mut Triangulation, core: &[u32], keep: usize, distance: f64) -> u64 {
-    let cones = cones_at(t.kept, core);
-    if cones.len() < 2 {
-        return 0;
+/// What to carve at a singular simplex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Cut {
+    /// Every cone but this one (by size, largest first).
+    ConesBut(usize),
+    /// At a pinched vertex whose kept star is one cone with several holes (its surface link
+    /// several cycles): the shortest strip of the cone from this cycle (by size, smallest first)
+    /// to another. The kept link, an annulus or worse, becomes one with a hole fewer.
+    StripFrom(usize),
+}
+
+/// The cuts to try at `core`, in order.
+fn cuts_at(kept: &[[u32; 4]], core: &[u32]) -> Vec<Cut> {
+    let cones = cones_at(kept, core).len();
+    if cones >= 2 {
+        return (0..cones.min(MAX_CONES)).map(Cut::ConesBut).collect();
     }
-    let carved: Vec<[u32; 4]> = (cones.iter().enumerate())
-        .filter(|&(i, _)| i != keep)
-        .flat_map(|(_, c)| c.iter().copied())
-        .collect();
+    match core {
+        [v] if cones == 1 => {
+            let cycles = Link::of(kept, *v).cycles;
+            (0..cycles.min(MAX_CONES)).map(Cut::StripFrom).collect()
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// The surface around a vertex v: its kept star, and the cycles of ∂K's link there.
+struct Link {
+    star: Vec<[u32; 4]>,
+    /// Per star tetrahedron, the cycles its faces through v on ∂K belong to.
+    touches: Vec<SmallVec<[usize; 2]>>,
+    /// Per face through v shared by two star tetrahedra, those two.
+    inner: Vec<[usize; 2]>,
+    cycles: usize,
+}
+
+impl Link {
+    fn of(kept: &[[u32; 4]], v: u32) -> Link {
+        let mut star: Vec<[u32; 4]> = kept.iter().copied().filter(|t| t.contains(&v)).collect();
+        star.sort_unstable_by_key(|t| key4(*t));
+        let mut by_face: FxHashMap<[u32; 3], SmallVec<[usize; 2]>> = FxHashMap::default();
+        for (i, t) in star.iter().enumerate() {
+            for w in t.iter().filter(|&&w| w != v) {
+                let f: SmallVec<[u32; 3]> = t.iter().copied().filter(|x| x != w).collect();
+                by_face.entry(key3([f[0], f[1], f[2]])).or_default().push(i);
+            }
+        }
+        let mut faces: Vec<([u32; 3], SmallVec<[usize; 2]>)> = by_face.into_iter().collect();
+        faces.sort_unstable_by_key(|f| f.0);
+        let inner = faces
+            .iter()
+            .filter(|f| f.1.len() == 2)
+            .map(|f| [f.1[0], f.1[1]])
+            .collect();
+        // surface faces through v joined at their edges through v: the link's cycles
+        let surface: Vec<([u32; 3], usize)> = faces
+            .iter()
+            .filter(|f| f.1.len() == 1)
+            .map(|f| (f.0, f.1[0]))
+            .collect();
+        let mut uf = UnionFind::<usize>::new(surface.len());
+        let mut at_edge: FxHashMap<u32, usize> = FxHashMap::default();
+        for (i, (f, _)) in surface.iter().enumerate() {
+            for &x in f.iter().filter(|&&x| x != v) {
+                if let Some(&j) = at_edge.get(&x) {
+                    uf.union(i, j);
+                } else {
+                    at_edge.insert(x, i);
+                }
+            }
+        }
+        // cycles numbered smallest first (ties: the first face), so tries are deterministic
+        let mut size: FxHashMap<usize, (usize, usize)> = FxHashMap::default();
+        for i in 0..surface.len() {
+            let e = size.entry(uf.find(i)).or_insert((0, i));
+            e.0 += 1;
+        }
+        let mut roots: Vec<(usize, usize, usize)> = size
+            .into_iter()
+            .map(|(r, (n, first))| (n, first, r))
+            .collect();
+        roots.sort_unstable();
+        let number: FxHashMap<usize, usize> =
+            roots.iter().enumerate().map(|(k, r)| (r.2, k)).collect();
+        let mut touches = vec![SmallVec::new(); star.len()];
+        for (i, (_, t)) in surface.iter().enumerate() {
+            let c = number[&uf.find(i)];
+            if !touches[*t].contains(&c) {
+                touches[*t].push(c);
+            }
+        }
+        Link {
+            star,
+            touches,
+            inner,
+            cycles: roots.len(),
+        }
+    }
+
+    /// The shortest chain of star tetrahedra, adjacent through faces through v, from one on
+    /// cycle `from` to one on another cycle.
+    fn strip_from(&self, from: usize) -> Option<Vec<[u32; 4]>> {
+        let mut next: Vec<SmallVec<[usize; 4]>> = vec![SmallVec::new(); self.star.len()];
+        for &[a, b] in &self.inner {
+            next[a].push(b);
+            next[b].push(a);
+        }
+        let mut came: Vec<Option<usize>> = vec![None; self.star.len()];
+        let mut queue = std::collections::VecDeque::new();
+        for (i, c) in self.touches.iter().enumerate() {
+            if c.contains(&from) {
+                came[i] = Some(i);
+                queue.push_back(i);
+            }
+        }
+        while let Some(i) = queue.pop_front() {
+            if self.touches[i].iter().any(|&c| c != from) {
+                let mut chain = vec![self.star[i]];
+                let mut j = i;
+                while came[j] != Some(j) {
+                    j = came[j].unwrap();
+                    chain.push(self.star[j]);
+                }
+                return Some(chain);
+            }
+            for &n in &next[i] {
+                if came[n].is_none() {
+                    came[n] = Some(i);
+                    queue.push_back(n);
+                }
+            }
+        }
+        None
+    }
+}
+
+/// Split the edges from `core` into the kept tetrahedra `cut` names and take their parts near
+/// the core out of K; the number of tetrahedra taken (0: nothing to carve, a split was refused,
+/// or a section face would be exposed; the caller restores).
+fn carve_core(t: &mut Triangulation, core: &[u32], cut: Cut, distance: f64) -> u64 {
+    let carved: Vec<[u32; 4]> = match cut {
+        Cut::ConesBut(keep) => {
+            let cones = cones_at(t.kept, core);
+            if cones.len() < 2 {
+                return 0;
+            }
+            (cones.into_iter().enumerate())
+                .filter(|&(i, _)| i != keep)
+                .flat_map(|(_, c)| c)
+                .collect()
+        }
+        Cut::StripFrom(from) => match Link::of(t.kept, core[0]).strip_from(from) {
+            Some(strip) => strip,
+            None => return 0,
+        },
+    };
     let mut points: FxHashMap<(u32, u32), [f64; 3]> = FxHashMap::default();
     for tet in &carved {
         for &v in core {
@@ -282,5 +428,50 @@ mod tests {
         let at_origin: Vec<_> = t.kept.iter().filter(|x| x.contains(&0)).collect();
         assert_eq!(at_origin.len(), 1);
         assert_eq!(key4(*at_origin[0]), [0, 1, 2, 3]);
+    }
+
+    /// The six octants around the origin but two opposite ones: one cone whose surface link is
+    /// two cycles (an annulus, as where a crossing diagram leaves two holes at a vertex). No cone
+    /// can be carved; the shortest strip of the cone from one hole to the other is, and the
+    /// boundary becomes a manifold.
+    #[test]
+    fn one_cone_with_two_holes_at_a_vertex_loses_a_strip_across_it() {
+        let mut positions = vec![[0.0, 0.0, 0.0]];
+        for axis in 0..3 {
+            for sign in [1.0, -1.0] {
+                let mut p = [0.0; 3];
+                p[axis] = sign;
+                positions.push(p);
+            }
+        }
+        // vertex of axis a (0, 1, 2) with sign s (0: +, 1: -)
+        let at = |a: usize, s: usize| (1 + 2 * a + s) as u32;
+        let mut kept = Vec::new();
+        for sx in 0..2 {
+            for sy in 0..2 {
+                for sz in 0..2 {
+                    if sx == sy && sy == sz {
+                        continue; // the octants (+,+,+) and (-,-,-) are the holes
+                    }
+                    kept.push(positive(&positions, [0, at(0, sx), at(1, sy), at(2, sz)]));
+                }
+            }
+        }
+        let mut o = Owned {
+            kept,
+            ..Owned::at(positions)
+        };
+        let mut t = o.view();
+        assert_eq!(cones_at(t.kept, &[0]).len(), 1);
+        assert_eq!(Link::of(t.kept, 0).cycles, 2);
+        let singular = singular_simplices(&boundary_of(t.kept));
+        assert_eq!(singular, (vec![], vec![0]));
+        let stats = carve_pinches(&mut t, singular, &FxHashSet::default(), 0.1);
+        assert_eq!((stats.vertices, stats.refused), (1, 0), "{stats:?}");
+        // the strip: two octants, each losing its tip at the origin
+        assert_eq!(stats.tips, 2);
+        let (e, w) = singular_simplices(&boundary_of(t.kept));
+        assert!(e.is_empty() && w.is_empty(), "{e:?} {w:?}");
+        assert_eq!(Link::of(t.kept, 0).cycles, 1);
     }
 }
