@@ -52,6 +52,7 @@ mod merge;
 mod pieces;
 mod reach;
 mod reconcile;
+mod signs;
 
 use crate::error::Result;
 use crate::sections::{Plane, Sections};

@@ -1,6 +1,7 @@
 //! Assembly of the `Arrangement`: box, duplicate check, cells, shared faces, pool, pieces.
 use super::cells::CellBuilder;
 use super::exact::same_plane;
+use super::signs::SignVec;
 use super::{
     ArrPlane, Arrangement, ArrangementOptions, Cell, CellFace, CellScope, Face, PlaneTags,
     VertexPool,
@@ -45,6 +46,8 @@ pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result
         mut cell_sign,
     } = shared_faces(&builder)?;
     let pool = arrangement_vertex_pool(&builder, &planes);
+    // its cells (faces, signs) and vertex maps are copied out: free them before the pieces
+    drop(builder);
 
     let mut arr = Arrangement {
         planes,
@@ -178,7 +181,7 @@ fn shared_faces(builder: &CellBuilder) -> Result<CellsAndFaces> {
     let mut faces: Vec<Face> = Vec::new();
     let mut face_index: HashMap<(u32, Vec<u32>), u32> = HashMap::default();
     let mut cells: Vec<Cell> = Vec::with_capacity(builder.cells.len());
-    let mut cell_sign: Vec<Vec<i8>> = Vec::with_capacity(builder.cells.len());
+    let mut cell_sign: Vec<SignVec> = Vec::with_capacity(builder.cells.len());
     for (c, bc) in builder.cells.iter().enumerate() {
         let c = c as u32;
         let mut cfaces = Vec::with_capacity(bc.faces.len());
@@ -188,7 +191,7 @@ fn shared_faces(builder: &CellBuilder) -> Result<CellsAndFaces> {
             key_v.sort_unstable();
             let key = (bf.plane, key_v);
             // The cell is on the negative side of the plane: its outward normal is the plane normal.
-            let outward_is_plane_normal = bc.sign[bf.plane as usize] < 0;
+            let outward_is_plane_normal = bc.sign.get(bf.plane as usize) < 0;
             let fid = match face_index.get(&key) {
                 Some(&f) => f,
                 None => {
@@ -241,7 +244,7 @@ fn shared_faces(builder: &CellBuilder) -> Result<CellsAndFaces> {
 struct CellsAndFaces {
     faces: Vec<Face>,
     cells: Vec<Cell>,
-    cell_sign: Vec<Vec<i8>>,
+    cell_sign: Vec<SignVec>,
 }
 
 /// Volume of a cell: its faces fanned from the first face's first vertex (positions taken

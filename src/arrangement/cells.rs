@@ -14,6 +14,7 @@
 //! the cells around them). `cut` also drops the new cells the caller's `keep` rejects (cells no
 //! section reaches, `reach`): nothing is built inside them any more.
 use super::exact::{sign_det3, sign_det4};
+use super::signs::SignVec;
 use super::PlaneTags;
 use crate::fxhash::FxHashMap as HashMap;
 
@@ -29,7 +30,7 @@ pub(crate) struct BCell {
     pub faces: Vec<BFace>,
     /// Side of the cell with respect to the planes that split it (and the walls): -1, +1; 0 for
     /// the others until `complete_signs` fills them in at the end.
-    pub sign: Vec<i8>,
+    pub sign: SignVec,
     /// Box of the rounded vertex positions.
     pub lo: [f64; 3],
     pub hi: [f64; 3],
@@ -168,9 +169,9 @@ impl CellBuilder {
                 poly: vec![v(0, 0, 1), v(1, 0, 1), v(1, 1, 1), v(0, 1, 1)],
             },
         ];
-        let mut sign = vec![0i8; n];
+        let mut sign = SignVec::filled(n, 0);
         for w in walls {
-            sign[w as usize] = -1;
+            sign.set(w as usize, -1);
         }
         let mut cell = BCell {
             faces,
@@ -357,7 +358,7 @@ impl CellBuilder {
         let mut done = Vec::with_capacity(cells.len());
         for mut c in cells {
             for h in 0..self.cut_count {
-                if c.sign[h as usize] != 0 {
+                if c.sign.get(h as usize) != 0 {
                     continue;
                 }
                 let mut s = self.box_side(&c, h);
@@ -370,7 +371,7 @@ impl CellBuilder {
                     s = off.map_or(0, |&v| self.side(v, h));
                 }
                 debug_assert!(s != 0, "a cell lies on one side of every plane");
-                c.sign[h as usize] = s;
+                c.sign.set(h as usize, s);
             }
             done.push(c);
         }
@@ -457,8 +458,7 @@ impl CellBuilder {
                 plane: h,
                 poly: cap,
             });
-            let mut sign = cell.sign.clone();
-            sign[h as usize] = s;
+            let sign = cell.sign.clone().with(h as usize, s);
             let mut part = BCell {
                 faces: std::mem::take(faces),
                 sign,

@@ -149,7 +149,7 @@ fn consistent_clusters(arr: &Arrangement, mut root: Vec<u32>) -> Vec<u32> {
 /// this stage) and drop the faces and cells that degenerate. `cell_sign` is re-indexed with the cells.
 pub(super) fn merge_close_vertices(
     arr: &mut Arrangement,
-    cell_sign: &mut Vec<Vec<i8>>,
+    cell_sign: &mut Vec<super::signs::SignVec>,
     tol: f64,
 ) -> MergeStats {
     let root = consistent_clusters(arr, close_clusters(&arr.pool.positions, tol));

@@ -13,6 +13,7 @@
 //! section point on the boundary) from where a run leaves the face to where the next one enters.
 //! The tracing inside a face is module `trace`.
 use super::exact::{dot_plus, sign_dot_plus};
+use super::signs::SignVec;
 use super::{Arrangement, ArrangementOptions, PlaneTags, VertexId};
 use crate::error::Result;
 use crate::fxhash::FxHashMap as HashMap;
@@ -25,7 +26,7 @@ use trace::{assemble, trace_face};
 
 struct Pt {
     id: VertexId,
-    sv: Vec<i8>,
+    sv: SignVec,
 }
 
 #[derive(Default)]
@@ -130,7 +131,7 @@ impl<'a> Ctx<'a> {
 pub(super) fn build_pieces(
     arr: &mut Arrangement,
     sections: &Sections,
-    cell_sign: &[Vec<i8>],
+    cell_sign: &[SignVec],
     diag: f64,
     options: &ArrangementOptions,
 ) -> Result<()> {
@@ -158,12 +159,11 @@ pub(super) fn build_pieces(
     let n_planes = ctx.arr.planes.len();
     // Faces per plane, keyed by the sign vector of their positive cell with the own entry zeroed.
     let mut faces_of: Vec<Vec<u32>> = vec![Vec::new(); n_planes];
-    let mut face_key: Vec<HashMap<Vec<i8>, u32>> = vec![HashMap::default(); n_planes];
+    let mut face_key: Vec<HashMap<SignVec, u32>> = vec![HashMap::default(); n_planes];
     for (f, face) in ctx.arr.faces.iter().enumerate() {
         faces_of[face.plane as usize].push(f as u32);
         if let Some(c) = face.positive_cell.or(face.negative_cell) {
-            let mut sv = cell_sign[c as usize].clone();
-            sv[face.plane as usize] = 0;
+            let sv = cell_sign[c as usize].clone().with(face.plane as usize, 0);
             face_key[face.plane as usize].insert(sv, f as u32);
         }
     }
@@ -193,26 +193,26 @@ enum Effect {
     Rep(u32, i8),
 }
 
-fn plane_effects(ctx: &Ctx, i: u32, face_key: &HashMap<Vec<i8>, u32>) -> Vec<Effect> {
+fn plane_effects(ctx: &Ctx, i: u32, face_key: &HashMap<SignVec, u32>) -> Vec<Effect> {
     let np = ctx.arr.planes.len();
-    let keys: Vec<&Vec<i8>> = face_key.keys().collect();
+    let keys: Vec<&SignVec> = face_key.keys().collect();
     let mut eff = vec![Effect::Own; np];
     let mut reps: Vec<u32> = Vec::new();
     // the planes on which the faces' sides differ, in one pass over the keys (a dense sweep has
     // a thousand planes and a thousand faces per plane, most planes far from plane i)
-    let first: Vec<i8> = keys.first().map_or_else(|| vec![-1; np], |k| k.to_vec());
-    let mut varies = vec![false; np];
+    let first: SignVec = keys
+        .first()
+        .map_or_else(|| SignVec::filled(np, -1), |k| (*k).clone());
+    let mut varies = vec![0u64; SignVec::words_for(np)];
     for k in &keys[1.min(keys.len())..] {
-        for ((v, a), b) in varies.iter_mut().zip(k.iter()).zip(&first) {
-            *v |= a != b;
-        }
+        k.mark_differences(&first, &mut varies);
     }
-    for j in 0..np {
+    for (j, e) in eff.iter_mut().enumerate() {
         if j as u32 == i {
             continue;
         }
-        if !varies[j] {
-            eff[j] = Effect::Const(first[j]);
+        if !SignVec::marked(&varies, j) {
+            *e = Effect::Const(first.get(j));
             continue;
         }
         // Same line as an earlier representative: rank [P_i; P_r; P_j] = 2.
@@ -220,14 +220,16 @@ fn plane_effects(ctx: &Ctx, i: u32, face_key: &HashMap<Vec<i8>, u32>) -> Vec<Eff
         for &r in &reps {
             if ctx.same_line(i, r, j as u32) {
                 // The two planes' sides on P_i agree or are opposite on every face.
-                let k = keys.iter().find(|k| k[j] != 0 && k[r as usize] != 0);
-                let f = k.map_or(1, |k| k[j] * k[r as usize]);
+                let k = keys
+                    .iter()
+                    .find(|k| k.get(j) != 0 && k.get(r as usize) != 0);
+                let f = k.map_or(1, |k| k.get(j) * k.get(r as usize));
                 found = Some(Effect::Rep(r, f));
                 break;
             }
         }
-        eff[j] = match found {
-            Some(e) => e,
+        *e = match found {
+            Some(found) => found,
             None => {
                 reps.push(j as u32);
                 Effect::Rep(j as u32, 1)
@@ -251,7 +253,7 @@ fn process_region(
     i: u32,
     region: &Region,
     faces: &[u32],
-    face_key: &HashMap<Vec<i8>, u32>,
+    face_key: &HashMap<SignVec, u32>,
     eff: &[Effect],
 ) {
     let mut work: HashMap<u32, FaceWork> = HashMap::default();
@@ -349,14 +351,12 @@ impl<'e> SideModel<'e> {
     }
 
     /// The full sign vector from the signs `r` with respect to the representatives.
-    fn expand(&self, r: &[i8]) -> Vec<i8> {
-        (0..self.n_planes())
-            .map(|j| match self.eff[j] {
-                Effect::Own => 0,
-                Effect::Const(s) => s,
-                Effect::Rep(rep, f) => f * r[rep as usize],
-            })
-            .collect()
+    fn expand(&self, r: &[i8]) -> SignVec {
+        SignVec::from_fn(self.n_planes(), |j| match self.eff[j] {
+            Effect::Own => 0,
+            Effect::Const(s) => s,
+            Effect::Rep(rep, f) => f * r[rep as usize],
+        })
     }
 
     /// Exact signs of `p` with respect to the representative planes (0 for the others).
@@ -374,9 +374,9 @@ impl<'e> SideModel<'e> {
     }
 
     /// The other planes a point with sign vector `s` lies on.
-    fn zeros_of(&self, s: &[i8]) -> Vec<u32> {
+    fn zeros_of(&self, s: &SignVec) -> Vec<u32> {
         (0..self.n_planes() as u32)
-            .filter(|&j| j != self.i && s[j as usize] == 0)
+            .filter(|&j| j != self.i && s.get(j as usize) == 0)
             .collect()
     }
 }
@@ -407,7 +407,7 @@ fn split_contour(
     ctx: &mut Ctx,
     i: u32,
     c: &Contour,
-    face_key: &HashMap<Vec<i8>, u32>,
+    face_key: &HashMap<SignVec, u32>,
     eff: &[Effect],
     work: &mut HashMap<u32, FaceWork>,
 ) {
@@ -417,7 +417,7 @@ fn split_contour(
     }
     let model = SideModel::new(ctx, i, eff);
     let rsv: Vec<Vec<i8>> = c.points3.iter().map(|&p| model.rep_signs(p)).collect();
-    let sv: Vec<Vec<i8>> = rsv.iter().map(|r| model.expand(r)).collect();
+    let sv: Vec<SignVec> = rsv.iter().map(|r| model.expand(r)).collect();
     // Pool ids of the contour vertices.
     let mut vid = Vec::with_capacity(n);
     for (k, svk) in sv.iter().enumerate() {
@@ -513,7 +513,7 @@ fn push_edge_crossings(
 }
 
 /// Face of every stretch between consecutive points of the split contour.
-fn stretch_faces(ctx: &mut Ctx, i: u32, pts: &[Pt], face_key: &HashMap<Vec<i8>, u32>) -> Vec<u32> {
+fn stretch_faces(ctx: &mut Ctx, i: u32, pts: &[Pt], face_key: &HashMap<SignVec, u32>) -> Vec<u32> {
     let m = pts.len();
     let mut fe = Vec::with_capacity(m);
     for k in 0..m {
@@ -524,7 +524,7 @@ fn stretch_faces(ctx: &mut Ctx, i: u32, pts: &[Pt], face_key: &HashMap<Vec<i8>, 
                 // Only possible within rounding of a multiple point: take the closest sign vector.
                 let mut best = (usize::MAX, 0u32);
                 for (key, &f) in face_key {
-                    let d = key.iter().zip(&s).filter(|(x, y)| x != y).count();
+                    let d = key.iter().zip(s.iter()).filter(|(x, y)| x != y).count();
                     if d < best.0 {
                         best = (d, f);
                     }
@@ -542,17 +542,16 @@ fn stretch_faces(ctx: &mut Ctx, i: u32, pts: &[Pt], face_key: &HashMap<Vec<i8>, 
 }
 
 /// Sign vector of the stretch from `a` to `b` (0 for plane `i` itself).
-fn stretch_signs(ctx: &Ctx, i: u32, a: &Pt, b: &Pt) -> Vec<i8> {
+fn stretch_signs(ctx: &Ctx, i: u32, a: &Pt, b: &Pt) -> SignVec {
     let np = ctx.arr.planes.len();
     let plane_i = ctx.arr.planes[i as usize].plane;
-    let mut s = Vec::with_capacity(np);
-    for j in 0..np {
-        let v = if j as u32 == i {
+    SignVec::from_fn(np, |j| {
+        if j as u32 == i {
             0
-        } else if a.sv[j] != 0 {
-            a.sv[j]
-        } else if b.sv[j] != 0 {
-            b.sv[j]
+        } else if a.sv.get(j) != 0 {
+            a.sv.get(j)
+        } else if b.sv.get(j) != 0 {
+            b.sv.get(j)
         } else {
             // The stretch lies on P_j: it belongs to the face on its left (the region's side).
             let pj = &ctx.arr.planes[j].plane;
@@ -568,10 +567,8 @@ fn stretch_signs(ctx: &Ctx, i: u32, a: &Pt, b: &Pt) -> Vec<i8> {
             } else {
                 1
             }
-        };
-        s.push(v);
-    }
-    s
+        }
+    })
 }
 
 /// Give each face its boundary points and its runs of the contour (or the whole contour, closed,
