@@ -327,7 +327,7 @@ fn run_cell_with(
     };
     let mut tri = match start {
         Start::Reuse(st) => Tri {
-            dt: st.dt.clone(),
+            dt: st.dt.clone_compact(),
             tagged: st.tagged,
         },
         _ => {

@@ -105,6 +105,10 @@ fn run_timed(
         run_cell(input, sampling, check_only)?
     };
     r.timing.input += build;
+    // what only the run itself reads goes (a rerun with shared samples builds its input anew)
+    if let Some(input) = r.input.as_mut() {
+        input.slim();
+    }
     Ok(Some(r))
 }
 

@@ -367,6 +367,39 @@ impl Delaunay {
         }
     }
 
+    /// A copy without the scratch buffers of insertion (cavity, gluing and search tables, visit
+    /// stamps by slot and vertex), which are rebuilt on demand: a stored triangulation that will
+    /// take more points later (a cell's run start; a thousand-frame sweep keeps one per cell)
+    /// holds only the triangulation.
+    pub fn clone_compact(&self) -> Delaunay {
+        Delaunay {
+            pts: self.pts.clone(),
+            ext: self.ext.clone(),
+            int: self.int.clone(),
+            tds: self.tds.clone(),
+            vtet: self.vtet.clone(),
+            dups: self.dups.clone(),
+            dim: self.dim,
+            pending: self.pending.clone(),
+            pending_keys: self.pending_keys.clone(),
+            nfinite: self.nfinite,
+            hint: self.hint,
+            rng: self.rng,
+            lo: self.lo,
+            hi: self.hi,
+            bounds: self.bounds,
+            track_vtet: self.track_vtet,
+            tagged: self.tagged,
+            tags: self.tags.clone(),
+            inconsistent: self.inconsistent,
+            rule_decided: self.rule_decided.clone(),
+            stamp_gen: self.stamp_gen,
+            vmark_gen: self.vmark_gen,
+            parallel_deferred: self.parallel_deferred,
+            ..Delaunay::empty()
+        }
+    }
+
     fn empty() -> Delaunay {
         Delaunay {
             pts: Vec::new(),

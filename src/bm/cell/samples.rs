@@ -162,7 +162,7 @@ impl StartParts {
     /// triangulation instead, and the reruns insert the samples again as the whole run would.
     fn complete(self, input: &CellInput, tri: &Tri) -> Result<RunStart> {
         let (dt, tagged, with_samples) = if tri.tagged == self.tagged {
-            (tri.dt.clone(), tri.tagged, true)
+            (tri.dt.clone_compact(), tri.tagged, true)
         } else {
             let mut tagged = true;
             let dt = points_delaunay(&self.points, &input.tags, &mut tagged)?;
