@@ -196,7 +196,7 @@ pub fn pool_tags(
         .map(|&t| (t, arr.planes[t as usize].plane.to_2d(p)))
         .collect();
     let mut tags = PointTags::new(g as u64, &planes);
-    tags.segment = pool.on_segment.get(&g).copied();
+    tags.segment = pool.on_segment.get(&g).map(|s| s.map(u64::from));
     tags
 }
 
