@@ -266,11 +266,8 @@ fn hole_vertices(results: &[Option<CellResult>], maps: &[Vec<u32>], n: usize) ->
             continue;
         };
         for slot in &input.slots {
-            let area = |l: &Vec<u32>| {
-                let pts: Vec<[f64; 2]> = l.iter().map(|&v| slot.uv[v as usize]).collect();
-                crate::sections::polygon_signed_area(&pts)
-            };
-            let areas: Vec<f64> = slot.loops.iter().map(area).collect();
+            // the loops' areas in (u,v), computed when the run's input was slimmed
+            let areas = &slot.loop_areas;
             let Some(outer) = areas
                 .iter()
                 .copied()
@@ -278,7 +275,7 @@ fn hole_vertices(results: &[Option<CellResult>], maps: &[Vec<u32>], n: usize) ->
             else {
                 continue;
             };
-            for (l, a) in slot.loops.iter().zip(&areas) {
+            for (l, a) in slot.loops.iter().zip(areas) {
                 if a * outer < 0.0 {
                     for &v in l {
                         on_hole[maps[c][v as usize] as usize] = true;

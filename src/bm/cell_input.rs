@@ -144,8 +144,13 @@ pub struct Slot {
     pub outward_is_plane_normal: bool,
     /// Boundary loops (outer and holes) in local ids, with Steiner splits applied.
     pub loops: Vec<Vec<u32>>,
-    /// (u,v) in this plane per local vertex (meaningful for vertices carrying the slot's bit).
+    /// (u,v) in this plane per local vertex (meaningful for vertices carrying the slot's bit);
+    /// empty once the input is slimmed ([`CellInput::slim`]).
     pub uv: Vec<[f64; 2]>,
+    /// Once slimmed: the signed area of each loop in (u,v), and the (u,v) of the cell-local
+    /// vertices on this slot (what the assembly and the sharing of samples read of `uv`).
+    pub loop_areas: Vec<f64>,
+    pub local_uv: Vec<(u32, [f64; 2])>,
     pub contour_edges: IdSet<(u32, u32)>,
     pub locator: SectionLocator,
     /// The cell on the other side of this face has sections on at least two faces, so it may
@@ -209,12 +214,30 @@ pub fn edge_key(a: u32, b: u32) -> (u32, u32) {
 }
 
 impl CellInput {
-    /// Drop what only the cell's own run reads (the slots' point locators and contour-edge
-    /// sets), once the run is final: the assembly reads ids, points, tags and loops.
+    /// Drop what only the cell's own run reads (the slots' point locators, contour-edge sets
+    /// and (u,v) of every local vertex, a slot's share of which is kept: its loops' areas and
+    /// its cell-local vertices' (u,v)), once the run is stored: the assembly and the sharing of
+    /// samples read ids, points, tags, loops and those. A rerun builds its input anew.
     pub fn slim(&mut self) {
-        for slot in &mut self.slots {
+        for (s, slot) in self.slots.iter_mut().enumerate() {
             slot.locator = SectionLocator::default();
             slot.contour_edges = IdSet::default();
+            if slot.uv.is_empty() {
+                continue; // slimmed already
+            }
+            slot.loop_areas = slot
+                .loops
+                .iter()
+                .map(|l| {
+                    let pts: Vec<[f64; 2]> = l.iter().map(|&v| slot.uv[v as usize]).collect();
+                    crate::sections::polygon_signed_area(&pts)
+                })
+                .collect();
+            slot.local_uv = (0..self.global.len())
+                .filter(|&l| self.global[l] == u32::MAX && self.mask[l] >> s & 1 == 1)
+                .map(|l| (l as u32, slot.uv[l]))
+                .collect();
+            slot.uv = Vec::new();
         }
     }
 
@@ -264,6 +287,8 @@ impl CellInput {
                 outward_is_plane_normal: cf.outward_is_plane_normal,
                 loops: Vec::new(),
                 uv: vec![[f64::NAN; 2]; n],
+                loop_areas: Vec::new(),
+                local_uv: Vec::new(),
                 contour_edges: IdSet::default(),
                 locator: SectionLocator::default(),
                 beyond_may_attach: {
@@ -377,5 +402,57 @@ mod tests {
         assert_eq!(loc.locate_clear([0.25, 1.0], 1e-9), Where::Inside);
         assert_eq!(loc.locate_clear([0.25, 1.0], 0.3), Where::Boundary);
         assert_eq!(loc.locate_clear([1.0, 1.0], 0.3), Where::Outside);
+    }
+
+    /// Slimming keeps of a slot's (u,v) what is read after the run: each loop's signed area
+    /// (an outer square and a hole, opposite signs) and the cell-local vertices on the slot.
+    #[test]
+    fn slim_keeps_loop_areas_and_local_uv() {
+        let uv = vec![
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 2.0],
+            [0.0, 2.0],
+            [0.5, 0.5],
+            [0.5, 1.5],
+            [1.5, 1.5],
+            [1.5, 0.5],
+            [f64::NAN; 2], // a local vertex on no slot
+        ];
+        let n = uv.len();
+        let slot = Slot {
+            face: 0,
+            plane: 0,
+            geom: crate::sections::Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap(),
+            outward_is_plane_normal: true,
+            loops: vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]],
+            uv,
+            loop_areas: Vec::new(),
+            local_uv: Vec::new(),
+            contour_edges: IdSet::default(),
+            locator: SectionLocator::default(),
+            beyond_may_attach: true,
+        };
+        let mut global: Vec<u32> = (0..n as u32).collect();
+        global[5] = u32::MAX; // a diagram sample of this cell on the slot
+        global[8] = u32::MAX; // one in the cell's interior
+        let mut mask = vec![1 as Mask; n];
+        mask[8] = 0;
+        let mut input = CellInput {
+            cell: 0,
+            global,
+            points: vec![[0.0; 3]; n],
+            mask,
+            tags: vec![PointTags::none(); n],
+            slots: vec![slot],
+        };
+        input.slim();
+        let slot = &input.slots[0];
+        assert!(slot.uv.is_empty());
+        assert_eq!(slot.loop_areas, vec![4.0, -1.0]);
+        assert_eq!(slot.local_uv, vec![(5, [0.5, 1.5])]);
+        // slimming twice changes nothing
+        input.slim();
+        assert_eq!(input.slots[0].loop_areas, vec![4.0, -1.0]);
     }
 }

@@ -570,6 +570,8 @@ pub(super) mod tests {
                 locator: SectionLocator::new(&uv_loops),
                 loops,
                 uv,
+                loop_areas: Vec::new(),
+                local_uv: Vec::new(),
                 contour_edges,
                 beyond_may_attach: false,
             });

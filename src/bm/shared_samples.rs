@@ -55,11 +55,13 @@ impl SharedSamples {
                 self.by_face[f].iter().map(|x| (key(x.p3), x.gid)).collect();
             let before = self.by_face[f].len();
             for (input, s) in face_sides(f, face, results) {
-                for l in 0..input.points.len() {
-                    if input.global[l] != u32::MAX || input.mask[l] >> s & 1 == 0 {
+                // slimmed inputs: the slot's cell-local vertices with their (u,v)
+                for &(l, uv) in &input.slots[s].local_uv {
+                    let l = l as usize;
+                    if input.global[l] != u32::MAX {
                         continue;
                     }
-                    let (p3, uv) = (input.points[l], input.slots[s].uv[l]);
+                    let p3 = input.points[l];
                     seen.entry(key(p3)).or_insert_with(|| {
                         pool.positions.push(p3);
                         pool.tags.push(smallvec![face.plane]);
