@@ -496,9 +496,11 @@ fn global_planes(
         let Some(inp) = r.as_ref().and_then(|r| r.input.as_ref()) else {
             continue;
         };
-        for (l, &g) in inp.global.iter().enumerate() {
-            if g == u32::MAX {
-                planes[maps[c][l] as usize] = inp.tags[l].planes.iter().map(|p| p.0).collect();
+        // slimmed inputs: the cell-local vertices' planes (a vertex that adopted a shared
+        // sample's id since has the pool's)
+        for (l, p) in &inp.local_planes {
+            if inp.global[*l as usize] == u32::MAX {
+                planes[maps[c][*l as usize] as usize] = p.iter().copied().collect();
             }
         }
     }

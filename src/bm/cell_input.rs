@@ -170,6 +170,9 @@ pub struct CellInput {
     /// hand it the same tags for the same points, so both triangulate the face alike.
     pub tags: Vec<PointTags>,
     pub slots: Vec<Slot>,
+    /// Once slimmed (`tags` then empty): the planes of each cell-local vertex (no pool id), which
+    /// the assembly reads.
+    pub local_planes: Vec<(u32, SmallVec<[u32; 3]>)>,
 }
 
 /// The kernel's global id of a cell-local vertex (a diagram sample without a pool id): above every
@@ -216,9 +219,17 @@ pub fn edge_key(a: u32, b: u32) -> (u32, u32) {
 impl CellInput {
     /// Drop what only the cell's own run reads (the slots' point locators, contour-edge sets
     /// and (u,v) of every local vertex, a slot's share of which is kept: its loops' areas and
-    /// its cell-local vertices' (u,v)), once the run is stored: the assembly and the sharing of
-    /// samples read ids, points, tags, loops and those. A rerun builds its input anew.
+    /// its cell-local vertices' (u,v); the points' tags, of which the cell-local vertices' planes
+    /// are kept), once the run is stored: the assembly and the sharing of samples read ids,
+    /// points, loops and those. A rerun builds its input anew.
     pub fn slim(&mut self) {
+        if !self.tags.is_empty() {
+            self.local_planes = (0..self.global.len())
+                .filter(|&l| self.global[l] == u32::MAX)
+                .map(|l| (l as u32, self.tags[l].planes.iter().map(|p| p.0).collect()))
+                .collect();
+            self.tags = Vec::new();
+        }
         for (s, slot) in self.slots.iter_mut().enumerate() {
             slot.locator = SectionLocator::default();
             slot.contour_edges = IdSet::default();
@@ -352,6 +363,7 @@ impl CellInput {
             mask,
             tags,
             slots,
+            local_planes: Vec::new(),
         })
     }
 
@@ -445,12 +457,22 @@ mod tests {
             mask,
             tags: vec![PointTags::none(); n],
             slots: vec![slot],
+            local_planes: Vec::new(),
         };
+        input.tags[5] = PointTags::new(local_gid(5), &[(7, [0.5, 1.5])]);
         input.slim();
         let slot = &input.slots[0];
         assert!(slot.uv.is_empty());
         assert_eq!(slot.loop_areas, vec![4.0, -1.0]);
         assert_eq!(slot.local_uv, vec![(5, [0.5, 1.5])]);
+        // the tags go; the cell-local vertices' planes stay
+        assert!(input.tags.is_empty());
+        let locals: Vec<(u32, Vec<u32>)> = input
+            .local_planes
+            .iter()
+            .map(|(l, p)| (*l, p.to_vec()))
+            .collect();
+        assert_eq!(locals, vec![(5, vec![7]), (8, vec![])]);
         // slimming twice changes nothing
         input.slim();
         assert_eq!(input.slots[0].loop_areas, vec![4.0, -1.0]);

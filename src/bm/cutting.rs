@@ -524,6 +524,7 @@ pub(super) mod tests {
             mask: Vec::new(),
             tags: Vec::new(),
             slots: Vec::new(),
+            local_planes: Vec::new(),
         };
         let mut per_slot = Vec::new();
         for (s, (z, loops)) in [(0.0, bottom), (1.0, top)].into_iter().enumerate() {
