@@ -43,6 +43,7 @@ fn check(name: &str, shared_samples: bool) {
         }
         for slot in &input.slots {
             assert!(slot.uv.is_empty(), "{what}: slot (u,v) kept");
+            assert!(slot.run.is_none(), "{what}: slot run data kept");
             assert_eq!(
                 slot.loop_areas.len(),
                 slot.loops.len(),

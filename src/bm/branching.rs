@@ -60,7 +60,7 @@ pub fn apex_triangles(
 /// diagram samples are thinned to.
 pub(super) fn contour_spacing(input: &CellInput, s: usize) -> f64 {
     let mut lens: Vec<f64> = input.slots[s]
-        .contour_edges
+        .contour_edges()
         .iter()
         .map(|&(a, b)| dist2(input.points[a as usize], input.points[b as usize]).sqrt())
         .collect();
@@ -75,7 +75,7 @@ pub(super) fn contour_spacing(input: &CellInput, s: usize) -> f64 {
 /// Unit normal of slot `s`'s plane pointing into the cell (sites have positive height along it).
 pub(super) fn into_cell_normal(input: &CellInput, s: usize) -> [f64; 3] {
     let slot = &input.slots[s];
-    let n = slot.geom.normal;
+    let n = slot.geom().normal;
     if slot.outward_is_plane_normal {
         [-n[0], -n[1], -n[2]]
     } else {
@@ -109,7 +109,7 @@ pub fn sample_chains(
         // Does the Delaunay triangulation show a discontinuity of the apex map on this face?
         let mut discontinuous = false;
         for (&(p, q), apexes) in &by_edge {
-            if apexes.len() != 2 || slot.contour_edges.contains(&(p, q)) {
+            if apexes.len() != 2 || slot.contour_edges().contains(&(p, q)) {
                 continue;
             }
             let (b1, b2) = (apexes[0], apexes[1]);
@@ -137,7 +137,7 @@ pub(super) type Site = (u32, [f64; 3], f64);
 /// cell-local samples) strictly on the cell's side of its plane (`n` into the cell).
 pub(super) fn moebius_sites(input: &CellInput, s: usize, n: [f64; 3]) -> Vec<Site> {
     let bit = 1u128 << s;
-    let origin = input.slots[s].geom.origin;
+    let origin = input.slots[s].geom().origin;
     (0..input.points.len() as u32)
         .filter(|&v| input.mask[v as usize] & bit == 0 && input.global[v as usize] != u32::MAX)
         .filter_map(|v| {
@@ -171,7 +171,7 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
         .collect();
     let grid = SampleGrid::over(on_face.iter().map(|&v| slot.uv[v as usize]), h);
     let search = NearestSite {
-        plane: slot.geom,
+        plane: *slot.geom(),
         n,
         sites,
         index: &diagram.index,
@@ -292,7 +292,7 @@ fn grid_minimisers(
     for j in 0..=grid.ny {
         for i in 0..=grid.nx {
             let q = grid.at(i as f64, j as f64);
-            if slot.locator.locate(q) == super::cell_input::Where::Inside {
+            if slot.locator().locate(q) == super::cell_input::Where::Inside {
                 minimiser[j * w + i] = Some(search.argmin(q));
             }
         }
@@ -351,7 +351,7 @@ fn edge_samples(
                     continue;
                 };
                 let inside = slot
-                    .locator
+                    .locator()
                     .locate_clear(q, super::chains::SAMPLE_CLEARANCE * h)
                     == super::cell_input::Where::Inside;
                 let (b0, b1) = (sites[m0].0, sites[m1].0);

@@ -457,7 +457,7 @@ fn missing_contour_edges(input: &CellInput, top: &[SectionTriangles]) -> Vec<(u3
             edges.insert((k[0], k[2]));
             edges.insert((k[1], k[2]));
         }
-        for &(a, b) in &slot.contour_edges {
+        for &(a, b) in slot.contour_edges() {
             if !edges.contains(&(a, b)) {
                 missing.push((input.global[a as usize], input.global[b as usize]));
             }
@@ -606,7 +606,7 @@ fn flat_cell_faces(input: &CellInput) -> Vec<FaceSide> {
                         (q[0][0] + q[1][0] + q[2][0]) / 3.0,
                         (q[0][1] + q[1][1] + q[2][1]) / 3.0,
                     ];
-                    if slot.locator.locate(centroid) != super::cell_input::Where::Inside {
+                    if slot.locator().locate(centroid) != super::cell_input::Where::Inside {
                         continue;
                     }
                     // counter-clockwise in (u,v) faces along the plane normal (u × v = n)

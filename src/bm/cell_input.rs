@@ -139,7 +139,6 @@ impl SectionLocator {
 pub struct Slot {
     pub face: FaceId,
     pub plane: PlaneId,
-    pub geom: crate::sections::Plane,
     /// The cell's outward normal on this face is the plane normal.
     pub outward_is_plane_normal: bool,
     /// Boundary loops (outer and holes) in local ids, with Steiner splits applied.
@@ -151,11 +150,48 @@ pub struct Slot {
     /// vertices on this slot (what the assembly and the sharing of samples read of `uv`).
     pub loop_areas: Vec<f64>,
     pub local_uv: Vec<(u32, [f64; 2])>,
-    pub contour_edges: IdSet<(u32, u32)>,
-    pub locator: SectionLocator,
+    /// What only the cell's run reads ([`SlotRun`]); `None` once the input is slimmed.
+    pub run: Option<Box<SlotRun>>,
     /// The cell on the other side of this face has sections on at least two faces, so it may
     /// attach here; false when the other side is empty (the section is a cap of the solid).
     pub beyond_may_attach: bool,
+}
+
+/// The part of a slot only its cell's run reads: the plane's geometry, the contour edges and a
+/// point locator of the section (a slot of a stored result keeps none of it: on a dense sweep
+/// they were 200 of a slot's 272 bytes, over a million slots).
+#[derive(Clone, Debug)]
+pub struct SlotRun {
+    pub geom: crate::sections::Plane,
+    pub contour_edges: IdSet<(u32, u32)>,
+    pub locator: SectionLocator,
+}
+
+impl Slot {
+    /// The run's data; a slimmed slot has none (reading it is a bug of the caller).
+    fn run(&self) -> &SlotRun {
+        self.run
+            .as_deref()
+            .expect("a slot's run data read after its input was slimmed")
+    }
+
+    fn run_mut(&mut self) -> &mut SlotRun {
+        self.run
+            .as_deref_mut()
+            .expect("a slot's run data written after its input was slimmed")
+    }
+
+    pub fn geom(&self) -> &crate::sections::Plane {
+        &self.run().geom
+    }
+
+    pub fn contour_edges(&self) -> &IdSet<(u32, u32)> {
+        &self.run().contour_edges
+    }
+
+    pub fn locator(&self) -> &SectionLocator {
+        &self.run().locator
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -231,8 +267,7 @@ impl CellInput {
             self.tags = Vec::new();
         }
         for (s, slot) in self.slots.iter_mut().enumerate() {
-            slot.locator = SectionLocator::default();
-            slot.contour_edges = IdSet::default();
+            slot.run = None;
             if slot.uv.is_empty() {
                 continue; // slimmed already
             }
@@ -294,14 +329,16 @@ impl CellInput {
             .map(|cf| Slot {
                 face: cf.face,
                 plane: arr.faces[cf.face as usize].plane,
-                geom: arr.planes[arr.faces[cf.face as usize].plane as usize].plane,
                 outward_is_plane_normal: cf.outward_is_plane_normal,
                 loops: Vec::new(),
                 uv: vec![[f64::NAN; 2]; n],
                 loop_areas: Vec::new(),
                 local_uv: Vec::new(),
-                contour_edges: IdSet::default(),
-                locator: SectionLocator::default(),
+                run: Some(Box::new(SlotRun {
+                    geom: arr.planes[arr.faces[cf.face as usize].plane as usize].plane,
+                    contour_edges: IdSet::default(),
+                    locator: SectionLocator::default(),
+                })),
                 beyond_may_attach: {
                     let face = &arr.faces[cf.face as usize];
                     [face.positive_cell, face.negative_cell]
@@ -335,7 +372,8 @@ impl CellInput {
             let slot = &mut slots[s];
             for l in &loops {
                 for i in 0..l.len() {
-                    slot.contour_edges
+                    slot.run_mut()
+                        .contour_edges
                         .insert(edge_key(l[i], l[(i + 1) % l.len()]));
                 }
             }
@@ -343,7 +381,7 @@ impl CellInput {
                 .iter()
                 .map(|l| l.iter().map(|&v| slot.uv[v as usize]).collect())
                 .collect();
-            slot.locator = SectionLocator::new(&uv_loops);
+            slot.run_mut().locator = SectionLocator::new(&uv_loops);
             slot.loops = loops;
         }
         let points = global.iter().map(|&g| pool.positions[g as usize]).collect();
@@ -383,7 +421,7 @@ impl CellInput {
         } else {
             gid as u64
         };
-        let uv = self.slots[s].geom.to_2d(p3);
+        let uv = self.slots[s].geom().to_2d(p3);
         self.tags
             .push(PointTags::new(kernel_gid, &[(self.slots[s].plane, uv)]));
         for (k, slot) in self.slots.iter_mut().enumerate() {
@@ -435,14 +473,16 @@ mod tests {
         let slot = Slot {
             face: 0,
             plane: 0,
-            geom: crate::sections::Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap(),
             outward_is_plane_normal: true,
             loops: vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]],
             uv,
             loop_areas: Vec::new(),
             local_uv: Vec::new(),
-            contour_edges: IdSet::default(),
-            locator: SectionLocator::default(),
+            run: Some(Box::new(SlotRun {
+                geom: crate::sections::Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap(),
+                contour_edges: IdSet::default(),
+                locator: SectionLocator::default(),
+            })),
             beyond_may_attach: true,
         };
         let mut global: Vec<u32> = (0..n as u32).collect();
@@ -462,7 +502,7 @@ mod tests {
         input.tags[5] = PointTags::new(local_gid(5), &[(7, [0.5, 1.5])]);
         input.slim();
         let slot = &input.slots[0];
-        assert!(slot.uv.is_empty());
+        assert!(slot.uv.is_empty() && slot.run.is_none());
         assert_eq!(slot.loop_areas, vec![4.0, -1.0]);
         assert_eq!(slot.local_uv, vec![(5, [0.5, 1.5])]);
         // the tags go; the cell-local vertices' planes stay

@@ -134,7 +134,7 @@ impl SlotDiagram {
     pub fn new(input: &CellInput, s: usize) -> SlotDiagram {
         let n = into_cell_normal(input, s);
         let sites = moebius_sites(input, s, n);
-        let index = SiteIndex::new(&input.slots[s].geom, &sites);
+        let index = SiteIndex::new(input.slots[s].geom(), &sites);
         SlotDiagram { s, n, sites, index }
     }
 
@@ -156,7 +156,7 @@ impl SlotDiagram {
         cont: &mut impl FnMut(u32, u32) -> bool,
     ) -> Option<[f64; 2]> {
         let slot = &input.slots[self.s];
-        let plane = slot.geom;
+        let plane = *slot.geom();
         let site = |x: u32| {
             let x3 = input.points[x as usize];
             (plane.to_2d(x3), dot(self.n, sub(x3, plane.origin)))
@@ -166,8 +166,8 @@ impl SlotDiagram {
             .unwrap_or([0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]);
         let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
         if !x.iter().all(|c| c.is_finite())
-            || slot.locator.locate(x) != Where::Inside
-            || slot.locator.locate(mid) != Where::Inside
+            || slot.locator().locate(x) != Where::Inside
+            || slot.locator().locate(mid) != Where::Inside
         {
             return None;
         }
@@ -217,12 +217,12 @@ pub fn continuous(input: &CellInput, a: u32, b: u32) -> bool {
         .filter(|&s| m >> s & 1 == 1)
         .all(|s| {
             let slot = &input.slots[s];
-            if slot.contour_edges.contains(&k) {
+            if slot.contour_edges().contains(&k) {
                 return true;
             }
             let (p, q) = (slot.uv[a as usize], slot.uv[b as usize]);
             let mid = [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])];
-            slot.locator.locate(mid) != Where::Outside
+            slot.locator().locate(mid) != Where::Outside
         })
 }
 
@@ -370,7 +370,7 @@ pub fn conform_pairs(
             ) else {
                 continue;
             };
-            let p3 = input.slots[p.slot].geom.to_3d(x);
+            let p3 = input.slots[p.slot].geom().to_3d(x);
             if !p3.iter().all(|c| c.is_finite()) {
                 return Err(crate::Error::input(
                     format!("cell {} diagram Steiner point", input.cell),
@@ -608,7 +608,7 @@ mod tests {
             let mut dt = Delaunay::try_new(&input.points).unwrap();
             let mut ids = Vec::new();
             for q in [[0.0, -0.9], [0.0, 0.9], [0.05, 0.0], [-0.05, 0.0]] {
-                let p3 = input.slots[0].geom.to_3d(q);
+                let p3 = input.slots[0].geom().to_3d(q);
                 let l = input.add_local_vertex(0, q, p3);
                 assert_eq!(dt.insert(p3), l);
                 ids.push(l);

@@ -90,12 +90,12 @@ impl<'a> Classifier<'a> {
         let mut ext = false;
         for s in slots_of(m) {
             let slot = &inp.slots[s];
-            if slot.contour_edges.contains(&k) {
+            if slot.contour_edges().contains(&k) {
                 continue;
             }
             let (p, q) = (slot.uv[a as usize], slot.uv[b as usize]);
             let mid = [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])];
-            if slot.locator.locate(mid) == Where::Outside {
+            if slot.locator().locate(mid) == Where::Outside {
                 ext = true;
                 break;
             }
@@ -139,7 +139,7 @@ impl<'a> Classifier<'a> {
                 slot.uv[c as usize],
             );
             let g = [(p[0] + q[0] + r[0]) / 3.0, (p[1] + q[1] + r[1]) / 3.0];
-            slot.locator.locate(g) == Where::Outside
+            slot.locator().locate(g) == Where::Outside
         })
     }
 }

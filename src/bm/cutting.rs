@@ -59,7 +59,7 @@ pub fn sample_chains(
     let mut contour_pairs: Vec<(u32, u32)> = input
         .slots
         .iter()
-        .flat_map(|sl| sl.contour_edges.iter().copied())
+        .flat_map(|sl| sl.contour_edges().iter().copied())
         .collect();
     contour_pairs.sort_unstable();
     contour_pairs.dedup();
@@ -99,13 +99,13 @@ pub fn sample_chains(
             }
             let cand = diagram_point_near_edge(input, s, n, (p, q), (a, b))
                 .filter(|&uv| {
-                    slot.locator.locate_clear(uv, clearance(slot, p, q)) == Where::Inside
+                    slot.locator().locate_clear(uv, clearance(slot, p, q)) == Where::Inside
                         && not_dominated(input, s, n, &d.sites, &d.index, uv, a)
                 })
                 .map(|uv| DiagramSample {
                     slot: s,
                     uv,
-                    p3: slot.geom.to_3d(uv),
+                    p3: slot.geom().to_3d(uv),
                     kind: Kind::Cutting,
                     sites,
                 });
@@ -155,7 +155,7 @@ fn cutting_edges(
         .iter()
         .filter(|(_, ts)| ts.len() == 2)
         .map(|(&e, ts)| (e, ts[0], ts[1]))
-        .filter(|&(e, _, _)| !slot.contour_edges.contains(&e))
+        .filter(|&(e, _, _)| !slot.contour_edges().contains(&e))
         .collect();
     inner.sort_unstable();
     // connected components of each apex's triangles, through shared inner edges (the point location
@@ -305,7 +305,7 @@ fn diagram_point_near_edge(
     (a, b): (u32, u32),
 ) -> Option<[f64; 2]> {
     let slot = &input.slots[s];
-    let plane = slot.geom;
+    let plane = *slot.geom();
     let (p2, q2) = (slot.uv[p as usize], slot.uv[q as usize]);
     let site = |x: u32| {
         let x3 = input.points[x as usize];
@@ -397,7 +397,7 @@ fn not_dominated(
     uv: [f64; 2],
     a: u32,
 ) -> bool {
-    let plane = input.slots[s].geom;
+    let plane = *input.slots[s].geom();
     let x = plane.to_3d(uv);
     let r = |p: [f64; 3]| {
         let h = dot(n, sub(p, x));
@@ -490,7 +490,7 @@ pub(super) mod tests {
     use super::*;
     use crate::bm::branching::apex_triangles;
     use crate::bm::cell::delaunay_tets;
-    use crate::bm::cell_input::{SectionLocator, Slot};
+    use crate::bm::cell_input::{SectionLocator, Slot, SlotRun};
     use crate::bm::classify::tet_types;
     use crate::sections::Plane;
 
@@ -566,14 +566,16 @@ pub(super) mod tests {
             input.slots.push(Slot {
                 face: s as u32,
                 plane: s as u32,
-                geom,
                 outward_is_plane_normal: outward,
-                locator: SectionLocator::new(&uv_loops),
                 loops,
                 uv,
                 loop_areas: Vec::new(),
                 local_uv: Vec::new(),
-                contour_edges,
+                run: Some(Box::new(SlotRun {
+                    geom,
+                    contour_edges,
+                    locator: SectionLocator::new(&uv_loops),
+                })),
                 beyond_may_attach: false,
             });
         }
@@ -658,7 +660,7 @@ pub(super) mod tests {
         // disconnected one (apex (0, ±0.3)), one per quadrant here
         let mut cl = Classifier::new(&input);
         let tri_apex = &apex_triangles(&input, &cx, &ty, &cl)[0];
-        let pairs: Vec<(u32, u32)> = input.slots[1].contour_edges.iter().copied().collect();
+        let pairs: Vec<(u32, u32)> = input.slots[1].contour_edges().iter().copied().collect();
         let edges = cutting_edges(&input, &cx, &ty, &mut cl, 0, tri_apex, &pairs);
         assert_eq!(edges.len(), 4, "{edges:?}");
         for (_, (a, b)) in &edges {
