@@ -259,10 +259,13 @@ impl CellInput {
     /// are kept), once the run is stored: the assembly and the sharing of samples read ids,
     /// points, loops and those. A rerun builds its input anew.
     pub fn slim(&mut self) {
+        let locals: Vec<usize> = (0..self.global.len())
+            .filter(|&l| self.global[l] == u32::MAX)
+            .collect();
         if !self.tags.is_empty() {
-            self.local_planes = (0..self.global.len())
-                .filter(|&l| self.global[l] == u32::MAX)
-                .map(|l| (l as u32, self.tags[l].planes.iter().map(|p| p.0).collect()))
+            self.local_planes = locals
+                .iter()
+                .map(|&l| (l as u32, self.tags[l].planes.iter().map(|p| p.0).collect()))
                 .collect();
             self.tags = Vec::new();
         }
@@ -279,9 +282,9 @@ impl CellInput {
                     crate::sections::polygon_signed_area(&pts)
                 })
                 .collect();
-            slot.local_uv = (0..self.global.len())
-                .filter(|&l| self.global[l] == u32::MAX && self.mask[l] >> s & 1 == 1)
-                .map(|l| (l as u32, slot.uv[l]))
+            slot.local_uv = (locals.iter())
+                .filter(|&&l| self.mask[l] >> s & 1 == 1)
+                .map(|&l| (l as u32, slot.uv[l]))
                 .collect();
             slot.uv = Vec::new();
         }
