@@ -248,7 +248,11 @@ pub fn validate_with_options(
         sec.max_off_plane = max_off;
     }
 
-    // Duplicate consecutive vertices (closing edge included), then the vertex count.
+    // Duplicate consecutive vertices (closing edge included), vertices on their neighbours'
+    // chord within rounding, then the vertex count.
+    let flat_tolerance = COLLINEAR_RELATIVE_TOLERANCE * model_diagonal(&sections);
+    let mut collinear = RepairLog::default();
+    let mut collinear_count = 0;
     for (s, sec) in sections.sections.iter_mut().enumerate() {
         for (r, region) in sec.regions.iter_mut().enumerate() {
             for (role, c) in contours_mut(region) {
@@ -259,6 +263,11 @@ pub fn validate_with_options(
                 };
                 if remove_consecutive_duplicates(c) {
                     duplicates.add(|| loc.contour(id));
+                }
+                let removed = remove_collinear_within_rounding(c, flat_tolerance);
+                if removed > 0 {
+                    collinear_count += removed;
+                    collinear.add(|| loc.contour(id));
                 }
                 if c.points2.len() < 3 {
                     return Err(Error::input(
@@ -302,6 +311,12 @@ pub fn validate_with_options(
     sections.n_labels = sections.n_labels.max(max_label.max(0) as usize);
     duplicates.report(
         "removed duplicate consecutive vertices",
+        &mut sections.warnings,
+    );
+    collinear.report(
+        &format!(
+            "removed {collinear_count} vertices lying on the segment between their neighbours within rounding ({COLLINEAR_RELATIVE_TOLERANCE:e} of the model diagonal: the contour's shape is unchanged; kept, they make sliver triangles whose side of the contour is rounding noise)"
+        ),
         &mut sections.warnings,
     );
     reoriented.report(
@@ -456,6 +471,69 @@ pub fn off_plane_tolerance(sections: &Sections) -> f64 {
 
 /// Remove consecutive equal vertices (in 2D, closing edge included). True if any were removed.
 #[allow(clippy::needless_range_loop)]
+/// A contour vertex this close (relative to the model diagonal) to the segment between its
+/// neighbours is on it: far above the rounding of coordinates, far below any sampled feature.
+pub const COLLINEAR_RELATIVE_TOLERANCE: f64 = 1e-12;
+
+/// Remove the vertices of `c` that lie strictly between their neighbours and within `tolerance`
+/// of the segment joining them (a straight contour stretch whose rounded vertices zig-zag by
+/// ulps); every vertex of a removed run stays within `tolerance` of the segment that replaces it,
+/// and at least three vertices are left. How many were removed.
+fn remove_collinear_within_rounding(c: &mut Contour, tolerance: f64) -> usize {
+    let n = c.points2.len();
+    if n <= 3 || tolerance <= 0.0 {
+        return 0;
+    }
+    let p = &c.points2;
+    let on_segment = |v: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        let (ab, av, bv) = (sub2(b, a), sub2(v, a), sub2(v, b));
+        let len2 = dot2(ab, ab);
+        let cross = ab[0] * av[1] - ab[1] * av[0];
+        len2 > 0.0
+            && cross * cross <= tolerance * tolerance * len2
+            && dot2(av, ab) > 0.0
+            && dot2(bv, ab) < 0.0
+    };
+    // Start from a vertex that stays (none removed when every vertex is on a line: degenerate,
+    // left to the checks that follow).
+    let Some(start) = (0..n).find(|&i| !on_segment(p[i], p[(i + n - 1) % n], p[(i + 1) % n])) else {
+        return 0;
+    };
+    let mut keep = vec![true; n];
+    let mut last = start;
+    let mut run: Vec<usize> = Vec::new();
+    for step in 1..n {
+        let v = (start + step) % n;
+        let next = (v + 1) % n;
+        let removable = on_segment(p[v], p[last], p[next])
+            && run.iter().all(|&r| on_segment(p[r], p[last], p[next]));
+        if removable {
+            run.push(v);
+            keep[v] = false;
+        } else {
+            last = v;
+            run.clear();
+        }
+    }
+    let removed = keep.iter().filter(|&&k| !k).count();
+    if removed == 0 || n - removed < 3 {
+        return 0;
+    }
+    let mut k = keep.iter();
+    c.points2.retain(|_| *k.next().unwrap());
+    let mut k = keep.iter();
+    c.points3.retain(|_| *k.next().unwrap());
+    removed
+}
+
+fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
 fn remove_consecutive_duplicates(c: &mut Contour) -> bool {
     let n = c.points2.len();
     let mut keep = vec![true; n];
@@ -569,6 +647,81 @@ mod tests {
         assert!(r.holes[0].signed_area() < 0.0);
         assert_eq!(v.warnings.len(), 1, "{:?}", v.warnings);
         assert!((r.area() - 8.0).abs() < 1e-12);
+    }
+
+    /// A square whose bottom side carries vertices off the side by `dev` (alternately up and down).
+    fn square_with_row(dev: f64) -> Contour {
+        let mut pts = vec![[0.0, 0.0]];
+        for k in 1..10 {
+            let up = if k % 2 == 0 { dev } else { -dev };
+            pts.push([k as f64 * 0.3, up]);
+        }
+        pts.extend([[3.0, 0.0], [3.0, 3.0], [0.0, 3.0]]);
+        Contour::from_2d(&z1(), pts)
+    }
+
+    #[test]
+    fn vertices_on_a_side_within_rounding_are_removed_with_a_warning() {
+        // diagonal of the model ~4.24: tolerance ~4.2e-12; ulp-level zig-zag (1e-16) goes
+        let s = one_plane(vec![Region {
+            label: 1,
+            outer: square_with_row(1e-16),
+            holes: vec![],
+        }]);
+        let v = validate(s, "mem").unwrap();
+        let outer = &v.sections[0].regions[0].outer;
+        assert_eq!(outer.points2.len(), 4, "{:?}", outer.points2);
+        assert_eq!(outer.points3.len(), 4);
+        assert!((v.sections[0].regions[0].area() - 9.0).abs() < 1e-12);
+        let w = v.warnings.iter().find(|w| w.contains("removed 9 vertices")).expect("warned");
+        assert!(w.contains("plane"), "{w}");
+    }
+
+    #[test]
+    fn a_real_bend_and_a_spike_are_kept() {
+        // a bend of 1e-9 (far above rounding) is shape: kept
+        let s = one_plane(vec![Region {
+            label: 1,
+            outer: square_with_row(1e-9),
+            holes: vec![],
+        }]);
+        let v = validate(s, "mem").unwrap();
+        assert_eq!(v.sections[0].regions[0].outer.points2.len(), 13);
+        assert!(!v.warnings.iter().any(|w| w.contains("within rounding")));
+        // a vertex on the line of its neighbours but not between them is not removed here
+        let mut c = Contour::from_2d(&z1(), vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
+        assert_eq!(remove_collinear_within_rounding(&mut c, 1e-12), 0);
+    }
+
+    #[test]
+    fn a_long_gentle_arc_is_not_flattened_beyond_the_tolerance() {
+        // every triple of this arc (radius 1e9, spacing 0.01) is within 5e-14 of its chord, the
+        // whole arc is not (sagitta 5e-8): runs are checked against the segment that replaces them
+        let n = 2000;
+        let r = 1e9;
+        let mut pts: Vec<[f64; 2]> = (0..=n)
+            .map(|k| {
+                let t = (k as f64 - 0.5 * n as f64) * 0.01 / r; // radians
+                [r * t.sin(), -2.0 * r * (0.5 * t).sin().powi(2)]
+            })
+            .collect();
+        pts.push([10.0, -100.0]);
+        pts.push([-10.0, -100.0]);
+        let mut c = Contour::from_2d(&z1(), pts.clone());
+        let removed = remove_collinear_within_rounding(&mut c, 1e-12);
+        for (k, p) in pts.iter().enumerate().take(n + 1) {
+            // the distance of every input vertex from the output polygon's arc part stays small
+            let near = c.points2.windows(2).any(|w| {
+                let (a, b) = (w[0], w[1]);
+                let ab = sub2(b, a);
+                let ap = sub2(*p, a);
+                let t = (dot2(ap, ab) / dot2(ab, ab)).clamp(0.0, 1.0);
+                let d = sub2(ap, [t * ab[0], t * ab[1]]);
+                dot2(d, d).sqrt() <= 1e-12 * 1.000001
+            });
+            assert!(near, "vertex {k} left farther than the tolerance ({removed} removed)");
+        }
+        assert!(removed > 0 && removed < n - 10, "{removed} removed");
     }
 
     fn validate_strict(sections: Sections, source: &str) -> Result<Sections> {

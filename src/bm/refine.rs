@@ -168,19 +168,20 @@ fn split_all(
     if !list.iter().any(|x| touches_two(x, ends)) {
         return;
     }
-    *list = list
-        .iter()
-        .flat_map(|&x| {
-            if !touches_two(&x, ends) {
-                return vec![x];
-            }
-            let children = split(x, ids);
-            if let Some(touched) = touched.as_deref_mut() {
-                touched.extend(children.iter().flatten());
-            }
-            children
-        })
-        .collect();
+    // in order, children where their parent was; one allocation (not one per tetrahedron)
+    let mut out = Vec::with_capacity(list.len() + 64);
+    for &x in list.iter() {
+        if !touches_two(&x, ends) {
+            out.push(x);
+            continue;
+        }
+        let children = split(x, ids);
+        if let Some(touched) = touched.as_deref_mut() {
+            touched.extend(children.iter().flatten());
+        }
+        out.extend(children);
+    }
+    *list = out;
 }
 
 /// Per vertex below `n`, whether it is one of `vertices`.
