@@ -19,7 +19,7 @@
 //! authoritative 2D coordinates (`points2`); floats are only used for bucketing and distances.
 use crate::error::{Error, Result};
 use crate::geom::predicates::orient2d;
-use crate::sections::{cross, dot, sub, Contour, Plane, Sections};
+use crate::sections::{cross, dot, sub, Contour, Plane, Section, Sections};
 
 mod common_lines;
 mod contours;
@@ -254,6 +254,7 @@ pub fn validate_with_options(
     let mut collinear = RepairLog::default();
     let mut collinear_count = 0;
     for (s, sec) in sections.sections.iter_mut().enumerate() {
+        let shared = positions_in_several_places(sec);
         for (r, region) in sec.regions.iter_mut().enumerate() {
             for (role, c) in contours_mut(region) {
                 let id = ContourId {
@@ -264,7 +265,9 @@ pub fn validate_with_options(
                 if remove_consecutive_duplicates(c) {
                     duplicates.add(|| loc.contour(id));
                 }
-                let removed = remove_collinear_within_rounding(c, flat_tolerance);
+                let removed = remove_collinear_within_rounding(c, flat_tolerance, &|q| {
+                    shared.contains(&point_key(q))
+                });
                 if removed > 0 {
                     collinear_count += removed;
                     collinear.add(|| loc.contour(id));
@@ -475,11 +478,38 @@ pub fn off_plane_tolerance(sections: &Sections) -> f64 {
 /// neighbours is on it: far above the rounding of coordinates, far below any sampled feature.
 pub const COLLINEAR_RELATIVE_TOLERANCE: f64 = 1e-12;
 
+fn point_key(q: [f64; 2]) -> [u64; 2] {
+    q.map(f64::to_bits)
+}
+
+/// The 2D positions that occur more than once among the section's contour vertices: where
+/// regions touch (labels sharing an outline) or a contour touches itself. They are never
+/// removed, so touching regions keep their common vertices.
+fn positions_in_several_places(sec: &Section) -> std::collections::HashSet<[u64; 2]> {
+    let mut seen = std::collections::HashSet::new();
+    let mut several = std::collections::HashSet::new();
+    for r in &sec.regions {
+        for c in std::iter::once(&r.outer).chain(&r.holes) {
+            for &q in &c.points2 {
+                if !seen.insert(point_key(q)) {
+                    several.insert(point_key(q));
+                }
+            }
+        }
+    }
+    several
+}
+
 /// Remove the vertices of `c` that lie strictly between their neighbours and within `tolerance`
 /// of the segment joining them (a straight contour stretch whose rounded vertices zig-zag by
-/// ulps); every vertex of a removed run stays within `tolerance` of the segment that replaces it,
-/// and at least three vertices are left. How many were removed.
-fn remove_collinear_within_rounding(c: &mut Contour, tolerance: f64) -> usize {
+/// ulps), except those `protected` says to keep; every vertex of a removed run stays within
+/// `tolerance` of the segment that replaces it, and at least three vertices are left. How many
+/// were removed.
+fn remove_collinear_within_rounding(
+    c: &mut Contour,
+    tolerance: f64,
+    protected: &dyn Fn([f64; 2]) -> bool,
+) -> usize {
     let n = c.points2.len();
     if n <= 3 || tolerance <= 0.0 {
         return 0;
@@ -496,7 +526,8 @@ fn remove_collinear_within_rounding(c: &mut Contour, tolerance: f64) -> usize {
     };
     // Start from a vertex that stays (none removed when every vertex is on a line: degenerate,
     // left to the checks that follow).
-    let Some(start) = (0..n).find(|&i| !on_segment(p[i], p[(i + n - 1) % n], p[(i + 1) % n])) else {
+    let stays = |i: usize| protected(p[i]) || !on_segment(p[i], p[(i + n - 1) % n], p[(i + 1) % n]);
+    let Some(start) = (0..n).find(|&i| stays(i)) else {
         return 0;
     };
     let mut keep = vec![true; n];
@@ -505,7 +536,8 @@ fn remove_collinear_within_rounding(c: &mut Contour, tolerance: f64) -> usize {
     for step in 1..n {
         let v = (start + step) % n;
         let next = (v + 1) % n;
-        let removable = on_segment(p[v], p[last], p[next])
+        let removable = !protected(p[v])
+            && on_segment(p[v], p[last], p[next])
             && run.iter().all(|&r| on_segment(p[r], p[last], p[next]));
         if removable {
             run.push(v);
@@ -690,7 +722,36 @@ mod tests {
         assert!(!v.warnings.iter().any(|w| w.contains("within rounding")));
         // a vertex on the line of its neighbours but not between them is not removed here
         let mut c = Contour::from_2d(&z1(), vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
-        assert_eq!(remove_collinear_within_rounding(&mut c, 1e-12), 0);
+        assert_eq!(remove_collinear_within_rounding(&mut c, 1e-12, &|_| false), 0);
+    }
+
+    #[test]
+    fn vertices_where_regions_touch_are_kept() {
+        // two squares of different labels sharing the zig-zag side y = 0 (one above, one below)
+        let above = square_with_row(1e-16);
+        let mut below_pts: Vec<[f64; 2]> = above.points2[..11].to_vec();
+        below_pts.reverse();
+        below_pts.extend([[0.0, -3.0], [3.0, -3.0]]);
+        below_pts.rotate_left(1);
+        let below = Contour::from_2d(&z1(), below_pts);
+        let mut s = one_plane(vec![
+            Region {
+                label: 1,
+                outer: above,
+                holes: vec![],
+            },
+            Region {
+                label: 2,
+                outer: below,
+                holes: vec![],
+            },
+        ]);
+        s.n_labels = 2;
+        let v = validate(s, "mem").unwrap();
+        for r in &v.sections[0].regions {
+            assert_eq!(r.outer.points2.len(), 13, "label {}", r.label);
+        }
+        assert!(!v.warnings.iter().any(|w| w.contains("within rounding")));
     }
 
     #[test]
@@ -708,7 +769,7 @@ mod tests {
         pts.push([10.0, -100.0]);
         pts.push([-10.0, -100.0]);
         let mut c = Contour::from_2d(&z1(), pts.clone());
-        let removed = remove_collinear_within_rounding(&mut c, 1e-12);
+        let removed = remove_collinear_within_rounding(&mut c, 1e-12, &|_| false);
         for (k, p) in pts.iter().enumerate().take(n + 1) {
             // the distance of every input vertex from the output polygon's arc part stays small
             let near = c.points2.windows(2).any(|w| {

@@ -142,8 +142,13 @@ fn check_simple(name: &str, i: usize, sec: &slice2solid::Section) {
 }
 
 fn check_conventions(name: &str, s: &Sections) {
-    // The validator had nothing to repair: orientation and vertices are right as sliced.
-    assert!(s.warnings.is_empty(), "{name}: {:?}", s.warnings);
+    // The validator had nothing to repair: orientation and vertices are right as sliced. (Where
+    // a flat face of the mesh is cut, its crossings are on one line up to rounding, and the
+    // validator drops the middle ones: exact crossings of the mesh, not a slicer error.)
+    let repairs: Vec<&String> = (s.warnings.iter())
+        .filter(|w| !w.contains("on the segment between their neighbours within rounding"))
+        .collect();
+    assert!(repairs.is_empty(), "{name}: {repairs:?}");
     for (i, sec) in s.sections.iter().enumerate() {
         assert!(!sec.regions.is_empty());
         check_simple(name, i, sec);

@@ -36,7 +36,17 @@ fn problems_and_solid(
     mode: SliceMode,
     planes: usize,
 ) -> (Vec<String>, slice2solid::Solid) {
-    let sections = common::sliced(mesh, planes, 5, mode);
+    problems_and_solid_seeded(mesh, mode, planes, 5)
+}
+
+/// [`problems_and_solid`] with the slicer's `seed`.
+fn problems_and_solid_seeded(
+    mesh: &str,
+    mode: SliceMode,
+    planes: usize,
+    seed: u64,
+) -> (Vec<String>, slice2solid::Solid) {
+    let sections = common::sliced(mesh, planes, seed, mode);
     let solid = slice2solid::reconstruct(&sections, &Default::default())
         .unwrap_or_else(|e| panic!("{mesh} {mode:?} {planes}: {e}"));
     let c = check_mesh(&solid.surface, Some(&sections));
@@ -148,15 +158,12 @@ fn the_hand_on_a_denser_axis_grid() {
 /// The boxed balloon dog cut by 40 axis-aligned planes: a side of the box is a straight contour
 /// stretch whose slicer vertices zig-zag by ulps, so three consecutive ones made a section
 /// triangle of area 1e-18 whose side of the contour was rounding noise; the flat tetrahedra kept
-/// on it folded ∂K onto itself (one overlapping pair, the same for every seed). Validation now
-/// removes contour vertices on their neighbours' segment within rounding (warned).
+/// on it folded ∂K onto itself (one overlapping pair with seeds 1-4, 6, 7, 11-13; seed 5 was
+/// clean). Validation now removes contour vertices on their neighbours' segment within rounding
+/// (warned); the slicer's output goes through it, as does every reader's (unit tests in
+/// `validate`).
 #[test]
 fn the_boxed_balloon_dog_on_an_axis_grid() {
-    let (problems, solid) = problems_and_solid("balloondog_box", SliceMode::Axes, 40);
+    let (problems, _) = problems_and_solid_seeded("balloondog_box", SliceMode::Axes, 40, 1);
     assert!(problems.is_empty(), "{problems:?}");
-    assert!(
-        (solid.report.warnings.iter()).any(|w| w.contains("within rounding")),
-        "the repair that makes this case clean ran: {:?}",
-        solid.report.warnings
-    );
 }
