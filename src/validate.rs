@@ -472,8 +472,6 @@ pub fn off_plane_tolerance(sections: &Sections) -> f64 {
     OFF_PLANE_RELATIVE_TOLERANCE * model_diagonal(sections)
 }
 
-/// Remove consecutive equal vertices (in 2D, closing edge included). True if any were removed.
-#[allow(clippy::needless_range_loop)]
 /// A contour vertex this close (relative to the model diagonal) to the segment between its
 /// neighbours is on it: far above the rounding of coordinates, far below any sampled feature.
 pub const COLLINEAR_RELATIVE_TOLERANCE: f64 = 1e-12;
@@ -566,6 +564,8 @@ fn dot2(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[0] + a[1] * b[1]
 }
 
+/// Remove consecutive equal vertices (in 2D, closing edge included). True if any were removed.
+#[allow(clippy::needless_range_loop)]
 fn remove_consecutive_duplicates(c: &mut Contour) -> bool {
     let n = c.points2.len();
     let mut keep = vec![true; n];
@@ -705,7 +705,11 @@ mod tests {
         assert_eq!(outer.points2.len(), 4, "{:?}", outer.points2);
         assert_eq!(outer.points3.len(), 4);
         assert!((v.sections[0].regions[0].area() - 9.0).abs() < 1e-12);
-        let w = v.warnings.iter().find(|w| w.contains("removed 9 vertices")).expect("warned");
+        let w = v
+            .warnings
+            .iter()
+            .find(|w| w.contains("removed 9 vertices"))
+            .expect("warned");
         assert!(w.contains("plane"), "{w}");
     }
 
@@ -722,7 +726,10 @@ mod tests {
         assert!(!v.warnings.iter().any(|w| w.contains("within rounding")));
         // a vertex on the line of its neighbours but not between them is not removed here
         let mut c = Contour::from_2d(&z1(), vec![[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
-        assert_eq!(remove_collinear_within_rounding(&mut c, 1e-12, &|_| false), 0);
+        assert_eq!(
+            remove_collinear_within_rounding(&mut c, 1e-12, &|_| false),
+            0
+        );
     }
 
     #[test]
@@ -780,7 +787,10 @@ mod tests {
                 let d = sub2(ap, [t * ab[0], t * ab[1]]);
                 dot2(d, d).sqrt() <= 1e-12 * 1.000001
             });
-            assert!(near, "vertex {k} left farther than the tolerance ({removed} removed)");
+            assert!(
+                near,
+                "vertex {k} left farther than the tolerance ({removed} removed)"
+            );
         }
         assert!(removed > 0 && removed < n - 10, "{removed} removed");
     }
