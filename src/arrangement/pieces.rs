@@ -318,15 +318,24 @@ fn cmp_crossings(
 
 /// Exact sides of contour points with respect to the planes of the arrangement, as seen from plane
 /// `i`: decided for the representative planes, the others follow from them (`Effect`).
-struct SideModel<'e> {
+/// Only the planes that vary on plane i are looked at per point: a dense sweep has a thousand
+/// planes, a few hundred of them crossing plane i inside the box.
+struct SideModel {
     i: u32,
     eq: Vec<[f64; 4]>,
-    eff: &'e [Effect],
+    /// The representative planes, ascending.
+    reps: Vec<u32>,
+    /// The sign vector with every representative's sign 0 (the constant planes' sides).
+    base: SignVec,
+    /// (plane m, its representative, the factor) for every plane decided through one, ascending.
+    dependents: Vec<(u32, u32, i8)>,
+    /// The planes a point's sign vector can be 0 on, ascending.
+    maybe_zero: Vec<u32>,
 }
 
-impl<'e> SideModel<'e> {
-    fn new(ctx: &Ctx, i: u32, eff: &'e [Effect]) -> Self {
-        let eq = ctx
+impl SideModel {
+    fn new(ctx: &Ctx, i: u32, eff: &[Effect]) -> Self {
+        let eq: Vec<[f64; 4]> = ctx
             .arr
             .planes
             .iter()
@@ -339,43 +348,67 @@ impl<'e> SideModel<'e> {
                 ]
             })
             .collect();
-        SideModel { i, eq, eff }
+        let mut reps = Vec::new();
+        let mut dependents = Vec::new();
+        let mut maybe_zero = Vec::new();
+        for (j, e) in eff.iter().enumerate() {
+            let j = j as u32;
+            match *e {
+                Effect::Rep(r, f) => {
+                    if r == j && f == 1 {
+                        reps.push(j);
+                    }
+                    dependents.push((j, r, f));
+                    maybe_zero.push(j);
+                }
+                Effect::Const(0) | Effect::Own => maybe_zero.push(j),
+                Effect::Const(_) => {}
+            }
+        }
+        let base = SignVec::from_fn(eq.len(), |j| match eff[j] {
+            Effect::Const(s) => s,
+            _ => 0,
+        });
+        SideModel {
+            i,
+            eq,
+            reps,
+            base,
+            dependents,
+            maybe_zero,
+        }
     }
 
     fn n_planes(&self) -> usize {
         self.eq.len()
     }
 
-    fn is_rep(&self, j: usize) -> bool {
-        self.eff[j] == Effect::Rep(j as u32, 1)
-    }
-
-    /// The full sign vector from the signs `r` with respect to the representatives.
+    /// The full sign vector from the signs `r` with respect to the representatives (own plane 0,
+    /// constant planes their side, the others `f` times their representative's sign).
     fn expand(&self, r: &[i8]) -> SignVec {
-        SignVec::from_fn(self.n_planes(), |j| match self.eff[j] {
-            Effect::Own => 0,
-            Effect::Const(s) => s,
-            Effect::Rep(rep, f) => f * r[rep as usize],
-        })
+        let mut sv = self.base.clone();
+        for &(m, rep, f) in &self.dependents {
+            let s = f * r[rep as usize];
+            if s != 0 {
+                sv.set(m as usize, s);
+            }
+        }
+        sv
     }
 
     /// Exact signs of `p` with respect to the representative planes (0 for the others).
     fn rep_signs(&self, p: [f64; 3]) -> Vec<i8> {
-        (0..self.n_planes())
-            .map(|j| {
-                if self.is_rep(j) {
-                    let e = self.eq[j];
-                    sign_dot_plus([e[0], e[1], e[2]], p, e[3])
-                } else {
-                    0
-                }
-            })
-            .collect()
+        let mut out = vec![0; self.n_planes()];
+        for &j in &self.reps {
+            let e = self.eq[j as usize];
+            out[j as usize] = sign_dot_plus([e[0], e[1], e[2]], p, e[3]);
+        }
+        out
     }
 
     /// The other planes a point with sign vector `s` lies on.
     fn zeros_of(&self, s: &SignVec) -> Vec<u32> {
-        (0..self.n_planes() as u32)
+        (self.maybe_zero.iter().copied())
             .filter(|&j| j != self.i && s.get(j as usize) == 0)
             .collect()
     }
@@ -453,7 +486,8 @@ fn push_edge_crossings(
     let np = model.n_planes();
     let eq = &model.eq;
     let (p3, q3) = (c.points3[a], c.points3[b]);
-    let mut cross: Vec<u32> = (0..np as u32)
+    // only representatives have signs in `ra`, `rb` (ascending, as a scan of all planes)
+    let mut cross: Vec<u32> = (model.reps.iter().copied())
         .filter(|&j| ra[j as usize] * rb[j as usize] < 0)
         .collect();
     if cross.is_empty() {
@@ -478,24 +512,24 @@ fn push_edge_crossings(
         }
         let group = &cross[g..e];
         let j0 = group[0];
-        let rs: Vec<i8> = (0..np as u32)
-            .map(|m| {
-                let (sp, sq) = (ra[m as usize], rb[m as usize]);
-                if !model.is_rep(m as usize) || group.contains(&m) {
-                    0
-                } else if sp * sq < 0 {
-                    match cmp(m, j0) {
-                        Ordering::Less => sq,
-                        Ordering::Greater => sp,
-                        Ordering::Equal => 0,
-                    }
-                } else if sp != 0 {
-                    sp
-                } else {
-                    sq
+        let mut rs = vec![0i8; np];
+        for &m in &model.reps {
+            if group.contains(&m) {
+                continue;
+            }
+            let (sp, sq) = (ra[m as usize], rb[m as usize]);
+            rs[m as usize] = if sp * sq < 0 {
+                match cmp(m, j0) {
+                    Ordering::Less => sq,
+                    Ordering::Greater => sp,
+                    Ordering::Equal => 0,
                 }
-            })
-            .collect();
+            } else if sp != 0 {
+                sp
+            } else {
+                sq
+            };
+        }
         let s = model.expand(&rs);
         let z = model.zeros_of(&s);
         let id = section_point_id(ctx, i, &z, |ctx| {
