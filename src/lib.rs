@@ -26,6 +26,6 @@ pub mod validate;
 
 pub use error::{Error, Result};
 pub use mesh::{TetMesh, TriMesh};
-pub use pipeline::reconstruct;
+pub use pipeline::{reconstruct, reconstruct_partition};
 pub use sections::{Contour, Plane, Region, Section, Sections};
-pub use solid::{DelaunayOptions, Method, Options, Report, Solid, COLLAR_HEIGHT};
+pub use solid::{DelaunayOptions, Method, Options, Partition, Report, Solid, COLLAR_HEIGHT};

@@ -80,9 +80,10 @@ pub struct ReconstructArgs {
     /// Reconstruct only this label (default: every region that is not a hole)
     #[arg(long, conflicts_with = "roi")]
     pub label: Option<i32>,
-    /// Reconstruct every label at once as a partition of space (implicit method): one surface per
-    /// label, `OUT.labelL.EXT`, with shared interfaces
-    #[arg(long, conflicts_with_all = ["label", "roi", "tets"])]
+    /// Reconstruct every label at once as a partition of space (either method): one surface per
+    /// label, `OUT.labelL.EXT`, with shared interfaces; with --tets (Delaunay) the tetrahedra
+    /// with a label each
+    #[arg(long, conflicts_with_all = ["label", "roi"])]
     pub all_labels: bool,
     /// With --all-labels: write the interface network (.ply, the two labels of each triangle as
     /// face properties `label0 label1`; the exterior is label 0)

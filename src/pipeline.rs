@@ -3,7 +3,7 @@
 use crate::arrangement::{Arrangement, CellScope};
 use crate::error::{Error, Result};
 use crate::sections::Sections;
-use crate::solid::{Method, Options, Report, Solid, SurfaceTopology};
+use crate::solid::{Method, Options, Partition, Report, Solid, SurfaceTopology};
 use std::time::Instant;
 
 pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
@@ -33,7 +33,42 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
             ));
         }
     }
-    let selected = sections.select_label(options.label)?;
+    let (selected, arrangement) = arranged(sections, options, false, &mut report)?;
+    let mut solid = match options.method {
+        Method::Delaunay => crate::bm::reconstruct(&selected, &arrangement, options, &mut report)?,
+        Method::Implicit => {
+            crate::implicit::reconstruct(&selected, &arrangement, options, &mut report)?
+        }
+    };
+    report.total_seconds = start.elapsed().as_secs_f64();
+    report.peak_memory = crate::memory::peak_resident();
+    let topo = crate::eval::topology::analyze(&solid.surface);
+    report.surface = Some(SurfaceTopology {
+        triangles: solid.surface.triangles.len(),
+        closed: topo.closed,
+        manifold: topo.manifold,
+        oriented: topo.oriented,
+        components: topo.components.len(),
+        euler: topo.euler,
+        genus: topo.components.iter().filter_map(|c| c.genus).sum(),
+    });
+    solid.report = report;
+    Ok(solid)
+}
+
+/// The selected sections (`options.label`), reconciled along their planes' common lines, and
+/// their arrangement (every cell of the box for the implicit method). `junctions`: all labels as
+/// one material keeping the labels' vertices on its outline (`one_material_with_junctions`).
+fn arranged(
+    sections: &Sections,
+    options: &Options,
+    junctions: bool,
+    report: &mut Report,
+) -> Result<(Sections, Arrangement)> {
+    let selected = match (options.label, junctions) {
+        (None, true) => crate::validate::one_material_with_junctions(sections)?,
+        _ => sections.select_label(options.label)?,
+    };
     let (selected, trims) = crate::validate::reconcile_common_lines(
         selected,
         options.arrangement.snap_tolerance,
@@ -58,24 +93,41 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
     report.count("cells", arrangement.cells.len() as u64);
     report.count("faces", arrangement.faces.len() as u64);
     report.warnings.extend(arrangement.warnings.iter().cloned());
-    let mut solid = match options.method {
-        Method::Delaunay => crate::bm::reconstruct(&selected, &arrangement, options, &mut report)?,
-        Method::Implicit => {
-            crate::implicit::reconstruct(&selected, &arrangement, options, &mut report)?
-        }
+    Ok((selected, arrangement))
+}
+
+/// Every label at once (`reconstruct --all-labels`): a partition of space into labelled domains,
+/// by the implicit method (`implicit::labels`) or the Delaunay method (`bm::partition`: all labels
+/// as one material, with the outlines labels share as points of the cells' triangulations, then
+/// its complex split between the labels).
+pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<Partition> {
+    if options.method == Method::Implicit {
+        return crate::implicit::labels::reconstruct_partition(sections, options);
+    }
+    let start = Instant::now();
+    let labels = crate::implicit::labels::labels_of(sections)?;
+    let mut report = Report {
+        method: "delaunay".into(),
+        ..Default::default()
     };
+    report.warnings.extend(sections.warnings.iter().cloned());
+    let one = Options {
+        label: None,
+        ..options.clone()
+    };
+    let (selected, arrangement) = arranged(sections, &one, true, &mut report)?;
+    let seeds = crate::bm::partition::seeds(sections, &arrangement);
+    let complex =
+        crate::bm::reconstruct_complex(&selected, &arrangement, &one, &mut report, &seeds)?;
+    let mut partition = report.time("partition", || {
+        crate::bm::partition::split(sections, &arrangement, complex, &labels)
+    });
+    report.warnings.append(&mut partition.report.warnings);
+    for (k, v) in std::mem::take(&mut partition.report.counts) {
+        report.count(&k, v);
+    }
     report.total_seconds = start.elapsed().as_secs_f64();
     report.peak_memory = crate::memory::peak_resident();
-    let topo = crate::eval::topology::analyze(&solid.surface);
-    report.surface = Some(SurfaceTopology {
-        triangles: solid.surface.triangles.len(),
-        closed: topo.closed,
-        manifold: topo.manifold,
-        oriented: topo.oriented,
-        components: topo.components.len(),
-        euler: topo.euler,
-        genus: topo.components.iter().filter_map(|c| c.genus).sum(),
-    });
-    solid.report = report;
-    Ok(solid)
+    partition.report = report;
+    Ok(partition)
 }

@@ -147,6 +147,30 @@ impl Report {
     }
 }
 
+/// The label the exterior takes in the outputs of a partition (input labels are positive).
+pub const EXTERIOR: i32 = 0;
+
+/// A partition of space into labelled domains (every label at once), and the interfaces between
+/// them: what `reconstruct --all-labels` gives, whichever method.
+#[derive(Clone, Debug, Default)]
+pub struct Partition {
+    /// The input labels, increasing.
+    pub labels: Vec<i32>,
+    /// Per label (same order), its domain's closed oriented surface (outward normals).
+    pub surfaces: Vec<TriMesh>,
+    /// Every interface triangle once, oriented from the smaller label of its pair to the larger
+    /// (the exterior is [`EXTERIOR`]).
+    pub interfaces: TriMesh,
+    /// Per triangle of `interfaces`, the labels on its two sides (smaller first).
+    pub interface_labels: Vec<[i32; 2]>,
+    /// The labelled tetrahedra, where the method has them (Delaunay): every tetrahedron of the
+    /// domains, positive volume, shared faces matching.
+    pub tets: Option<TetMesh>,
+    /// Per tetrahedron of `tets`, its label.
+    pub tet_labels: Vec<i32>,
+    pub report: Report,
+}
+
 /// A reconstructed solid: its closed oriented boundary, and its tetrahedra when the method has them.
 #[derive(Clone, Debug, Default)]
 pub struct Solid {

@@ -29,7 +29,7 @@ mod repair;
 pub use common_lines::{reconcile_common_lines, LineTrims, LINE_STRIP_RELATIVE};
 pub use contours::segments_intersect;
 use contours::{check_intersections, check_nesting, section_contours};
-pub use labels::{one_material, LABEL_OVERLAP_RELATIVE_AREA};
+pub use labels::{one_material, one_material_with_junctions, LABEL_OVERLAP_RELATIVE_AREA};
 use planes::check_duplicate_planes;
 pub use repair::NUDGE_RELATIVE;
 pub(crate) use repair::{material_of, pieces_of};

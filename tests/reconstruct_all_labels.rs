@@ -7,13 +7,14 @@
 //! today's (depth 7, the grid step 1/128 of the longest box side).
 use slice2solid::eval::compare::compare_meshes_with_lines;
 use slice2solid::eval::partition::check_partition;
-use slice2solid::implicit::labels::{reconstruct_partition, Partition, EXTERIOR};
 use slice2solid::io::csl::{parse_csl, to_csl_string};
 use slice2solid::io::mesh::read_trimesh;
 use slice2solid::slice::synthetic::{
     carved, nested_spheres, stacked_cylinder, touching_boxes, SyntheticPartition,
 };
 use slice2solid::slice::{make_planes, slice_partition, union_mesh, SliceMode};
+use slice2solid::solid::EXTERIOR;
+use slice2solid::{reconstruct_partition, Partition};
 use slice2solid::{Method, Options, Sections, TriMesh};
 
 mod common;
@@ -34,6 +35,10 @@ struct Measured {
     worst_iou: f64,
     worst_volume: f64,
     worst_interface: f64,
+    /// Defects of the domains (Delaunay; the implicit method has none): non-manifold edges and
+    /// vertices, crossing and overlapping triangle pairs within a domain and between two, vertices
+    /// of one domain inside another, as the float checker sees them.
+    singular: u64,
 }
 
 fn sliced(case: &SyntheticPartition, mode: SliceMode, n: usize, seed: u64) -> Sections {
@@ -42,34 +47,54 @@ fn sliced(case: &SyntheticPartition, mode: SliceMode, n: usize, seed: u64) -> Se
     parse_csl(&to_csl_string(&sections), "partition.csl").unwrap()
 }
 
-fn reconstruct(sections: &Sections) -> Partition {
+fn reconstruct(sections: &Sections, method: Method) -> Partition {
     let options = Options {
-        method: Method::Implicit,
+        method,
         depth: DEPTH,
         ..Default::default()
     };
     reconstruct_partition(sections, &options).unwrap()
 }
 
-fn run(case: &SyntheticPartition, mode: SliceMode, n: usize, seed: u64) -> Measured {
-    let what = format!("{} {mode:?} {n}", case.name);
+fn run(
+    case: &SyntheticPartition,
+    method: Method,
+    mode: SliceMode,
+    n: usize,
+    seed: u64,
+) -> Measured {
+    let what = format!("{} {method:?} {mode:?} {n}", case.name);
     let sections = sliced(case, mode, n, seed);
-    let p = reconstruct(&sections);
+    let p = reconstruct(&sections, method);
     let want: Vec<i32> = case.domains.iter().map(|(l, _)| *l).collect();
     assert_eq!(p.labels, want, "{what}");
     let domains: Vec<(i32, String, TriMesh)> = (p.labels.iter().zip(&p.surfaces))
         .map(|(l, s)| (*l, format!("label {l}"), s.clone()))
         .collect();
     let report = check_partition(&domains, Some(&sections)).unwrap();
+    let mut m = Measured::default();
     for d in &report.domains {
-        assert!(d.valid, "{what}: label {} {:?}", d.label, d.check);
+        // every domain is the boundary of a set of tetrahedra or cubes (a 2-cycle); a Delaunay
+        // domain may keep singular simplices and flat folds there (counted, pinned per case)
+        assert_eq!(d.check.boundary_edges, 0, "{what}: label {}", d.label);
+        if method == Method::Implicit {
+            assert!(d.valid, "{what}: label {} {:?}", d.label, d.check);
+        }
+        m.singular += (d.check.nonmanifold_edges
+            + d.check.nonmanifold_vertices
+            + d.check.self_intersections
+            + d.check.overlapping_coplanar_pairs) as u64;
     }
     for pair in &report.pairs {
-        assert!(pair.disjoint, "{what}: {pair:?}");
+        if method == Method::Implicit {
+            assert!(pair.disjoint, "{what}: {pair:?}");
+        }
+        m.singular += (pair.crossings + pair.vertices_inside[0] + pair.vertices_inside[1]) as u64;
         assert!(!pair.gap, "{what}: a gap {pair:?}");
     }
-    assert!(report.valid, "{what}");
-    let mut m = Measured::default();
+    if m.singular == 0 {
+        assert!(report.valid, "{what}");
+    }
     for d in &report.domains {
         let w = d.check.worst_section.as_ref().map_or(0.0, |w| w.relative);
         m.worst_section = m.worst_section.max(w);
@@ -123,9 +148,9 @@ const MODES: [(SliceMode, usize, u64); 3] = [
 /// interface area error over the labels and pairs, each a little above what was measured (in the
 /// comments). A section of the random planes that only grazes a box corner is smaller than the grid
 /// step and missed (relative disagreement 1).
-fn run_all(case: &SyntheticPartition, pins: [[f64; 4]; 3]) {
+fn run_all(case: &SyntheticPartition, method: Method, pins: [[f64; 4]; 3]) {
     for ((mode, n, seed), pin) in MODES.into_iter().zip(pins) {
-        let m = run(case, mode, n, seed);
+        let m = run(case, method, mode, n, seed);
         let what = format!("{} {mode:?}: {m:?}", case.name);
         assert!(m.worst_section <= pin[0], "{what}");
         assert!(m.worst_iou <= pin[1], "{what}");
@@ -140,6 +165,7 @@ fn nested_spheres_core_and_shell() {
     // fan 0.017 0.017 0.014 0.055
     run_all(
         &nested_spheres(),
+        Method::Implicit,
         [
             [0.09, 0.17, 0.14, 0.045],
             [0.03, 0.15, 0.085, 0.06],
@@ -154,6 +180,7 @@ fn boxes_touching_on_a_face() {
     // fan 0.038 0.100 0.047 0.032
     run_all(
         &touching_boxes(true),
+        Method::Implicit,
         [
             [0.008, 0.14, 0.14, 0.16],
             [1.0, 0.12, 0.06, 0.03],
@@ -168,6 +195,7 @@ fn cylinder_of_three_stacked_materials() {
     // fan 0.029 0.157 0.087 0.027
     run_all(
         &stacked_cylinder(),
+        Method::Implicit,
         [
             [0.04, 0.08, 0.065, 0.085],
             [0.04, 0.15, 0.08, 0.02],
@@ -184,6 +212,7 @@ fn reference_mesh_with_a_ball_carved_out() {
     // domain is what one section supports), random 0.097 0.257 0.222 0.033, fan 0.057 0.124 0.057 0.097
     run_all(
         &carved("eight_15", &mesh, c, r),
+        Method::Implicit,
         [
             [0.07, 0.72, 0.72, 0.39],
             [0.11, 0.27, 0.24, 0.04],
@@ -193,8 +222,8 @@ fn reference_mesh_with_a_ball_carved_out() {
 }
 
 /// The command line: multi-label slicing, `reconstruct --all-labels` writing one surface per label
-/// and the interface network, `check --partition` accepting them; the Delaunay method refuses
-/// `--all-labels` with a message that names the way that works.
+/// and the interface network, `check --partition` accepting them; the Delaunay method writing the
+/// labelled tetrahedra too.
 #[test]
 fn all_labels_on_the_command_line() {
     use slice2solid::io::mesh::write_trimesh;
@@ -261,16 +290,44 @@ fn all_labels_on_the_command_line() {
     let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(r["valid"], true);
     assert_eq!(r["gaps"], 0);
+    // the Delaunay method: one surface per label and the labelled tetrahedra
+    let tets = d.join("t.vtk");
     let out = common::bin()
         .arg("reconstruct")
         .arg(&csl)
         .args(["--all-labels", "-o"])
         .arg(d.join("x.obj"))
+        .arg("--tets")
+        .arg(&tets)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(d.join("x.label1.obj").exists() && d.join("x.label2.obj").exists());
+    let vtk = std::fs::read_to_string(&tets).unwrap();
+    let cells: usize = (vtk.lines().find_map(|l| l.strip_prefix("CELLS ")))
+        .and_then(|l| l.split(' ').next()?.parse().ok())
+        .unwrap();
+    let labels: Vec<i32> = (vtk.lines())
+        .skip_while(|l| !l.starts_with("LOOKUP_TABLE"))
+        .skip(1)
+        .map(|l| l.parse().unwrap())
+        .collect();
+    assert_eq!(labels.len(), cells);
+    assert!(
+        labels.contains(&1) && labels.contains(&2) && labels.iter().all(|l| [1, 2].contains(l))
+    );
+    // the method implicit writes no tetrahedra
+    let out = common::bin()
+        .arg("reconstruct")
+        .arg(&csl)
+        .args(["--all-labels", "--method", "implicit", "--depth", "5", "-o"])
+        .arg(d.join("y.obj"))
+        .arg("--tets")
+        .arg(d.join("y.vtk"))
         .output()
         .unwrap();
     assert!(!out.status.success());
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("--method implicit"), "{stderr}");
 }
 
 /// One label through the partition is the one-label implicit reconstruction up to the extraction:
@@ -287,7 +344,7 @@ fn one_label_as_a_partition_is_the_implicit_solid() {
     let one = slice2solid::reconstruct(&sections, &options)
         .unwrap()
         .surface;
-    let p = reconstruct(&sections);
+    let p = reconstruct(&sections, Method::Implicit);
     assert_eq!(p.labels, vec![1]);
     let c = compare_meshes_with_lines(&p.surfaces[0], &one, 2000, 1, 128 * 128);
     eprintln!(
@@ -315,7 +372,7 @@ fn one_label_as_a_partition_is_the_implicit_solid() {
 fn shipped_example_is_a_partition() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/nested_fan.csl");
     let sections = slice2solid::io::read_sections(&path).unwrap();
-    let p = reconstruct(&sections);
+    let p = reconstruct(&sections, Method::Implicit);
     assert_eq!(p.labels, vec![1, 2]);
     let domains: Vec<(i32, String, TriMesh)> = (p.labels.iter().zip(&p.surfaces))
         .map(|(l, s)| (*l, format!("label {l}"), s.clone()))
@@ -329,4 +386,81 @@ fn shipped_example_is_a_partition() {
         let w = d.check.worst_section.as_ref().unwrap().relative;
         assert!(w < 0.015, "label {}: {w}", d.label);
     }
+}
+
+/// The Delaunay method (`bm::partition`) on the same partitions. Pins per mode (parallel,
+/// random, fan), a little above what was measured (in the comments): worst section disagreement,
+/// 1 − IoU, volume error, interface area error, and the domains' defects (`Measured::singular`).
+/// The defects are known failures listed here, not accepted ones: where the labels' tetrahedra
+/// meet in a checkerboard the relabelling (`partition::manifold`) does not undo; on the stacked
+/// cylinder cut by a fan, the solid of all labels as one material is itself not closed (the
+/// one-material union of the touching labels rounds the vertices the fan's planes share).
+fn run_all_delaunay(case: &SyntheticPartition, pins: [[f64; 5]; 3]) {
+    for ((mode, n, seed), pin) in MODES.into_iter().zip(pins) {
+        let m = run(case, Method::Delaunay, mode, n, seed);
+        let what = format!("{} Delaunay {mode:?}: {m:?}", case.name);
+        assert!(m.worst_section <= pin[0], "{what}");
+        assert!(m.worst_iou <= pin[1], "{what}");
+        assert!(m.worst_volume <= pin[2], "{what}");
+        assert!(m.worst_interface <= pin[3], "{what}");
+        assert!(m.singular as f64 <= pin[4], "{what}");
+    }
+}
+
+#[test]
+fn delaunay_nested_spheres() {
+    // measured: parallel 1.9e-9 0.111 0.111 0.052 0, random 4.1e-9 0.169 0.108 1.549 60,
+    // fan 2.0e-9 0.029 0.026 0.484 13
+    run_all_delaunay(
+        &nested_spheres(),
+        [
+            [1e-8, 0.12, 0.12, 0.06, 0.0],
+            [1e-8, 0.18, 0.12, 1.65, 66.0],
+            [1e-8, 0.035, 0.03, 0.52, 14.0],
+        ],
+    );
+}
+
+#[test]
+fn delaunay_boxes_touching_on_a_face() {
+    // measured: parallel 4.7e-10 0.210 0.210 0.134 0, random 1.0 0.177 0.118 2.274 21,
+    // fan 4.6e-9 0.406 0.356 0.166 18
+    run_all_delaunay(
+        &touching_boxes(true),
+        [
+            [1e-8, 0.22, 0.22, 0.145, 0.0],
+            [1.0, 0.19, 0.13, 2.4, 23.0],
+            [1e-8, 0.42, 0.37, 0.18, 20.0],
+        ],
+    );
+}
+
+#[test]
+fn delaunay_cylinder_of_three_stacked_materials() {
+    // measured: parallel 0.118 0.362 0.243 4.891 24, random 0.021 0.362 0.308 1.954 182,
+    // fan 0.088 0.128 0.101 0.401 5425
+    run_all_delaunay(
+        &stacked_cylinder(),
+        [
+            [0.125, 0.375, 0.26, 5.1, 27.0],
+            [0.025, 0.375, 0.32, 2.05, 200.0],
+            [0.095, 0.14, 0.11, 0.43, 5700.0],
+        ],
+    );
+}
+
+#[test]
+fn delaunay_reference_mesh_with_a_ball_carved_out() {
+    let mesh = read_trimesh(&common::shared_reference("eight_15")).unwrap();
+    let (c, r) = common::ball_inside(&mesh);
+    // measured: parallel 2.4e-9 0.839 0.499 0.974 16, random 3.8e-9 0.276 0.248 1.198 49,
+    // fan 5.1e-9 0.121 0.105 1.071 16
+    run_all_delaunay(
+        &carved("eight_15", &mesh, c, r),
+        [
+            [1e-8, 0.85, 0.52, 1.0, 18.0],
+            [1e-8, 0.29, 0.26, 1.25, 54.0],
+            [1e-8, 0.13, 0.11, 1.12, 18.0],
+        ],
+    );
 }

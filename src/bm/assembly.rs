@@ -23,6 +23,12 @@ use crate::mesh::{TetMesh, TriMesh};
 pub struct Assembled {
     pub surface: TriMesh,
     pub tets: TetMesh,
+    /// Per vertex of `tets`, the arrangement planes it lies on (by tags): what a later stage that
+    /// splits the complex on the planes (`partition`) reads.
+    pub planes: Vec<super::refine::Planes>,
+    /// Per vertex of `tets`, the point on a plane whose image in the collar it is (`u32::MAX`:
+    /// none): such a point stands for its base where labels are read off the planes.
+    pub lifted_from: Vec<u32>,
     /// Faces with two cells whose section triangulations differ (K is then not conforming there).
     pub nonconforming_faces: u64,
     /// Section triangles that no kept tetrahedron stands on, on faces with a cell on each side or
@@ -229,11 +235,16 @@ pub fn assemble(
     }
     laps.lap("tunnels");
     let mut boundary = None;
+    let n_before_collar = k.positions.len();
+    let mut lifted = Vec::new();
     if collar > 0.0 {
         let max_shift = super::collar::MAX_SHIFT_PER_HEIGHT * collar * diag;
         let (stats, b) = super::collar::build(&mut k, &arr.planes, collar * diag, max_shift);
         out.collar = stats;
-        boundary = b;
+        if let Some(c) = b {
+            boundary = Some(c.boundary);
+            lifted = c.lifted_from;
+        }
         out.collar.min_height /= diag;
         out.collar.max_shift /= diag;
     }
@@ -251,6 +262,11 @@ pub fn assemble(
         vertices: positions,
         tets: tets.iter().map(|t| [t[0], t[1], t[3], t[2]]).collect(),
     };
+    planes.resize(out.tets.vertices.len(), super::refine::Planes::new());
+    out.planes = planes;
+    out.lifted_from = vec![u32::MAX; n_before_collar];
+    out.lifted_from.extend(lifted);
+    out.lifted_from.resize(out.tets.vertices.len(), u32::MAX);
     laps.lap("surface");
     out.stage_seconds = laps.laps;
     out.stage_peak_memory_mib = laps.peaks;
@@ -507,7 +523,7 @@ fn global_planes(
     planes
 }
 
-fn diagonal(points: &[[f64; 3]]) -> f64 {
+pub(crate) fn diagonal(points: &[[f64; 3]]) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for p in points {
         for i in 0..3 {

@@ -239,6 +239,16 @@ enum Stop {
 
 /// Run the cell. With `check_only`, stop after the conformity check when edges are missing.
 pub fn run_cell(input: CellInput, sampling: Sampling, check_only: bool) -> Result<CellResult> {
+    run_cell_seeded(input, sampling, check_only, None)
+}
+
+/// [`run_cell`] inserting the shared points `seeds` on its faces (`SharedSamples::seeded`).
+pub fn run_cell_seeded(
+    input: CellInput,
+    sampling: Sampling,
+    check_only: bool,
+    seeds: Option<&SharedSamples>,
+) -> Result<CellResult> {
     let stop = if check_only {
         Stop::AtMissingEdges
     } else {
@@ -249,7 +259,7 @@ pub fn run_cell(input: CellInput, sampling: Sampling, check_only: bool) -> Resul
         sampling,
         stop,
         SAMPLE_PAIR_ROUNDS,
-        None,
+        seeds,
         Start::Compute,
     )
 }
@@ -257,13 +267,29 @@ pub fn run_cell(input: CellInput, sampling: Sampling, check_only: bool) -> Resul
 /// Run the cell up to its conformity check: its diagram samples (in `input`, cell-local) and the
 /// contour edges missing, no classification or pruning (the cell is run again with shared samples).
 pub fn run_cell_samples(input: CellInput, sampling: Sampling) -> Result<CellResult> {
+    run_cell_samples_seeded(input, sampling, None)
+}
+
+/// [`run_cell_samples`] inserting the shared points `seeds` on its faces.
+pub fn run_cell_samples_seeded(
+    input: CellInput,
+    sampling: Sampling,
+    seeds: Option<&SharedSamples>,
+) -> Result<CellResult> {
+    // a start that holds seeds is not what a rerun repeats (the reruns insert shared points
+    // after their own samples): with seeds, the reruns start anew
+    let start = if seeds.is_some() {
+        Start::Compute
+    } else {
+        Start::Keep
+    };
     run_cell_with(
         input,
         sampling,
         Stop::AtConformity,
         SAMPLE_PAIR_ROUNDS,
-        None,
-        Start::Keep,
+        seeds,
+        start,
     )
 }
 

@@ -486,6 +486,8 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// and per tetrahedron the part it came from (`None`: a cell left as it was).
 struct Applied {
     positions: Vec<[f64; 3]>,
+    /// Per point appended (after K's), the point on a plane whose image it is.
+    lifted_from: Vec<u32>,
     kept: Vec<[u32; 4]>,
     part: Vec<Option<usize>>,
 }
@@ -493,6 +495,7 @@ struct Applied {
 fn apply(k: &Triangulation, parts: &[CellPart], collars: &[Option<CellCollar>]) -> Applied {
     let mut out = Applied {
         positions: k.positions.clone(),
+        lifted_from: Vec::new(),
         kept: Vec::with_capacity(k.kept.len() * 2),
         part: Vec::with_capacity(k.kept.len() * 2),
     };
@@ -503,6 +506,7 @@ fn apply(k: &Triangulation, parts: &[CellPart], collars: &[Option<CellCollar>]) 
         for (n, &(v, y)) in cc.images.iter().enumerate() {
             if on_plane(k, v) {
                 out.positions.push(y);
+                out.lifted_from.push(v);
                 fresh.insert(fresh_id(n), (out.positions.len() - 1) as u32);
             } else {
                 out.positions[v as usize] = y;
@@ -523,6 +527,13 @@ fn apply(k: &Triangulation, parts: &[CellPart], collars: &[Option<CellCollar>]) 
         out.part.push(None);
     }
     out
+}
+
+/// K with its collar: ∂K, and per point the collar appended (after K's), the point on a plane
+/// whose image it is.
+pub struct Collared {
+    pub boundary: Vec<[u32; 3]>,
+    pub lifted_from: Vec<u32>,
 }
 
 /// What became of a cell's collar.
@@ -546,13 +557,14 @@ const SINGULAR_ROUNDS: usize = 4;
 /// edge or a vertex only, and make that edge or vertex singular. So the result is checked: where
 /// ∂K has more singular simplices than without the collar, the cells at them keep their solid as it
 /// was (their neighbours' collars stay), for a few rounds, and otherwise no cell gets a collar.
-/// With the stats, ∂K when the collar was applied (`assembly::boundary_of` of the new K).
+/// With the stats, ∂K when the collar was applied (`assembly::boundary_of` of the new K) and, per
+/// point it appended (after K's), the point on a plane whose image it is.
 pub fn build(
     k: &mut Triangulation,
     arr_planes: &[ArrPlane],
     height: f64,
     max_shift: f64,
-) -> (CollarStats, Option<Vec<[u32; 3]>>) {
+) -> (CollarStats, Option<Collared>) {
     let mut stats = CollarStats::default();
     let parts = cell_parts(k);
     // cells are independent: their collars are found in parallel, beside ∂K's singular count
@@ -629,7 +641,11 @@ pub fn build(
     k.planes.resize(a.positions.len(), Planes::new());
     *k.positions = a.positions;
     *k.kept = a.kept;
-    (stats, Some(boundary))
+    let collared = Collared {
+        boundary,
+        lifted_from: a.lifted_from,
+    };
+    (stats, Some(collared))
 }
 
 #[cfg(test)]

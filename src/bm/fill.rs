@@ -187,7 +187,7 @@ impl Index {
 }
 
 /// The boundary's singular edges (more than two triangles) and pinched vertices (several fans).
-pub(super) fn singular_simplices(tris: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<u32>) {
+pub(crate) fn singular_simplices(tris: &[[u32; 3]]) -> (Vec<(u32, u32)>, Vec<u32>) {
     // Per vertex v, the other vertices of its triangles sorted: the triangles of an edge vw are a
     // run there (more than two: singular), and the fans are joined along the runs. One pass per
     // vertex, no sort of the whole surface; chunks of vertices in parallel, in vertex order.

@@ -44,6 +44,7 @@ pub mod cutting;
 pub(crate) mod faces;
 pub mod fill;
 pub mod manifold;
+pub mod partition;
 pub mod prune;
 pub mod refine;
 pub mod shared_samples;
@@ -56,9 +57,13 @@ use crate::arrangement::Arrangement;
 use crate::error::Result;
 use crate::sections::Sections;
 use crate::solid::{Options, Report, Solid};
-use cell::{run_cell, CellResult, CellTiming, Sampling};
+use cell::{CellResult, CellTiming, Sampling};
 use cell_input::CellInput;
 use rayon::prelude::*;
+
+/// Seeds closer than this to their face's polygon or section boundary (relative to the
+/// bounding-box diagonal) are left out (`SharedSamples::seeded`).
+const SEED_MARGIN: f64 = 1e-7;
 
 /// Most global conformity rounds before giving up (warned).
 const MAX_ROUNDS: usize = 12;
@@ -85,6 +90,7 @@ fn biggest_first(
 }
 
 /// Gather cell `c`'s input and run it, the input gathering timed into the result.
+#[allow(clippy::too_many_arguments)]
 fn run_timed(
     arr: &Arrangement,
     pool: &crate::arrangement::VertexPool,
@@ -93,6 +99,7 @@ fn run_timed(
     sampling: Sampling,
     check_only: bool,
     samples_only: bool,
+    seeds: Option<&shared_samples::SharedSamples>,
 ) -> Result<Option<CellResult>> {
     let t = std::time::Instant::now();
     let Some(input) = CellInput::build(arr, pool, loops, c) else {
@@ -100,9 +107,9 @@ fn run_timed(
     };
     let build = t.elapsed().as_secs_f64();
     let mut r = if samples_only {
-        cell::run_cell_samples(input, sampling)?
+        cell::run_cell_samples_seeded(input, sampling, seeds)?
     } else {
-        run_cell(input, sampling, check_only)?
+        cell::run_cell_seeded(input, sampling, check_only, seeds)?
     };
     r.timing.input += build;
     // what only the run itself reads goes (a rerun with shared samples builds its input anew)
@@ -131,6 +138,17 @@ pub struct CellRuns {
 /// Run every cell (in parallel), splitting contour edges globally until every cell's section
 /// triangulations have them as edges (or `MAX_ROUNDS` ran out: `conforming` is false).
 pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRuns> {
+    run_cells_seeded(arrangement, options, &[]).map(|(runs, _)| runs)
+}
+
+/// [`run_cells`] with shared points given on the planes (`SharedSamples::seeded`: a plane and a
+/// point on it); with the runs, how many of them were placed on a face. Seeds need shared samples
+/// (`DelaunayOptions::shared_samples` with some sampling on); without, none is placed.
+pub fn run_cells_seeded(
+    arrangement: &Arrangement,
+    options: &Options,
+    seed_points: &[(u32, [f64; 3])],
+) -> Result<(CellRuns, u64)> {
     let arr = arrangement;
     let mut pool = arr.pool.clone();
     let mut splits = conform::Splits::default();
@@ -145,6 +163,13 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
     // with shared samples the cells run again with both sides' samples: the first runs need only
     // their samples and contour conformity, not classification and pruning
     let sharing = options.delaunay.shared_samples && (sampling.branching || sampling.cutting);
+    let (seeds, placed) = if sharing && !seed_points.is_empty() {
+        let margin = SEED_MARGIN * assembly::diagonal(&pool.positions);
+        shared_samples::SharedSamples::seeded(arr, &mut pool, seed_points, margin)
+    } else {
+        (shared_samples::SharedSamples::default(), 0)
+    };
+    let seeded = (placed > 0).then_some(&seeds);
     let progress = if options.progress {
         let pb = indicatif::ProgressBar::new(n_cells as u64);
         pb.set_style(
@@ -187,7 +212,9 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
             .iter()
             .par_bridge()
             .map(|&c| {
-                let r = run_timed(arr, &pool, &loops, c as u32, sampling, true, sharing);
+                let r = run_timed(
+                    arr, &pool, &loops, c as u32, sampling, true, sharing, seeded,
+                );
                 if let Some(pb) = &progress {
                     pb.inc(1);
                 }
@@ -228,7 +255,9 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
             .iter()
             .par_bridge()
             .map(|&c| {
-                let r = run_timed(arr, &pool, &loops, c as u32, sampling, false, sharing);
+                let r = run_timed(
+                    arr, &pool, &loops, c as u32, sampling, false, sharing, seeded,
+                );
                 (c, r)
             })
             .collect();
@@ -250,6 +279,7 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
             sampling,
             &mut results,
             &mut timing,
+            seeds,
         )?
     } else {
         SharingCounts::default()
@@ -257,17 +287,20 @@ pub fn run_cells(arrangement: &Arrangement, options: &Options) -> Result<CellRun
     if let Some(pb) = &progress {
         pb.finish_and_clear();
     }
-    Ok(CellRuns {
-        pool,
-        results,
-        rounds,
-        conforming,
-        steiner_points: splits.mid.len(),
-        cell_runs,
-        timing,
-        seconds: t0.elapsed().as_secs_f64(),
-        shared,
-    })
+    Ok((
+        CellRuns {
+            pool,
+            results,
+            rounds,
+            conforming,
+            steiner_points: splits.mid.len(),
+            cell_runs,
+            timing,
+            seconds: t0.elapsed().as_secs_f64(),
+            shared,
+        },
+        placed,
+    ))
 }
 
 fn loops_now(arr: &Arrangement, splits: &conform::Splits) -> Vec<Vec<Vec<u32>>> {
@@ -353,8 +386,9 @@ fn share_samples(
     sampling: Sampling,
     results: &mut [Option<CellResult>],
     timing: &mut CellTiming,
+    seeds: shared_samples::SharedSamples,
 ) -> Result<SharingCounts> {
-    let mut shared = shared_samples::SharedSamples::default();
+    let mut shared = seeds;
     let mut counts = SharingCounts::default();
     let mut dirty_faces = shared.extend(arr, pool, results);
     // at least one round: the cells stopped at conformity
@@ -408,11 +442,27 @@ fn share_samples(
 
 /// Reconstruct with the Delaunay pruning method. Fills `report` (phases, counts, warnings).
 pub fn reconstruct(
-    _sections: &Sections,
+    sections: &Sections,
     arrangement: &Arrangement,
     options: &Options,
     report: &mut Report,
 ) -> Result<Solid> {
+    let k = reconstruct_complex(sections, arrangement, options, report, &[])?;
+    Ok(Solid {
+        surface: k.surface,
+        tets: Some(k.tets),
+        report: Report::default(),
+    })
+}
+
+/// The solid as one complex, with its vertices' planes ([`reconstruct`] without dropping them).
+pub fn reconstruct_complex(
+    _sections: &Sections,
+    arrangement: &Arrangement,
+    options: &Options,
+    report: &mut Report,
+    seeds: &[(u32, [f64; 3])],
+) -> Result<assembly::Assembled> {
     let arr = arrangement;
     let CellRuns {
         pool,
@@ -424,7 +474,14 @@ pub fn reconstruct(
         timing,
         seconds,
         shared,
-    } = run_cells(arr, options)?;
+    } = {
+        let (runs, placed) = run_cells_seeded(arr, options, seeds)?;
+        if !seeds.is_empty() {
+            report.count("seed_points", seeds.len() as u64);
+            report.count("seed_points_placed", placed);
+        }
+        runs
+    };
     report.count("shared_samples", shared.samples);
     report.count("cells_rerun_sharing_samples", shared.cells_rerun);
     report.count("sharing_rounds", shared.rounds);
@@ -501,7 +558,7 @@ fn assemble_cells(
     results: &[Option<CellResult>],
     options: &Options,
     report: &mut Report,
-) -> Solid {
+) -> assembly::Assembled {
     let slabs = options.delaunay.thicken_flat_zones;
     let fill_voids = !options.delaunay.keep_topology;
     let k = report.time("assembly", || {
@@ -635,9 +692,5 @@ fn assemble_cells(
             k.singular_edges, k.singular_vertices
         ));
     }
-    Solid {
-        surface: k.surface,
-        tets: Some(k.tets),
-        report: Report::default(),
-    }
+    k
 }

@@ -122,6 +122,65 @@ impl SharedSamples {
     }
 
     /// The samples of face `f` (none for a face without).
+    /// Shared points given before any cell runs (`seeds`: a plane and a point on it, such as the
+    /// outline two labels share inside the section of all labels): each becomes a pool vertex on
+    /// the face of its plane holding it, inserted by both cells of that face from their first run
+    /// on, so that conformity splits what it takes away. A point within `margin` of its face's
+    /// polygon or section boundary, or in no face's section, is left out; the number placed.
+    pub fn seeded(
+        arr: &Arrangement,
+        pool: &mut VertexPool,
+        seeds: &[(u32, [f64; 3])],
+        margin: f64,
+    ) -> (SharedSamples, u64) {
+        use super::cell_input::{SectionLocator, Where};
+        use crate::geom::predicates::orient2d;
+        let mut out = SharedSamples {
+            by_face: vec![Vec::new(); arr.faces.len()],
+        };
+        let mut faces_of: HashMap<u32, Vec<usize>> = HashMap::new();
+        for (f, face) in arr.faces.iter().enumerate() {
+            if !face.pieces.is_empty() {
+                faces_of.entry(face.plane).or_default().push(f);
+            }
+        }
+        let uv = |v: u32, p: u32| arr.uv(v, p).unwrap_or([f64::NAN; 2]);
+        let mut locators: HashMap<usize, SectionLocator> = HashMap::new();
+        let mut seen: HashMap<[u64; 3], u32> = HashMap::new();
+        let mut placed = 0;
+        for &(p, x) in seeds {
+            let q = arr.planes[p as usize].plane.to_2d(x);
+            let clear_of = |a: [f64; 2], b: [f64; 2]| {
+                let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+                orient2d(a, b, q) > 0.0 && orient2d(a, b, q) / len > margin
+            };
+            let Some(&f) = faces_of.get(&p).into_iter().flatten().find(|&&f| {
+                let poly = &arr.faces[f].polygon;
+                (0..poly.len()).all(|i| clear_of(uv(poly[i], p), uv(poly[(i + 1) % poly.len()], p)))
+            }) else {
+                continue;
+            };
+            let loc = locators.entry(f).or_insert_with(|| {
+                let loops: Vec<Vec<[f64; 2]>> = (arr.faces[f].pieces.iter())
+                    .flat_map(|pc| std::iter::once(&pc.outer).chain(&pc.holes))
+                    .map(|l| l.iter().map(|&v| uv(v, p)).collect())
+                    .collect();
+                SectionLocator::new(&loops)
+            });
+            if loc.locate_clear(q, margin) != Where::Inside || seen.contains_key(&key(x)) {
+                continue;
+            }
+            pool.positions.push(x);
+            pool.tags.push(smallvec![p]);
+            pool.uv.push(smallvec![q]);
+            let gid = (pool.positions.len() - 1) as u32;
+            seen.insert(key(x), gid);
+            out.by_face[f].push(SharedSample { gid, uv: q, p3: x });
+            placed += 1;
+        }
+        (out, placed)
+    }
+
     pub fn on_face(&self, f: FaceId) -> &[SharedSample] {
         self.by_face.get(f as usize).map_or(&[], Vec::as_slice)
     }

@@ -15,24 +15,7 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
         },
         args.roi.as_deref(),
     )?;
-    let options = Options {
-        method: match args.method {
-            crate::Method::Delaunay => slice2solid::Method::Delaunay,
-            crate::Method::Implicit => slice2solid::Method::Implicit,
-        },
-        label: args.label,
-        depth: args.depth,
-        progress: !args.quiet && std::io::stderr().is_terminal(),
-        delaunay: slice2solid::DelaunayOptions {
-            branching: !args.no_branching,
-            cutting: !args.no_cutting,
-            thicken_flat_zones: !args.no_thicken,
-            keep_topology: args.keep_topology,
-            shared_samples: !args.no_shared_samples,
-            collar: args.collar,
-        },
-        ..Default::default()
-    };
+    let options = options(&args);
     let solid = slice2solid::reconstruct(&sections, &options)?;
     write_surface(&args.output, &solid.surface, &sections, options.label)?;
     if let Some(path) = &args.tets {
@@ -70,4 +53,26 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
         solid.report.total_seconds
     );
     Ok(ExitCode::SUCCESS)
+}
+
+/// The library's options from the command line.
+pub fn options(args: &ReconstructArgs) -> Options {
+    Options {
+        method: match args.method {
+            crate::Method::Delaunay => slice2solid::Method::Delaunay,
+            crate::Method::Implicit => slice2solid::Method::Implicit,
+        },
+        label: args.label,
+        depth: args.depth,
+        progress: !args.quiet && std::io::stderr().is_terminal(),
+        delaunay: slice2solid::DelaunayOptions {
+            branching: !args.no_branching,
+            cutting: !args.no_cutting,
+            thicken_flat_zones: !args.no_thicken,
+            keep_topology: args.keep_topology,
+            shared_samples: !args.no_shared_samples,
+            collar: args.collar,
+        },
+        ..Default::default()
+    }
 }

@@ -1,12 +1,13 @@
-//! `slice2solid reconstruct IN -o OUT.EXT --all-labels --method implicit [--interfaces NET.ply]`:
-//! every label at once as a partition of space (`slice2solid::implicit::labels`); one surface per
-//! label written as `OUT.labelL.EXT`, and a line per label on stderr.
+//! `slice2solid reconstruct IN -o OUT.EXT --all-labels [--method implicit] [--interfaces NET.ply]
+//! [--tets T.vtk]`: every label at once as a partition of space
+//! (`slice2solid::reconstruct_partition`); one surface per label written as `OUT.labelL.EXT`, and a
+//! line per label on stderr; the Delaunay method also writes its labelled tetrahedra.
 use crate::ReconstructArgs;
 use slice2solid::eval::topology::analyze;
-use slice2solid::implicit::labels::reconstruct_partition;
 use slice2solid::io::mesh::{write_labelled_network, write_trimesh};
-use slice2solid::io::{read_sections_of_roi, ReadOptions};
-use slice2solid::{Error, Options, Result};
+use slice2solid::io::{read_sections_of_roi, write_labelled_tets, ReadOptions};
+use slice2solid::reconstruct_partition;
+use slice2solid::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -23,13 +24,6 @@ pub fn labelled_path(path: &Path, label: i32) -> PathBuf {
 }
 
 pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
-    if !matches!(args.method, crate::Method::Implicit) {
-        return Err(Error::Unavailable(
-            "--all-labels: the Delaunay method reconstructs one label at a time (--label L) so \
-             far; use --method implicit for a partition of every label"
-                .into(),
-        ));
-    }
     let sections = read_sections_of_roi(
         &args.input,
         &ReadOptions {
@@ -37,11 +31,7 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
         },
         None,
     )?;
-    let options = Options {
-        method: slice2solid::Method::Implicit,
-        depth: args.depth,
-        ..Default::default()
-    };
+    let options = super::reconstruct::options(&args);
     let partition = reconstruct_partition(&sections, &options)?;
     let mut report = partition.report.clone();
     for (label, surface) in partition.labels.iter().zip(&partition.surfaces) {
@@ -68,6 +58,17 @@ pub fn run(args: ReconstructArgs) -> Result<ExitCode> {
                 " (NOT a closed manifold)"
             }
         );
+    }
+    if let Some(path) = &args.tets {
+        match &partition.tets {
+            Some(t) => write_labelled_tets(path, t, &partition.tet_labels)?,
+            None => {
+                return Err(Error::Unavailable(format!(
+                    "{}: this method produces no tetrahedra",
+                    path.display()
+                )))
+            }
+        }
     }
     if let Some(path) = &args.interfaces {
         write_labelled_network(path, &partition.interfaces, &partition.interface_labels)?;

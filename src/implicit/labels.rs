@@ -37,26 +37,10 @@ use crate::solid::{Options, Report};
 use rayon::prelude::*;
 use std::collections::HashMap;
 
-/// The label the exterior takes in the outputs (input labels are positive, `check_labels`).
-pub const EXTERIOR: i32 = 0;
-
-/// A partition of space into labelled domains, and the interfaces between them.
-#[derive(Clone, Debug, Default)]
-pub struct Partition {
-    /// The input labels, increasing.
-    pub labels: Vec<i32>,
-    /// Per label (same order), its domain's closed oriented surface (outward normals).
-    pub surfaces: Vec<TriMesh>,
-    /// Every interface triangle once, oriented from the smaller label of its pair to the larger
-    /// (the exterior is [`EXTERIOR`]).
-    pub interfaces: TriMesh,
-    /// Per triangle of `interfaces`, the labels on its two sides (smaller first).
-    pub interface_labels: Vec<[i32; 2]>,
-    pub report: Report,
-}
+pub use crate::solid::{Partition, EXTERIOR};
 
 /// The labels of `sections` (increasing); an error unless there are some, all positive.
-fn labels_of(sections: &Sections) -> Result<Vec<i32>> {
+pub(crate) fn labels_of(sections: &Sections) -> Result<Vec<i32>> {
     let labels: Vec<i32> = sections.regions_per_label().into_keys().collect();
     if labels.is_empty() {
         return Err(Error::input("--all-labels", "the input has no regions"));
@@ -589,7 +573,7 @@ fn assemble(
         surfaces,
         interfaces: TriMesh::with_used_vertices(&positions, &network),
         interface_labels: pairs,
-        report: Report::default(),
+        ..Default::default()
     }
 }
 

@@ -23,8 +23,8 @@ mod write;
 use read::{parse_medit, parse_vtk};
 pub use read::{parse_obj, parse_off, parse_ply, parse_stl};
 pub use write::{
-    to_labelled_ply_bytes, to_medit_string, to_obj_string, to_off_string, to_ply_bytes,
-    to_stl_bytes, to_vtk_string,
+    to_labelled_ply_bytes, to_medit_string, to_medit_string_labelled, to_obj_string, to_off_string,
+    to_ply_bytes, to_stl_bytes, to_vtk_string, to_vtk_string_labelled,
 };
 
 /// Read a triangle mesh: STL (ASCII or binary), OBJ, PLY (ASCII or binary), OFF.
@@ -94,6 +94,11 @@ pub fn write_labelled_network(path: &Path, mesh: &TriMesh, labels: &[[i32; 2]]) 
 
 /// Write a tetrahedral mesh: .vtk (legacy unstructured grid) or .mesh (MEDIT).
 pub fn write_tetmesh(path: &Path, mesh: &TetMesh) -> Result<()> {
+    write_tetmesh_labelled(path, mesh, None)
+}
+
+/// [`write_tetmesh`] with a label per tetrahedron (VTK cell data, MEDIT references) where given.
+pub fn write_tetmesh_labelled(path: &Path, mesh: &TetMesh, labels: Option<&[i32]>) -> Result<()> {
     let name = path.display().to_string();
     let n = mesh.vertices.len();
     if let Some((i, _)) = mesh
@@ -108,8 +113,8 @@ pub fn write_tetmesh(path: &Path, mesh: &TetMesh) -> Result<()> {
         ));
     }
     let s = match extension(path).as_str() {
-        "vtk" => to_vtk_string(mesh),
-        "mesh" => to_medit_string(mesh),
+        "vtk" => to_vtk_string_labelled(mesh, labels),
+        "mesh" => to_medit_string_labelled(mesh, labels),
         other => {
             return Err(Error::input(
                 name,

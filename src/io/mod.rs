@@ -128,6 +128,19 @@ pub fn write_tets(
     vtk_xml::write_vtu(path, tets, &arrays)
 }
 
+/// Write labelled tetrahedra (a partition): .vtu and .vtk with a `label` cell array, .mesh with
+/// the label as each tetrahedron's reference.
+pub fn write_labelled_tets(path: &Path, tets: &TetMesh, labels: &[i32]) -> Result<()> {
+    if has_extension(path, "vtu") {
+        let arrays = [vtk_xml::CellArray {
+            name: "label",
+            values: labels,
+        }];
+        return vtk_xml::write_vtu(path, tets, &arrays);
+    }
+    mesh::write_tetmesh_labelled(path, tets, Some(labels))
+}
+
 fn has_extension(path: &Path, ext: &str) -> bool {
     path.extension()
         .and_then(|e| e.to_str())

@@ -248,3 +248,66 @@ pub fn one_material(sections: &Sections) -> Result<Sections> {
     }
     Ok(out)
 }
+
+/// [`one_material`] keeping the *junctions*: the vertices of the labels' contours that lie on the
+/// outline of the union (where the outline two labels share meets the outside, or a label's
+/// vertex on a straight run of the union that the union's simplification dropped) become vertices
+/// of the union's contours again, at the labels' exact positions. What a partition of the labels
+/// needs: the outlines they share end at vertices of the one-material solid.
+pub fn one_material_with_junctions(sections: &Sections) -> Result<Sections> {
+    let mut out = one_material(sections)?;
+    let tol = crate::validate::COLLINEAR_RELATIVE_TOLERANCE * model_diagonal(sections);
+    for (sec, labelled) in out.sections.iter_mut().zip(&sections.sections) {
+        if sec.regions == labelled.regions {
+            continue;
+        }
+        let mut points: Vec<([f64; 2], [f64; 3])> = (labelled.regions.iter())
+            .flat_map(|r| std::iter::once(&r.outer).chain(&r.holes))
+            .flat_map(|c| c.points2.iter().copied().zip(c.points3.iter().copied()))
+            .collect();
+        points.sort_unstable_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+        for region in &mut sec.regions {
+            for c in std::iter::once(&mut region.outer).chain(&mut region.holes) {
+                insert_junctions(c, &points, tol);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Put into contour `c` every point of `points` (sorted by u) within `tol` of one of its edges,
+/// strictly between its ends, in order along the edge.
+fn insert_junctions(c: &mut crate::sections::Contour, points: &[([f64; 2], [f64; 3])], tol: f64) {
+    let n = c.points2.len();
+    let mut p2 = Vec::with_capacity(n);
+    let mut p3 = Vec::with_capacity(n);
+    for i in 0..n {
+        let (a, b) = (c.points2[i], c.points2[(i + 1) % n]);
+        p2.push(a);
+        p3.push(c.points3[i]);
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let len2 = d[0] * d[0] + d[1] * d[1];
+        if len2 == 0.0 {
+            continue;
+        }
+        let (lo, hi) = (a[0].min(b[0]) - tol, a[0].max(b[0]) + tol);
+        let first = points.partition_point(|p| p.0[0] < lo);
+        let mut on: Vec<(f64, [f64; 2], [f64; 3])> = Vec::new();
+        for &(q, q3) in points[first..].iter().take_while(|p| p.0[0] <= hi) {
+            let t = ((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / len2;
+            let off = ((q[0] - a[0]) * d[1] - (q[1] - a[1]) * d[0]).abs() / len2.sqrt();
+            let ends = tol / len2.sqrt();
+            if off <= tol && t > ends && t < 1.0 - ends {
+                on.push((t, q, q3));
+            }
+        }
+        on.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+        on.dedup_by(|x, y| x.1 == y.1);
+        for (_, q, q3) in on {
+            p2.push(q);
+            p3.push(q3);
+        }
+    }
+    c.points2 = p2;
+    c.points3 = p3;
+}

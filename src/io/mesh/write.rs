@@ -112,6 +112,11 @@ pub fn to_stl_bytes(mesh: &TriMesh) -> Vec<u8> {
 
 /// VTK legacy ASCII unstructured grid of tetrahedra (cell type 10), shortest round-trip floats.
 pub fn to_vtk_string(mesh: &TetMesh) -> String {
+    to_vtk_string_labelled(mesh, None)
+}
+
+/// Legacy VTK as [`to_vtk_string`], with a `label` per tetrahedron as cell data where given.
+pub fn to_vtk_string_labelled(mesh: &TetMesh, labels: Option<&[i32]>) -> String {
     let mut s = String::with_capacity(40 * mesh.vertices.len() + 40 * mesh.tets.len());
     let _ = writeln!(
         s,
@@ -129,11 +134,26 @@ pub fn to_vtk_string(mesh: &TetMesh) -> String {
     for _ in &mesh.tets {
         s.push_str("10\n");
     }
+    if let Some(labels) = labels {
+        let _ = writeln!(
+            s,
+            "CELL_DATA {}\nSCALARS label int 1\nLOOKUP_TABLE default",
+            labels.len()
+        );
+        for l in labels {
+            let _ = writeln!(s, "{l}");
+        }
+    }
     s
 }
 
 /// MEDIT `.mesh` (double precision, 1-based indices, every vertex and tetrahedron with reference 1).
 pub fn to_medit_string(mesh: &TetMesh) -> String {
+    to_medit_string_labelled(mesh, None)
+}
+
+/// MEDIT as [`to_medit_string`], with each tetrahedron's label as its reference where given.
+pub fn to_medit_string_labelled(mesh: &TetMesh, labels: Option<&[i32]>) -> String {
     let mut s = String::with_capacity(40 * mesh.vertices.len() + 40 * mesh.tets.len());
     let _ = writeln!(
         s,
@@ -144,8 +164,9 @@ pub fn to_medit_string(mesh: &TetMesh) -> String {
         let _ = writeln!(s, "{:?} {:?} {:?} 1", p[0], p[1], p[2]);
     }
     let _ = writeln!(s, "Tetrahedra\n{}", mesh.tets.len());
-    for t in &mesh.tets {
-        let _ = writeln!(s, "{} {} {} {} 1", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1);
+    for (i, t) in mesh.tets.iter().enumerate() {
+        let r = labels.map_or(1, |l| l[i]);
+        let _ = writeln!(s, "{} {} {} {} {r}", t[0] + 1, t[1] + 1, t[2] + 1, t[3] + 1);
     }
     s.push_str("End\n");
     s
