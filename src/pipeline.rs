@@ -119,8 +119,23 @@ pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<P
     let seeds = crate::bm::partition::seeds(sections, &arrangement);
     let complex =
         crate::bm::reconstruct_complex(&selected, &arrangement, &one, &mut report, &seeds)?;
+    // the tetrahedra the planes leave open take the label of the largest mean-value indicator
+    // (the implicit method's, one per label) at their centroids
+    let mut warnings = Report::default();
+    let indicators = report.time("partition indicators", || {
+        (labels.iter())
+            .map(|&l| crate::implicit::labels::indicator_of(sections, Some(l), &one, &mut warnings))
+            .map(|r| r.map(|(ind, _)| ind))
+            .collect::<Result<Vec<_>>>()
+    })?;
+    let prefer = |x: [f64; 3]| {
+        indicators
+            .iter()
+            .map(|ind| ind.eval(x))
+            .collect::<Vec<f64>>()
+    };
     let mut partition = report.time("partition", || {
-        crate::bm::partition::split(sections, &arrangement, complex, &labels)
+        crate::bm::partition::split(sections, &arrangement, complex, &labels, Some(&prefer))
     });
     report.warnings.append(&mut partition.report.warnings);
     for (k, v) in std::mem::take(&mut partition.report.counts) {

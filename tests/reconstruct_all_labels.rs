@@ -409,42 +409,42 @@ fn run_all_delaunay(case: &SyntheticPartition, pins: [[f64; 5]; 3]) {
 
 #[test]
 fn delaunay_nested_spheres() {
-    // measured: parallel 1.9e-9 0.111 0.111 0.052 0, random 4.1e-9 0.169 0.108 1.549 60,
-    // fan 2.0e-9 0.029 0.026 0.484 13
+    // measured: parallel 1.9e-9 0.110 0.110 0.047 0, random 1.6e-9 0.156 0.125 0.868 55,
+    // fan 2.0e-9 0.027 0.023 0.491 19
     run_all_delaunay(
         &nested_spheres(),
         [
-            [1e-8, 0.12, 0.12, 0.06, 0.0],
-            [1e-8, 0.18, 0.12, 1.65, 66.0],
-            [1e-8, 0.035, 0.03, 0.52, 14.0],
+            [1e-8, 0.12, 0.12, 0.055, 0.0],
+            [1e-8, 0.17, 0.135, 0.95, 60.0],
+            [1e-8, 0.03, 0.026, 0.53, 21.0],
         ],
     );
 }
 
 #[test]
 fn delaunay_boxes_touching_on_a_face() {
-    // measured: parallel 4.7e-10 0.210 0.210 0.134 0, random 1.0 0.177 0.118 2.274 21,
-    // fan 4.6e-9 0.406 0.356 0.166 18
+    // measured: parallel 4.7e-10 0.200 0.200 0.200 0, random 1.0 0.170 0.130 2.256 28,
+    // fan 2.0e-9 0.408 0.358 0.068 18
     run_all_delaunay(
         &touching_boxes(true),
         [
-            [1e-8, 0.22, 0.22, 0.145, 0.0],
-            [1.0, 0.19, 0.13, 2.4, 23.0],
-            [1e-8, 0.42, 0.37, 0.18, 20.0],
+            [1e-8, 0.21, 0.21, 0.21, 0.0],
+            [1.0, 0.18, 0.14, 2.4, 30.0],
+            [1e-8, 0.42, 0.37, 0.075, 20.0],
         ],
     );
 }
 
 #[test]
 fn delaunay_cylinder_of_three_stacked_materials() {
-    // measured: parallel 0.118 0.362 0.243 4.891 24, random 0.021 0.362 0.308 1.954 182,
-    // fan 0.088 0.128 0.101 0.401 5425
+    // measured: parallel 0.118 0.292 0.156 3.694 2, random 0.021 0.356 0.320 1.735 218,
+    // fan 0.088 0.122 0.105 0.430 5502
     run_all_delaunay(
         &stacked_cylinder(),
         [
-            [0.125, 0.375, 0.26, 5.1, 27.0],
-            [0.025, 0.375, 0.32, 2.05, 200.0],
-            [0.095, 0.14, 0.11, 0.43, 5700.0],
+            [0.125, 0.31, 0.17, 3.9, 3.0],
+            [0.025, 0.37, 0.34, 1.85, 235.0],
+            [0.095, 0.13, 0.115, 0.46, 5800.0],
         ],
     );
 }
@@ -453,14 +453,14 @@ fn delaunay_cylinder_of_three_stacked_materials() {
 fn delaunay_reference_mesh_with_a_ball_carved_out() {
     let mesh = read_trimesh(&common::shared_reference("eight_15")).unwrap();
     let (c, r) = common::ball_inside(&mesh);
-    // measured: parallel 2.4e-9 0.839 0.499 0.974 16, random 3.8e-9 0.276 0.248 1.198 49,
-    // fan 5.1e-9 0.121 0.105 1.071 16
+    // measured: parallel 1.7e-9 0.497 0.222 0.964 0, random 3.8e-9 0.277 0.249 1.017 64,
+    // fan 5.0e-9 0.122 0.106 0.994 20
     run_all_delaunay(
         &carved("eight_15", &mesh, c, r),
         [
-            [1e-8, 0.85, 0.52, 1.0, 18.0],
-            [1e-8, 0.29, 0.26, 1.25, 54.0],
-            [1e-8, 0.13, 0.11, 1.12, 18.0],
+            [1e-8, 0.52, 0.24, 1.0, 0.0],
+            [1e-8, 0.29, 0.26, 1.07, 68.0],
+            [1e-8, 0.13, 0.115, 1.05, 22.0],
         ],
     );
 }

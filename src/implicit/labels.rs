@@ -56,7 +56,7 @@ pub(crate) fn labels_of(sections: &Sections) -> Result<Vec<i32>> {
 
 /// The indicator of one selection of the sections (`None`: all labels as one material), over the
 /// arrangement of all cells; also its arrangement's box.
-fn indicator_of(
+pub(crate) fn indicator_of(
     sections: &Sections,
     label: Option<i32>,
     options: &Options,

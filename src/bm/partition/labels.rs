@@ -6,6 +6,9 @@ use crate::bm::complex::outward_face;
 use crate::fxhash::FxHashMap;
 use crate::sections::{Plane, Sections};
 
+/// Per point, a value per label (by index): what decides the tetrahedra the planes leave open.
+pub type Prefer<'a> = dyn Fn([f64; 3]) -> Vec<f64> + Sync + 'a;
+
 /// Rounds of majority vote after the growth.
 const SMOOTHING_ROUNDS: usize = 4;
 
@@ -244,7 +247,12 @@ fn smallest(mask: Mask, n_labels: usize) -> Option<u32> {
         .filter(|&l| (l as usize) < n_labels)
 }
 
-pub(super) fn assign(complex: &Complex, mesh: &Mesh, regions: &Regions) -> Assigned {
+pub(super) fn assign(
+    complex: &Complex,
+    mesh: &Mesh,
+    regions: &Regions,
+    prefer: Option<&Prefer<'_>>,
+) -> Assigned {
     let n = complex.tets.len();
     let sf = section_faces(complex, mesh, regions);
     let mut out = Assigned {
@@ -272,7 +280,10 @@ pub(super) fn assign(complex: &Complex, mesh: &Mesh, regions: &Regions) -> Assig
             out.one_compatible += 1;
         }
     }
-    out.grown = grow(complex, &mut out.label, &masks, regions.n_labels);
+    out.grown = match prefer {
+        Some(prefer) => preferred(complex, mesh, &mut out.label, &masks, prefer),
+        None => grow(complex, &mut out.label, &masks, regions.n_labels),
+    };
     let free: Vec<usize> = (0..n)
         .filter(|&t| !out.pinned[t] && masks[t].count_ones() != 1)
         .collect();
@@ -291,6 +302,38 @@ pub(super) fn assign(complex: &Complex, mesh: &Mesh, regions: &Regions) -> Assig
         }
     }
     out
+}
+
+/// Label the unlabelled tetrahedra by `prefer` at their centroids: the best of their compatible
+/// labels (of all where none fits); the number labelled.
+fn preferred(
+    complex: &Complex,
+    mesh: &Mesh,
+    label: &mut [u32],
+    masks: &[Mask],
+    prefer: &Prefer<'_>,
+) -> u64 {
+    use rayon::prelude::*;
+    let chosen: Vec<(usize, u32)> = (0..label.len())
+        .into_par_iter()
+        .filter(|&t| label[t] == NONE)
+        .map(|t| {
+            let p = complex.tets[t].map(|v| mesh.positions[v as usize]);
+            let c = [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k] + p[3][k]) / 4.0);
+            let values = prefer(c);
+            let fits = |l: usize| bit(l as u32) & masks[t] != 0;
+            let any = (0..values.len()).any(fits);
+            let best = (0..values.len())
+                .filter(|&l| !any || fits(l))
+                .max_by(|&a, &b| values[a].total_cmp(&values[b]).then(b.cmp(&a)))
+                .unwrap_or(0);
+            (t, best as u32)
+        })
+        .collect();
+    for &(t, l) in &chosen {
+        label[t] = l;
+    }
+    chosen.len() as u64
 }
 
 /// Label the unlabelled tetrahedra in layers of face neighbours from the labelled ones (module

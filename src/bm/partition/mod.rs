@@ -17,9 +17,12 @@
 //!      section triangles around it). One compatible label: it takes it.
 //!    * the rest (several compatible labels: the tetrahedra along an interface between the planes;
 //!      or none: a tetrahedron joining two labels' sections, where an interface runs between two
-//!      planes) grow from those, in layers of face neighbours: each takes the label most of its
-//!      labelled neighbours have, among its compatible ones where it has some (ties: the smaller
-//!      label); then a few rounds of the same majority vote smooth the interfaces.
+//!      planes) take, among their compatible labels (all where none fits), the one whose value
+//!      `prefer` gives largest at their centroid: the pipeline passes each label's mean-value
+//!      indicator (the implicit method's interpolant of that label's sections), so the interfaces
+//!      between the planes follow the interpolation of the sections; without `prefer` they grow
+//!      from the labelled ones in layers of face neighbours (majority, ties: the smaller label).
+//!      Then a few rounds of majority vote among face neighbours smooth the interfaces.
 //! 3. *Manifold domains* (`manifold`). Where a domain's boundary has a singular edge or a pinched
 //!    vertex, free tetrahedra around it (not standing on a section) change to a neighbouring label
 //!    when that removes it without adding another; what is left is counted and warned.
@@ -33,7 +36,7 @@ use crate::sections::Sections;
 use crate::solid::{Partition, Report, EXTERIOR};
 
 mod interfaces;
-mod labels;
+pub mod labels;
 mod manifold;
 
 /// The points of the outlines labels share in a section, each with its arrangement plane: seeds
@@ -59,11 +62,15 @@ pub fn seeds(sections: &Sections, arrangement: &Arrangement) -> Vec<(u32, [f64; 
 
 /// Split the one-material complex `k` (built from the one-material view of `sections`, whose
 /// planes are `arrangement`'s) between `labels` (increasing, positive).
+/// `prefer`: per point, a value per label (larger: more that label's), which decides the
+/// tetrahedra the planes leave open (by their centroids) instead of the growth from their
+/// neighbours.
 pub fn split(
     sections: &Sections,
     arrangement: &Arrangement,
     k: Assembled,
     labels: &[i32],
+    prefer: Option<&labels::Prefer<'_>>,
 ) -> Partition {
     let mut report = Report::default();
     let Assembled {
@@ -92,7 +99,7 @@ pub fn split(
     }
     report.count("partition_interface_segments_missed", inserted.missed);
     let complex = Complex::new(mesh.positions.len(), std::mem::take(&mut mesh.tets));
-    let mut assigned = labels::assign(&complex, &mesh, &regions);
+    let mut assigned = labels::assign(&complex, &mesh, &regions, prefer);
     report.count("partition_tets_on_sections", assigned.on_sections);
     report.count("partition_tets_one_compatible", assigned.one_compatible);
     report.count("partition_tets_grown", assigned.grown);
