@@ -122,3 +122,24 @@ def test_all_labels_is_a_partition():
     core = {tuple(sorted(map(tuple, core_v[t]))) for t in core_f}
     assert all(tuple(sorted(map(tuple, v[t]))) in core for t in between)
     assert p["report"]["method"] == "implicit"
+
+
+def test_all_labels_with_the_delaunay_method_has_labelled_tetrahedra():
+    """The Delaunay partition of the shipped multi-label example: one surface per label, and the
+    tetrahedra with a label each, positive volume, both labels present."""
+    import pathlib
+
+    import numpy as np
+
+    path = pathlib.Path(__file__).resolve().parents[2] / "data" / "nested_fan.csl"
+    p = slice2solid.reconstruct_all_labels(slice2solid.read(path), method="delaunay")
+    assert p["labels"] == [1, 2]
+    assert p["report"]["method"] == "delaunay"
+    v, t = p["tets"]
+    labels = p["tet_labels"]
+    assert labels.shape == (len(t),) and set(labels.tolist()) == {1, 2}
+    a, b, c, d = (v[t[:, k]] for k in range(4))
+    volumes = np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a)) / 6.0
+    assert (volumes > 0).all()
+    with pytest.raises(Exception):
+        slice2solid.reconstruct_all_labels(slice2solid.read(path), method="voxels")
