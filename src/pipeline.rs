@@ -122,8 +122,10 @@ pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<P
     // the tetrahedra the planes leave open take the label of the largest mean-value indicator
     // (the implicit method's, one per label) at their centroids
     let mut warnings = Report::default();
+    // (one label: every tetrahedron is that label's, nothing to decide)
+    let decide = if labels.len() > 1 { &labels[..] } else { &[] };
     let indicators = report.time("partition indicators", || {
-        (labels.iter())
+        (decide.iter())
             .map(|&l| crate::implicit::labels::indicator_of(sections, Some(l), &one, &mut warnings))
             .map(|r| r.map(|(ind, _)| ind))
             .collect::<Result<Vec<_>>>()
@@ -135,7 +137,8 @@ pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<P
             .collect::<Vec<f64>>()
     };
     let mut partition = report.time("partition", || {
-        crate::bm::partition::split(sections, &arrangement, complex, &labels, Some(&prefer))
+        let prefer = (labels.len() > 1).then_some(&prefer as &crate::bm::partition::labels::Prefer);
+        crate::bm::partition::split(sections, &arrangement, complex, &labels, prefer)
     });
     report.warnings.append(&mut partition.report.warnings);
     for (k, v) in std::mem::take(&mut partition.report.counts) {
