@@ -464,3 +464,29 @@ fn delaunay_reference_mesh_with_a_ball_carved_out() {
         ],
     );
 }
+
+/// One label through the Delaunay partition is the Delaunay solid: the same complex, every
+/// tetrahedron that label's, so the same surface.
+#[test]
+fn one_label_as_a_delaunay_partition_is_the_delaunay_solid() {
+    let sections = slice2solid::io::read_sections(&common::shared_csl("eight_15")).unwrap();
+    let one = slice2solid::reconstruct(&sections, &Options::default()).unwrap();
+    let p = reconstruct(&sections, Method::Delaunay);
+    assert_eq!(p.labels, vec![1]);
+    let mut a = one.surface.triangles.clone();
+    let mut b: Vec<[u32; 3]> = p.surfaces[0].triangles.clone();
+    assert_eq!(a.len(), b.len());
+    let key = |m: &TriMesh, t: &[u32; 3]| {
+        let mut k = t.map(|v| m.vertices[v as usize].map(f64::to_bits));
+        k.sort_unstable();
+        k
+    };
+    let mut ka: Vec<_> = a.drain(..).map(|t| key(&one.surface, &t)).collect();
+    let mut kb: Vec<_> = b.drain(..).map(|t| key(&p.surfaces[0], &t)).collect();
+    ka.sort_unstable();
+    kb.sort_unstable();
+    assert!(ka == kb, "the same triangles");
+    let tets = p.tets.as_ref().unwrap();
+    assert_eq!(tets.tets.len(), one.tets.as_ref().unwrap().tets.len());
+    assert!(p.tet_labels.iter().all(|&l| l == 1));
+}
