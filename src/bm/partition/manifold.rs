@@ -95,7 +95,7 @@ fn neighbour_labels(complex: &Complex, label: &[u32], comp: &[usize], not: u32) 
 /// The changes of labels around `sigma`: every piece of one label there (its tetrahedra around
 /// `sigma`, face-connected through faces holding it) going to the label of one of its neighbours.
 /// Pinned tetrahedra never change.
-fn candidates(
+fn candidates_at(
     complex: &Complex,
     label: &[u32],
     pinned: &[bool],
@@ -152,9 +152,70 @@ fn best_change(
     best.map(|b| (b.1, b.2))
 }
 
+/// A change of labels: these tetrahedra take this label.
+type Change = (Vec<usize>, u32);
+
+/// Two changes in a row where one alone does not help: a change among `candidates` (at most two
+/// more non-disk boundaries), then the best change at a vertex it made bad; the pair that lowers
+/// the non-disk boundaries at all vertices they touch most, if any (a spike of one label retracts
+/// by two pieces where each alone leaves a pinch).
+fn best_pair(
+    complex: &Complex,
+    label: &mut [u32],
+    pinned: &[bool],
+    candidates: Vec<Change>,
+) -> Option<Vec<Change>> {
+    let mut best: Option<(u32, Vec<Change>)> = None;
+    let apply = |label: &mut [u32], comp: &[usize], to: u32| -> Vec<u32> {
+        let old = comp.iter().map(|&t| label[t]).collect();
+        for &t in comp {
+            label[t] = to;
+        }
+        old
+    };
+    let undo = |label: &mut [u32], comp: &[usize], old: &[u32]| {
+        for (&t, &o) in comp.iter().zip(old) {
+            label[t] = o;
+        }
+    };
+    for (comp, to) in candidates {
+        let before1 = cost_at(complex, label, &comp);
+        let old = apply(label, &comp, to);
+        if cost_at(complex, label, &comp) > before1 + 2 {
+            undo(label, &comp, &old);
+            continue;
+        }
+        let mut vs: Vec<u32> = comp.iter().flat_map(|&t| complex.tets[t]).collect();
+        vs.sort_unstable();
+        vs.dedup();
+        let bad: Vec<u32> = (vs.iter().copied())
+            .filter(|&w| vertex_bad(complex, label, w) > 0)
+            .collect();
+        for w in bad {
+            for (comp2, to2) in candidates_at(complex, label, pinned, &[w]) {
+                if comp2.iter().any(|t| comp.contains(t)) {
+                    continue;
+                }
+                let both: Vec<usize> = comp.iter().chain(&comp2).copied().collect();
+                let old2 = apply(label, &comp2, to2);
+                let after = cost_at(complex, label, &both);
+                undo(label, &comp2, &old2);
+                undo(label, &comp, &old);
+                let before = cost_at(complex, label, &both);
+                let _ = apply(label, &comp, to);
+                if after < before && best.as_ref().is_none_or(|b| before - after > b.0) {
+                    best = Some((before - after, vec![(comp.clone(), to), (comp2, to2)]));
+                }
+            }
+        }
+        undo(label, &comp, &old);
+    }
+    best.map(|b| b.1)
+}
+
 /// Relabel free tetrahedra (not `pinned`) where that lowers the number of non-disk label
-/// boundaries around them: whole pieces around each singular simplex, then single tetrahedra;
-/// rounds until nothing improves.
+/// boundaries around them: whole pieces around each singular simplex (one change, or two in a
+/// row), then single tetrahedra; rounds until nothing improves.
 pub(super) fn repair(
     complex: &Complex,
     label: &mut [u32],
@@ -173,8 +234,12 @@ pub(super) fn repair(
             let simplices =
                 (edges.iter().map(|&(a, b)| vec![a, b])).chain(vertices.iter().map(|&v| vec![v]));
             for sigma in simplices {
-                let options = candidates(complex, label, pinned, &sigma);
-                if let Some((comp, to)) = best_change(complex, label, options) {
+                let options = candidates_at(complex, label, pinned, &sigma);
+                let changes = match best_change(complex, label, options.clone()) {
+                    Some(c) => vec![c],
+                    None => best_pair(complex, label, pinned, options).unwrap_or_default(),
+                };
+                for (comp, to) in changes {
                     for &t in &comp {
                         label[t] = to;
                     }

@@ -24,8 +24,10 @@
 //!      from the labelled ones in layers of face neighbours (majority, ties: the smaller label).
 //!      Then a few rounds of majority vote among face neighbours smooth the interfaces.
 //! 3. *Manifold domains* (`manifold`). Where a domain's boundary has a singular edge or a pinched
-//!    vertex, free tetrahedra around it (not standing on a section) change to a neighbouring label
-//!    when that removes it without adding another; what is left is counted and warned.
+//!    vertex, a piece of free tetrahedra around it (not standing on a section) changes to a
+//!    neighbouring label when that lowers the number of non-disk label boundaries at the vertices
+//!    it touches (or two such changes in a row, where one alone does not), then single tetrahedra;
+//!    what is left is counted and warned.
 //!
 //! The exterior is the complement of K ([`EXTERIOR`]); K's own boundary is unchanged.
 use super::assembly::Assembled;
