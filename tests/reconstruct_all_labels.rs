@@ -413,13 +413,13 @@ fn run_all_delaunay(case: &SyntheticPartition, pins: [[f64; 5]; 3]) {
 
 #[test]
 fn delaunay_nested_spheres() {
-    // measured: parallel 1.9e-9 0.110 0.110 0.047 0, random 1.8e-9 0.174 0.120 0.894 44,
-    // fan 2.1e-9 0.027 0.023 0.402 19
+    // measured: parallel 3e-15 0.110 0.110 0.047 0, random 1.6e-9 0.174 0.120 0.881 42,
+    // fan 8.8e-10 0.027 0.023 0.403 19
     run_all_delaunay(
         &nested_spheres(),
         [
             [1e-8, 0.12, 0.12, 0.055, 0.0],
-            [1e-8, 0.185, 0.13, 0.95, 48.0],
+            [1e-8, 0.185, 0.13, 0.95, 46.0],
             [1e-8, 0.03, 0.026, 0.44, 21.0],
         ],
     );
@@ -427,28 +427,28 @@ fn delaunay_nested_spheres() {
 
 #[test]
 fn delaunay_boxes_touching_on_a_face() {
-    // measured: parallel 4.7e-10 0.200 0.200 0.200 0, random 1.0 0.169 0.129 2.258 25,
-    // fan 2.0e-9 0.408 0.358 0.068 18
+    // measured: parallel 0 0.200 0.200 0.200 0, random 6.0e-9 0.174 0.161 1.378 64,
+    // fan 4.5e-11 0.466 0.418 0.069 11
     run_all_delaunay(
         &touching_boxes(true),
         [
             [1e-8, 0.21, 0.21, 0.21, 0.0],
-            [1.0, 0.18, 0.14, 2.4, 27.0],
-            [1e-8, 0.42, 0.37, 0.075, 20.0],
+            [1e-8, 0.185, 0.17, 1.45, 70.0],
+            [1e-8, 0.48, 0.43, 0.075, 12.0],
         ],
     );
 }
 
 #[test]
 fn delaunay_cylinder_of_three_stacked_materials() {
-    // measured: parallel 0.118 0.292 0.156 3.694 2, random 0.021 0.387 0.295 1.729 131,
-    // fan 0.088 0.123 0.106 0.418 5473
+    // measured: parallel 0 0.108 0.108 0.108 0, random 3.0e-9 0.345 0.273 1.665 93,
+    // fan 3.3e-11 0.117 0.107 0.565 6464
     run_all_delaunay(
         &stacked_cylinder(),
         [
-            [0.125, 0.31, 0.17, 3.9, 3.0],
-            [0.025, 0.40, 0.31, 1.85, 145.0],
-            [0.095, 0.13, 0.115, 0.45, 5800.0],
+            [1e-8, 0.115, 0.115, 0.115, 0.0],
+            [1e-8, 0.36, 0.29, 1.75, 100.0],
+            [1e-8, 0.125, 0.115, 0.6, 6800.0],
         ],
     );
 }
@@ -457,14 +457,14 @@ fn delaunay_cylinder_of_three_stacked_materials() {
 fn delaunay_reference_mesh_with_a_ball_carved_out() {
     let mesh = read_trimesh(&common::shared_reference("eight_15")).unwrap();
     let (c, r) = common::ball_inside(&mesh);
-    // measured: parallel 1.7e-9 0.507 0.290 1.233 0, random 3.8e-9 0.277 0.249 1.026 44,
-    // fan 5.0e-9 0.122 0.106 0.998 12
+    // measured: parallel 7.6e-12 0.507 0.290 1.233 0, random 4.5e-10 0.277 0.249 1.043 44,
+    // fan 2.6e-10 0.121 0.103 0.901 10
     run_all_delaunay(
         &carved("eight_15", &mesh, c, r),
         [
             [1e-8, 0.52, 0.30, 1.3, 0.0],
-            [1e-8, 0.29, 0.26, 1.08, 48.0],
-            [1e-8, 0.13, 0.115, 1.05, 13.0],
+            [1e-8, 0.29, 0.26, 1.1, 48.0],
+            [1e-8, 0.13, 0.11, 0.95, 11.0],
         ],
     );
 }

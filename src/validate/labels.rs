@@ -249,6 +249,11 @@ pub fn one_material(sections: &Sections) -> Result<Sections> {
     Ok(out)
 }
 
+/// How far (relative to the model's diagonal) a vertex of the union may be from a label's vertex
+/// or edge and still be it or lie on it: above the union's rounding (`one_material` merges on an
+/// i32 grid, about 5e-10 of the extent), far below any feature of a section.
+pub const JUNCTION_RELATIVE_TOLERANCE: f64 = 1e-8;
+
 /// [`one_material`] keeping the *junctions*: the vertices of the labels' contours that lie on the
 /// outline of the union (where the outline two labels share meets the outside, or a label's
 /// vertex on a straight run of the union that the union's simplification dropped) become vertices
@@ -256,7 +261,7 @@ pub fn one_material(sections: &Sections) -> Result<Sections> {
 /// needs: the outlines they share end at vertices of the one-material solid.
 pub fn one_material_with_junctions(sections: &Sections) -> Result<Sections> {
     let mut out = one_material(sections)?;
-    let tol = crate::validate::COLLINEAR_RELATIVE_TOLERANCE * model_diagonal(sections);
+    let tol = JUNCTION_RELATIVE_TOLERANCE * model_diagonal(sections);
     for (sec, labelled) in out.sections.iter_mut().zip(&sections.sections) {
         if sec.regions == labelled.regions {
             continue;
@@ -276,15 +281,32 @@ pub fn one_material_with_junctions(sections: &Sections) -> Result<Sections> {
 }
 
 /// Put into contour `c` every point of `points` (sorted by u) within `tol` of one of its edges,
-/// strictly between its ends, in order along the edge.
+/// strictly between its ends, in order along the edge; and move its vertices within `tol` of a
+/// point of `points` onto it.
 fn insert_junctions(c: &mut crate::sections::Contour, points: &[([f64; 2], [f64; 3])], tol: f64) {
     let n = c.points2.len();
     let mut p2 = Vec::with_capacity(n);
     let mut p3 = Vec::with_capacity(n);
+    // a union vertex within rounding of a label's vertex is that vertex, at its exact position
+    let near = |q: [f64; 2]| {
+        let first = points.partition_point(|p| p.0[0] < q[0] - tol);
+        (points[first..].iter())
+            .take_while(|p| p.0[0] <= q[0] + tol)
+            .find(|p| (p.0[0] - q[0]).hypot(p.0[1] - q[1]) <= tol)
+            .copied()
+    };
     for i in 0..n {
         let (a, b) = (c.points2[i], c.points2[(i + 1) % n]);
-        p2.push(a);
-        p3.push(c.points3[i]);
+        match near(a) {
+            Some((q, q3)) => {
+                p2.push(q);
+                p3.push(q3);
+            }
+            None => {
+                p2.push(a);
+                p3.push(c.points3[i]);
+            }
+        }
         let d = [b[0] - a[0], b[1] - a[1]];
         let len2 = d[0] * d[0] + d[1] * d[1];
         if len2 == 0.0 {
@@ -310,4 +332,36 @@ fn insert_junctions(c: &mut crate::sections::Contour, points: &[([f64; 2], [f64;
     }
     c.points2 = p2;
     c.points3 = p3;
+}
+
+#[cfg(test)]
+mod junction_tests {
+    use super::*;
+    use crate::sections::{Contour, Plane};
+
+    #[test]
+    fn junctions_on_edges_are_inserted_and_near_vertices_snapped() {
+        let plane = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+        let mut c = Contour::from_2d(&plane, vec![[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]]);
+        let p = |q: [f64; 2]| (q, plane.to_3d(q));
+        let mut points = vec![
+            p([1.0, 1e-10]),       // on the first edge within the tolerance
+            p([2.0, 1.0 + 1e-10]), // the corner, rounded
+            p([0.5, 0.5]),         // inside: not a junction
+            p([0.0, 1.0 + 1e-3]),  // too far
+        ];
+        points.sort_unstable_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+        insert_junctions(&mut c, &points, 1e-8);
+        assert_eq!(
+            c.points2,
+            vec![
+                [0.0, 0.0],
+                [1.0, 1e-10],
+                [2.0, 0.0],
+                [2.0, 1.0 + 1e-10],
+                [0.0, 1.0]
+            ]
+        );
+        assert_eq!(c.points3[1], plane.to_3d([1.0, 1e-10]));
+    }
 }
