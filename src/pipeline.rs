@@ -116,7 +116,8 @@ pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<P
         ..options.clone()
     };
     let (selected, arrangement) = arranged(sections, &one, true, &mut report)?;
-    let seeds = crate::bm::partition::seeds(sections, &arrangement);
+    let shared = crate::bm::partition::shared_segments(sections);
+    let seeds = crate::bm::partition::seeds(&shared, &arrangement);
     let complex =
         crate::bm::reconstruct_complex(&selected, &arrangement, &one, &mut report, &seeds)?;
     // the tetrahedra the planes leave open take the label of the largest mean-value indicator
@@ -138,7 +139,7 @@ pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<P
     };
     let mut partition = report.time("partition", || {
         let prefer = (labels.len() > 1).then_some(&prefer as &crate::bm::partition::labels::Prefer);
-        crate::bm::partition::split(sections, &arrangement, complex, &labels, prefer)
+        crate::bm::partition::split(sections, &arrangement, complex, &labels, &shared, prefer)
     });
     report.warnings.append(&mut partition.report.warnings);
     for (k, v) in std::mem::take(&mut partition.report.counts) {

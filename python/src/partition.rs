@@ -5,7 +5,7 @@ use crate::sections::Sections;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use slice2solid::{Method, Options};
+use slice2solid::Options;
 
 /// Reconstruct every label of `sections` at once (`slice2solid reconstruct --all-labels`; `method`
 /// "implicit" or "delaunay", `depth`: the implicit method's octree depth). Returns a dict: `labels`
@@ -22,17 +22,7 @@ pub fn reconstruct_all_labels<'py>(
     depth: u32,
     method: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let method = match method {
-        "delaunay" => Method::Delaunay,
-        "implicit" => Method::Implicit,
-        other => {
-            return Err(crate::input_err(
-                py,
-                "method",
-                format!("unknown method \"{other}\" (expected \"delaunay\" or \"implicit\")"),
-            ))
-        }
-    };
+    let method = crate::solid::parse_method(py, method)?;
     let options = Options {
         method,
         depth,

@@ -113,6 +113,19 @@ impl Solid {
     }
 }
 
+/// The method named `name` ("delaunay" or "implicit"); an input error otherwise.
+pub(crate) fn parse_method(py: Python<'_>, name: &str) -> PyResult<Method> {
+    match name {
+        "delaunay" => Ok(Method::Delaunay),
+        "implicit" => Ok(Method::Implicit),
+        other => Err(crate::input_err(
+            py,
+            "method",
+            format!("unknown method \"{other}\" (expected \"delaunay\" or \"implicit\")"),
+        )),
+    }
+}
+
 /// Reconstruct a solid from `sections` with the options of `slice2solid reconstruct`:
 /// `method` ("delaunay" or "implicit"), `label` (only this label), `depth` (octree depth of the
 /// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `no_shared_samples`,
@@ -136,17 +149,7 @@ pub fn reconstruct(
     keep_topology: bool,
     collar: f64,
 ) -> PyResult<Solid> {
-    let method = match method {
-        "delaunay" => Method::Delaunay,
-        "implicit" => Method::Implicit,
-        other => {
-            return Err(crate::input_err(
-                py,
-                "method",
-                format!("unknown method \"{other}\" (expected \"delaunay\" or \"implicit\")"),
-            ))
-        }
-    };
+    let method = parse_method(py, method)?;
     let options = Options {
         method,
         label,

@@ -43,8 +43,11 @@ pub(super) struct Inserted {
 
 type EdgeKey = ([u64; 3], [u64; 3]);
 
+/// Per section, the segments (3D ends) that regions of different labels share.
+pub type SharedSegments = Vec<Vec<[[f64; 3]; 2]>>;
+
 /// The segments (3D ends) that regions of different labels share, per section.
-pub(super) fn shared_segments(sections: &crate::sections::Sections) -> Vec<Vec<[[f64; 3]; 2]>> {
+pub fn shared_segments(sections: &crate::sections::Sections) -> Vec<Vec<[[f64; 3]; 2]>> {
     let key = |p: [f64; 3]| p.map(f64::to_bits);
     (sections.sections.iter())
         .map(|sec| {
@@ -288,9 +291,8 @@ impl Splitter<'_> {
 }
 
 /// Put every shared outline segment of every section into `mesh` (module doc).
-pub(super) fn insert(mesh: &mut Mesh, regions: &Regions) -> Inserted {
+pub(super) fn insert(mesh: &mut Mesh, regions: &Regions, segments: &SharedSegments) -> Inserted {
     let mut out = Inserted::default();
-    let segments = shared_segments(regions.sections);
     if segments.iter().all(Vec::is_empty) {
         return out;
     }
@@ -301,9 +303,7 @@ pub(super) fn insert(mesh: &mut Mesh, regions: &Regions) -> Inserted {
         }
     }
     for (s, segs) in segments.iter().enumerate() {
-        let Some(plane) =
-            (0..regions.section_of_plane.len() as u32).find(|&p| regions.section(p) == Some(s))
-        else {
+        let Some(plane) = regions.plane_id(s) else {
             out.missed += segs.len() as u64;
             continue;
         };

@@ -25,13 +25,17 @@ struct Region {
 pub(super) struct Regions<'a> {
     pub sections: &'a Sections,
     /// Per arrangement plane, its section (`None`: a wall of the box).
-    pub section_of_plane: Vec<Option<usize>>,
+    section_of_plane: Vec<Option<usize>>,
+    /// Per section, its arrangement plane.
+    plane_of_section: Vec<Option<u32>>,
     /// Per section, its regions (label as an index into the partition's labels).
     regions: Vec<Vec<Region>>,
     pub n_labels: usize,
 }
 
-/// Crossing-number test of `q` against the closed polygon `p`.
+/// Crossing-number test of `q` against the closed polygon `p` (float: a section triangle's centre
+/// is far from the outline; `validate::winding_number`, exact, decides otherwise on a few
+/// slivers, which changes outputs).
 fn inside(p: &[[f64; 2]], q: [f64; 2]) -> bool {
     let mut odd = false;
     let mut j = p.len() - 1;
@@ -46,6 +50,17 @@ fn inside(p: &[[f64; 2]], q: [f64; 2]) -> bool {
         j = i;
     }
     odd
+}
+
+/// Per section (of `n`), the arrangement plane it lies on (`None`: not a plane of the arrangement).
+pub(super) fn plane_of_section(arrangement: &Arrangement, n: usize) -> Vec<Option<u32>> {
+    let mut out = vec![None; n];
+    for (p, ap) in arrangement.planes.iter().enumerate() {
+        if let Some(s) = ap.section.filter(|&s| s < n) {
+            out[s] = Some(p as u32);
+        }
+    }
+    out
 }
 
 impl<'a> Regions<'a> {
@@ -76,6 +91,7 @@ impl<'a> Regions<'a> {
         Regions {
             sections,
             section_of_plane: arrangement.planes.iter().map(|p| p.section).collect(),
+            plane_of_section: plane_of_section(arrangement, sections.sections.len()),
             regions,
             n_labels: labels.len(),
         }
@@ -84,6 +100,11 @@ impl<'a> Regions<'a> {
     /// The section on arrangement plane `p`, if any.
     pub fn section(&self, p: u32) -> Option<usize> {
         self.section_of_plane.get(p as usize).copied().flatten()
+    }
+
+    /// The arrangement plane of section `s`, if any.
+    pub fn plane_id(&self, s: usize) -> Option<u32> {
+        self.plane_of_section[s]
     }
 
     pub fn plane(&self, s: usize) -> &Plane {

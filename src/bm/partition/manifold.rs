@@ -92,15 +92,13 @@ fn neighbour_labels(complex: &Complex, label: &[u32], comp: &[usize], not: u32) 
     out
 }
 
+/// A change of labels: these tetrahedra take this label.
+type Change = (Vec<usize>, u32);
+
 /// The changes of labels around `sigma`: every piece of one label there (its tetrahedra around
 /// `sigma`, face-connected through faces holding it) going to the label of one of its neighbours.
 /// Pinned tetrahedra never change.
-fn candidates_at(
-    complex: &Complex,
-    label: &[u32],
-    pinned: &[bool],
-    sigma: &[u32],
-) -> Vec<(Vec<usize>, u32)> {
+fn candidates_at(complex: &Complex, label: &[u32], pinned: &[bool], sigma: &[u32]) -> Vec<Change> {
     let around = star(complex, sigma);
     let mut labels: Vec<u32> = around.iter().map(|&t| label[t]).collect();
     labels.sort_unstable();
@@ -120,40 +118,51 @@ fn candidates_at(
     out
 }
 
-/// Non-disk label boundaries at the vertices of `tets` (each vertex once).
-fn cost_at(complex: &Complex, label: &[u32], tets: &[usize]) -> u32 {
+/// The vertices of `tets`, each once.
+fn vertices_of(complex: &Complex, tets: &[usize]) -> Vec<u32> {
     let mut vs: Vec<u32> = tets.iter().flat_map(|&t| complex.tets[t]).collect();
     vs.sort_unstable();
     vs.dedup();
-    vs.iter().map(|&v| vertex_bad(complex, label, v)).sum()
+    vs
+}
+
+/// Non-disk label boundaries at the vertices of `tets` (each vertex once).
+fn cost_at(complex: &Complex, label: &[u32], tets: &[usize]) -> u32 {
+    (vertices_of(complex, tets).iter())
+        .map(|&v| vertex_bad(complex, label, v))
+        .sum()
+}
+
+/// Give `tets` label `to`; their labels before.
+fn relabel(label: &mut [u32], tets: &[usize], to: u32) -> Vec<u32> {
+    let old = tets.iter().map(|&t| label[t]).collect();
+    for &t in tets {
+        label[t] = to;
+    }
+    old
+}
+
+/// Give `tets` back their labels `old`.
+fn restore(label: &mut [u32], tets: &[usize], old: &[u32]) {
+    for (&t, &o) in tets.iter().zip(old) {
+        label[t] = o;
+    }
 }
 
 /// The change among `candidates` that lowers the non-disk boundaries around it most, if any.
-fn best_change(
-    complex: &Complex,
-    label: &mut [u32],
-    candidates: Vec<(Vec<usize>, u32)>,
-) -> Option<(Vec<usize>, u32)> {
+fn best_change(complex: &Complex, label: &mut [u32], candidates: Vec<Change>) -> Option<Change> {
     let mut best: Option<(u32, Vec<usize>, u32)> = None;
     for (comp, to) in candidates {
         let before = cost_at(complex, label, &comp);
-        let old: Vec<u32> = comp.iter().map(|&t| label[t]).collect();
-        for &t in &comp {
-            label[t] = to;
-        }
+        let old = relabel(label, &comp, to);
         let after = cost_at(complex, label, &comp);
-        for (&t, &o) in comp.iter().zip(&old) {
-            label[t] = o;
-        }
+        restore(label, &comp, &old);
         if after < before && best.as_ref().is_none_or(|b| before - after > b.0) {
             best = Some((before - after, comp, to));
         }
     }
     best.map(|b| (b.1, b.2))
 }
-
-/// A change of labels: these tetrahedra take this label.
-type Change = (Vec<usize>, u32);
 
 /// Two changes in a row where one alone does not help: a change among `candidates` (at most two
 /// more non-disk boundaries), then the best change at a vertex it made bad; the pair that lowers
@@ -166,29 +175,14 @@ fn best_pair(
     candidates: Vec<Change>,
 ) -> Option<Vec<Change>> {
     let mut best: Option<(u32, Vec<Change>)> = None;
-    let apply = |label: &mut [u32], comp: &[usize], to: u32| -> Vec<u32> {
-        let old = comp.iter().map(|&t| label[t]).collect();
-        for &t in comp {
-            label[t] = to;
-        }
-        old
-    };
-    let undo = |label: &mut [u32], comp: &[usize], old: &[u32]| {
-        for (&t, &o) in comp.iter().zip(old) {
-            label[t] = o;
-        }
-    };
     for (comp, to) in candidates {
         let before1 = cost_at(complex, label, &comp);
-        let old = apply(label, &comp, to);
+        let old = relabel(label, &comp, to);
         if cost_at(complex, label, &comp) > before1 + 2 {
-            undo(label, &comp, &old);
+            restore(label, &comp, &old);
             continue;
         }
-        let mut vs: Vec<u32> = comp.iter().flat_map(|&t| complex.tets[t]).collect();
-        vs.sort_unstable();
-        vs.dedup();
-        let bad: Vec<u32> = (vs.iter().copied())
+        let bad: Vec<u32> = (vertices_of(complex, &comp).into_iter())
             .filter(|&w| vertex_bad(complex, label, w) > 0)
             .collect();
         for w in bad {
@@ -197,18 +191,18 @@ fn best_pair(
                     continue;
                 }
                 let both: Vec<usize> = comp.iter().chain(&comp2).copied().collect();
-                let old2 = apply(label, &comp2, to2);
+                let old2 = relabel(label, &comp2, to2);
                 let after = cost_at(complex, label, &both);
-                undo(label, &comp2, &old2);
-                undo(label, &comp, &old);
+                restore(label, &comp2, &old2);
+                restore(label, &comp, &old);
                 let before = cost_at(complex, label, &both);
-                let _ = apply(label, &comp, to);
+                relabel(label, &comp, to);
                 if after < before && best.as_ref().is_none_or(|b| before - after > b.0) {
                     best = Some((before - after, vec![(comp.clone(), to), (comp2, to2)]));
                 }
             }
         }
-        undo(label, &comp, &old);
+        restore(label, &comp, &old);
     }
     best.map(|b| b.1)
 }

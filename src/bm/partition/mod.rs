@@ -38,6 +38,7 @@ use crate::sections::Sections;
 use crate::solid::{Partition, Report, EXTERIOR};
 
 mod interfaces;
+pub use interfaces::{shared_segments, SharedSegments};
 pub mod labels;
 mod manifold;
 
@@ -45,13 +46,11 @@ mod manifold;
 /// of the cells' triangulations (`run_cells_seeded`), so that the one-material complex has them as
 /// vertices and its tetrahedra between the planes join them (an interface between two planes runs
 /// along those tetrahedra's faces).
-pub fn seeds(sections: &Sections, arrangement: &Arrangement) -> Vec<(u32, [f64; 3])> {
-    let plane_of: std::collections::HashMap<usize, u32> = (arrangement.planes.iter().enumerate())
-        .filter_map(|(p, ap)| Some((ap.section?, p as u32)))
-        .collect();
+pub fn seeds(shared: &SharedSegments, arrangement: &Arrangement) -> Vec<(u32, [f64; 3])> {
+    let plane_of = labels::plane_of_section(arrangement, shared.len());
     let mut out = Vec::new();
-    for (s, segs) in interfaces::shared_segments(sections).iter().enumerate() {
-        let Some(&p) = plane_of.get(&s) else { continue };
+    for (segs, plane) in shared.iter().zip(plane_of) {
+        let Some(p) = plane else { continue };
         let mut seen = crate::fxhash::FxHashSet::default();
         for x in segs.iter().flatten() {
             if seen.insert(x.map(f64::to_bits)) {
@@ -63,7 +62,8 @@ pub fn seeds(sections: &Sections, arrangement: &Arrangement) -> Vec<(u32, [f64; 
 }
 
 /// Split the one-material complex `k` (built from the one-material view of `sections`, whose
-/// planes are `arrangement`'s) between `labels` (increasing, positive).
+/// planes are `arrangement`'s, seeded with `seeds(shared, ..)`) between `labels` (increasing,
+/// positive); `shared`: the sections' `shared_segments`.
 /// `prefer`: per point, a value per label (larger: more that label's), which decides the
 /// tetrahedra the planes leave open (by their centroids) instead of the growth from their
 /// neighbours.
@@ -72,6 +72,7 @@ pub fn split(
     arrangement: &Arrangement,
     k: Assembled,
     labels: &[i32],
+    shared: &SharedSegments,
     prefer: Option<&labels::Prefer<'_>>,
 ) -> Partition {
     let mut report = Report::default();
@@ -89,7 +90,7 @@ pub fn split(
         tets: tets.tets.iter().map(|t| [t[0], t[1], t[3], t[2]]).collect(),
     };
     let regions = labels::Regions::new(sections, arrangement, labels);
-    let inserted = interfaces::insert(&mut mesh, &regions);
+    let inserted = interfaces::insert(&mut mesh, &regions, shared);
     report.count("partition_interface_segments", inserted.segments);
     report.count("partition_interface_points", inserted.points);
     report.count("partition_interface_splits", inserted.splits);
