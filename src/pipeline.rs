@@ -122,21 +122,21 @@ pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<P
         crate::bm::reconstruct_complex(&selected, &arrangement, &one, &mut report, &seeds)?;
     // the tetrahedra the planes leave open take the label of the largest mean-value indicator
     // (the implicit method's, one per label) at their centroids
-    let mut warnings = Report::default();
     // (one label: every tetrahedron is that label's, nothing to decide)
     let decide = if labels.len() > 1 { &labels[..] } else { &[] };
+    // (their warnings are not the partition's: the Delaunay path reported the sections already)
     let indicators = report.time("partition indicators", || {
-        (decide.iter())
-            .map(|&l| crate::implicit::labels::indicator_of(sections, Some(l), &one, &mut warnings))
-            .map(|r| r.map(|(ind, _)| ind))
+        use rayon::prelude::*;
+        (decide.par_iter())
+            .map(|&l| {
+                let mut ignored = Report::default();
+                let ind =
+                    crate::implicit::labels::indicator_of(sections, Some(l), &one, &mut ignored);
+                ind.map(|(ind, _)| ind)
+            })
             .collect::<Result<Vec<_>>>()
     })?;
-    let prefer = |x: [f64; 3]| {
-        indicators
-            .iter()
-            .map(|ind| ind.eval(x))
-            .collect::<Vec<f64>>()
-    };
+    let prefer = |l: u32, x: [f64; 3]| indicators[l as usize].eval(x);
     let mut partition = report.time("partition", || {
         let prefer = (labels.len() > 1).then_some(&prefer as &crate::bm::partition::labels::Prefer);
         crate::bm::partition::split(sections, &arrangement, complex, &labels, &shared, prefer)

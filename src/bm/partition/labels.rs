@@ -6,8 +6,9 @@ use crate::bm::complex::outward_face;
 use crate::fxhash::FxHashMap;
 use crate::sections::{Plane, Sections};
 
-/// Per point, a value per label (by index): what decides the tetrahedra the planes leave open.
-pub type Prefer<'a> = dyn Fn([f64; 3]) -> Vec<f64> + Sync + 'a;
+/// A label's (by index) value at a point, larger: more that label's; what decides the tetrahedra
+/// the planes leave open.
+pub type Prefer<'a> = dyn Fn(u32, [f64; 3]) -> f64 + Sync + 'a;
 
 /// Rounds of majority vote after the growth.
 const SMOOTHING_ROUNDS: usize = 4;
@@ -139,6 +140,9 @@ pub(super) struct Assigned {
     pub label: Vec<u32>,
     /// Tetrahedra standing on a section: their label is the section's, never changed.
     pub pinned: Vec<bool>,
+    /// Per tetrahedron, the labels compatible with the sections (a bit per label below 64; all
+    /// bits with more labels, and for pinned tetrahedra).
+    pub compatible: Vec<u64>,
     pub on_sections: u64,
     pub one_compatible: u64,
     pub grown: u64,
@@ -279,6 +283,7 @@ pub(super) fn assign(
     let mut out = Assigned {
         label: vec![NONE; n],
         pinned: vec![false; n],
+        compatible: Vec::new(),
         on_sections: 0,
         one_compatible: 0,
         grown: 0,
@@ -302,7 +307,14 @@ pub(super) fn assign(
         }
     }
     out.grown = match prefer {
-        Some(prefer) => preferred(complex, mesh, &mut out.label, &masks, prefer),
+        Some(prefer) => preferred(
+            complex,
+            mesh,
+            &mut out.label,
+            &masks,
+            regions.n_labels as u32,
+            prefer,
+        ),
         None => grow(complex, &mut out.label, &masks, regions.n_labels),
     };
     let free: Vec<usize> = (0..n)
@@ -322,6 +334,7 @@ pub(super) fn assign(
             out.label[t] = l;
         }
     }
+    out.compatible = masks;
     out
 }
 
@@ -332,6 +345,7 @@ fn preferred(
     mesh: &Mesh,
     label: &mut [u32],
     masks: &[Mask],
+    n_labels: u32,
     prefer: &Prefer<'_>,
 ) -> u64 {
     use rayon::prelude::*;
@@ -341,14 +355,14 @@ fn preferred(
         .map(|t| {
             let p = complex.tets[t].map(|v| mesh.positions[v as usize]);
             let c = [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k] + p[3][k]) / 4.0);
-            let values = prefer(c);
-            let fits = |l: usize| bit(l as u32) & masks[t] != 0;
-            let any = (0..values.len()).any(fits);
-            let best = (0..values.len())
+            let fits = |l: u32| bit(l) & masks[t] != 0;
+            let any = (0..n_labels).any(fits);
+            let best = (0..n_labels)
                 .filter(|&l| !any || fits(l))
-                .max_by(|&a, &b| values[a].total_cmp(&values[b]).then(b.cmp(&a)))
-                .unwrap_or(0);
-            (t, best as u32)
+                .map(|l| (prefer(l, c), l))
+                .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)))
+                .map_or(0, |b| b.1);
+            (t, best)
         })
         .collect();
     for &(t, l) in &chosen {

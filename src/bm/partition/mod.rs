@@ -118,6 +118,7 @@ pub fn split(
         &complex,
         &mut assigned.label,
         &assigned.pinned,
+        &assigned.compatible,
         labels.len(),
     );
     report.count("partition_tets_relabelled_for_manifold", fixed.relabelled);
