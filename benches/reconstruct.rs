@@ -8,6 +8,7 @@
 //!   on uniform random sets of the same sizes, so the cost of the sections' degeneracy is one ratio.
 //!
 //! * `read_sections/<file>`: reading and validating the same files.
+//! * `partition_20_boxes/*`: every label at once against all labels as one material (issue 16).
 //!
 //! `cargo bench --bench reconstruct` (criterion; compare runs on the same machine in the same session).
 use criterion::{criterion_group, BenchmarkId, Criterion};
@@ -108,5 +109,28 @@ fn cell_kernel(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, read, reconstruct, cell_kernel);
+/// Every label at once against all labels as one material, on the same planes: twenty touching
+/// boxes (`box_grid(5, 4)`, 16 random planes, seed 3). Issue 16 asks the partition to cost at most
+/// 3× the one-material run.
+fn partition(c: &mut Criterion) {
+    use slice2solid::slice::{
+        make_planes, slice_partition, synthetic::box_grid, union_mesh, SliceMode,
+    };
+    let case = box_grid(5, 4);
+    let planes = make_planes(&union_mesh(&case.meshes), 16, 3, SliceMode::Random);
+    let sections = slice_partition(&case.meshes, &planes).expect("slice the boxes");
+    let mut g = c.benchmark_group("partition_20_boxes");
+    g.sample_size(20);
+    g.bench_function("one_material", |b| {
+        b.iter(|| slice2solid::reconstruct(&sections, &Options::default()).expect("reconstruct"))
+    });
+    g.bench_function("all_labels", |b| {
+        b.iter(|| {
+            slice2solid::reconstruct_partition(&sections, &Options::default()).expect("partition")
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, read, reconstruct, cell_kernel, partition);
 criterion::criterion_main!(benches);

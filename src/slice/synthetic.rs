@@ -2,7 +2,7 @@
 //! the slicer's input (meshes in priority order), the truth's domain of every label as one closed
 //! mesh, and the interface between every two touching labels as triangles.
 use super::LabelledMesh;
-use crate::eval::shapes::{cylinder, grid_box, icosphere, inverted, merged};
+use crate::eval::shapes::{cuboid, cylinder, grid_box, icosphere, inverted, merged};
 use crate::mesh::TriMesh;
 
 /// A partition with a known answer.
@@ -61,6 +61,51 @@ pub fn touching_boxes(conforming: bool) -> SyntheticPartition {
         meshes: vec![labelled("box A", &a, 1), labelled("box B", &b, 2)],
         domains: vec![(1, a), (2, b)],
         interfaces: vec![(1, 2, face)],
+    }
+}
+
+/// `nx`×`ny` unit boxes side by side on the plane z = 0 (the multi-organ case: many labels, every
+/// box touching its four neighbours on faces and its diagonal ones on edges): box (i, j) is
+/// [i, i+1]×[j, j+1]×[0, h] with h = 1 + 0.1·((i + 2j) mod 3), label 1 + i + nx·j. Each mesh is one
+/// cuboid (12 triangles), so touching sections share their outlines only after the slicer's repair.
+pub fn box_grid(nx: usize, ny: usize) -> SyntheticPartition {
+    let height = |i: usize, j: usize| 1.0 + 0.1 * ((i + 2 * j) % 3) as f64;
+    let label = |i: usize, j: usize| (1 + i + nx * j) as i32;
+    let cell = |i: usize, j: usize| {
+        let lo = [i as f64, j as f64, 0.0];
+        cuboid(lo, [lo[0] + 1.0, lo[1] + 1.0, height(i, j)])
+    };
+    let mut meshes = Vec::new();
+    let mut domains = Vec::new();
+    let mut interfaces = Vec::new();
+    for j in 0..ny {
+        for i in 0..nx {
+            let m = cell(i, j);
+            meshes.push(labelled(&format!("box {i},{j}"), &m, label(i, j)));
+            domains.push((label(i, j), m));
+            // with the neighbours at +x and +y: the lower box's face on the common plane
+            let mut touch = |k: usize, l: usize, axis: usize, at: f64| {
+                let lower = if height(i, j) <= height(k, l) {
+                    cell(i, j)
+                } else {
+                    cell(k, l)
+                };
+                let face = faces_on(&lower, |p| p[axis] == at);
+                interfaces.push((label(i, j), label(k, l), face));
+            };
+            if i + 1 < nx {
+                touch(i + 1, j, 0, (i + 1) as f64);
+            }
+            if j + 1 < ny {
+                touch(i, j + 1, 1, (j + 1) as f64);
+            }
+        }
+    }
+    SyntheticPartition {
+        name: format!("{nx}x{ny} touching boxes"),
+        meshes,
+        domains,
+        interfaces,
     }
 }
 
