@@ -171,8 +171,13 @@ pub struct CompareArgs {
 #[derive(clap::Args)]
 pub struct CompareMethodsArgs {
     pub input: PathBuf,
-    #[arg(long)]
+    #[arg(long, conflicts_with = "all_labels")]
     pub reference: Option<PathBuf>,
+    /// Compare the methods' partitions of every label at once (`reconstruct --all-labels`): per
+    /// label its domain's check and section agreement, per method disjointness and gaps, and per
+    /// label the Delaunay domain against the implicit one
+    #[arg(long)]
+    pub all_labels: bool,
     #[arg(long)]
     pub json: bool,
     #[arg(long, default_value_t = 9)]
@@ -265,6 +270,7 @@ fn main() -> ExitCode {
         Command::Reconstruct(a) => cli::reconstruct::run(a),
         Command::Check(a) => cli::check::run(a),
         Command::Compare(a) => cli::compare::run(a),
+        Command::CompareMethods(a) if a.all_labels => cli::compare_methods_labels::run(a),
         Command::CompareMethods(a) => cli::compare_methods::run(a),
         Command::Delaunay(a) => cli::delaunay::run(a),
         Command::Slice(a) => cli::slice::run(a),

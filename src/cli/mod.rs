@@ -5,6 +5,7 @@ pub mod check_partition;
 pub mod check_tets;
 pub mod compare;
 pub mod compare_methods;
+pub mod compare_methods_labels;
 pub mod delaunay;
 pub mod info;
 pub mod reconstruct;
