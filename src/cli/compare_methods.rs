@@ -23,6 +23,14 @@ struct Row {
     report: Option<Report>,
 }
 
+/// A method's status when it failed: "unavailable: ..." or "error: ...".
+pub(super) fn failed(e: Error) -> String {
+    match e {
+        Error::Unavailable(m) => format!("unavailable: {m}"),
+        other => format!("error: {other}"),
+    }
+}
+
 fn fmt_opt<T>(v: Option<T>, f: impl Fn(T) -> String) -> String {
     v.map(f).unwrap_or_else(|| "-".into())
 }
@@ -65,10 +73,7 @@ pub fn run(args: CompareMethodsArgs) -> Result<ExitCode> {
             }
             Err(e) => Row {
                 method: name.into(),
-                status: match e {
-                    Error::Unavailable(m) => format!("unavailable: {m}"),
-                    other => format!("error: {other}"),
-                },
+                status: failed(e),
                 seconds: None,
                 triangles: None,
                 check: None,

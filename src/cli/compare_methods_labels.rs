@@ -8,7 +8,7 @@ use serde::Serialize;
 use slice2solid::eval::compare::{compare_meshes, CompareReport, DEFAULT_SAMPLES};
 use slice2solid::eval::partition::{check_partition, PartitionReport};
 use slice2solid::io::read_sections;
-use slice2solid::{reconstruct_partition, Error, Method, Options, Partition, Result, Sections};
+use slice2solid::{reconstruct_partition, Method, Options, Partition, Result, Sections};
 use std::process::ExitCode;
 
 /// One method's run.
@@ -61,10 +61,7 @@ fn run_method(sections: &Sections, method: Method, args: &CompareMethodsArgs) ->
         },
         Err(e) => MethodRun {
             method: name,
-            status: match e {
-                Error::Unavailable(m) => format!("unavailable: {m}"),
-                other => format!("error: {other}"),
-            },
+            status: super::compare_methods::failed(e),
             seconds: None,
             check: None,
             partition: None,
