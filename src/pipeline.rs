@@ -138,7 +138,8 @@ pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<P
     })?;
     let prefer = |l: u32, x: [f64; 3]| indicators[l as usize].eval(x);
     let mut partition = report.time("partition", || {
-        let prefer = (labels.len() > 1).then_some(&prefer as &crate::bm::partition::labels::Prefer);
+        let prefer =
+            (!indicators.is_empty()).then_some(&prefer as &crate::bm::partition::labels::Prefer);
         crate::bm::partition::split(sections, &arrangement, complex, &labels, &shared, prefer)
     });
     report.warnings.append(&mut partition.report.warnings);

@@ -47,7 +47,7 @@ type EdgeKey = ([u64; 3], [u64; 3]);
 pub type SharedSegments = Vec<Vec<[[f64; 3]; 2]>>;
 
 /// The segments (3D ends) that regions of different labels share, per section.
-pub fn shared_segments(sections: &crate::sections::Sections) -> Vec<Vec<[[f64; 3]; 2]>> {
+pub fn shared_segments(sections: &crate::sections::Sections) -> SharedSegments {
     let key = |p: [f64; 3]| p.map(f64::to_bits);
     (sections.sections.iter())
         .map(|sec| {

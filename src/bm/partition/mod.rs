@@ -64,7 +64,7 @@ pub fn seeds(shared: &SharedSegments, arrangement: &Arrangement) -> Vec<(u32, [f
 /// Split the one-material complex `k` (built from the one-material view of `sections`, whose
 /// planes are `arrangement`'s, seeded with `seeds(shared, ..)`) between `labels` (increasing,
 /// positive); `shared`: the sections' `shared_segments`.
-/// `prefer`: per point, a value per label (larger: more that label's), which decides the
+/// `prefer`: a label's value at a point (larger: more that label's), which decides the
 /// tetrahedra the planes leave open (by their centroids) instead of the growth from their
 /// neighbours.
 pub fn split(
