@@ -425,11 +425,12 @@ fn incremental_tagged_insertion_matches_the_bulk_build() {
 fn bad_tags_are_errors() {
     let pts = [[0.0; 3], [1.0, 0.0, 0.0]];
     assert!(Delaunay::try_new_tagged(&pts, &[PointTags::none()]).is_err());
-    let four = PointTags::new(
-        0,
-        &[(0, [0.0; 2]), (1, [0.0; 2]), (2, [0.0; 2]), (3, [0.0; 2])],
-    );
-    assert!(Delaunay::try_new_tagged(&pts, &[four, PointTags::none()]).is_err());
+    // more planes than the masks of the rules have bits
+    let planes: Vec<(u32, [f64; 2])> = (0..=slice2solid::delaunay::MAX_PLANES as u32)
+        .map(|k| (k, [0.0; 2]))
+        .collect();
+    let many = PointTags::new(0, &planes);
+    assert!(Delaunay::try_new_tagged(&pts, &[many, PointTags::none()]).is_err());
     let rep = PointTags::new(0, &[(1, [0.0; 2]), (1, [0.5; 2])]);
     assert!(Delaunay::try_new_tagged(&pts, &[rep, PointTags::none()]).is_err());
 }

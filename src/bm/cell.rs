@@ -204,17 +204,19 @@ pub fn finite_tets(dt: &crate::delaunay::Delaunay) -> Vec<[u32; 4]> {
 /// decide, untagged (then `*tagged` becomes false: the cell's faces may differ from the other
 /// side's, counted by the caller).
 fn cell_delaunay(input: &CellInput, tagged: &mut bool) -> Result<crate::delaunay::Delaunay> {
-    points_delaunay(&input.points, &input.tags, tagged)
+    points_delaunay(&input.points, &input.tags, &input.apexes, tagged)
 }
 
 /// [`cell_delaunay`] of the first `points.len()` points of a cell (tags alongside).
 fn points_delaunay(
     points: &[[f64; 3]],
     tags: &[crate::delaunay::PointTags],
+    apexes: &crate::delaunay::PlaneApexes,
     tagged: &mut bool,
 ) -> Result<crate::delaunay::Delaunay> {
     if *tagged {
-        match crate::delaunay::Delaunay::try_new_tagged(points, &tags[..points.len()]) {
+        match crate::delaunay::Delaunay::try_new_tagged_with(points, &tags[..points.len()], apexes)
+        {
             Ok(dt) => return Ok(dt),
             Err(crate::Error::Input { .. }) => *tagged = false,
             Err(e) => return Err(e),

@@ -5,7 +5,7 @@
 //! Plane membership is combinatorial: a vertex is on slot `s` iff its global tag set holds the slot's
 //! plane. Tags of planes on which the cell has no face with a section are ignored inside this cell.
 use crate::arrangement::{Arrangement, FaceId, PlaneId, VertexPool};
-use crate::delaunay::PointTags;
+use crate::delaunay::{PlaneApexes, PointTags};
 use crate::geom::predicates::orient2d;
 use smallvec::SmallVec;
 use std::collections::{HashMap, HashSet};
@@ -205,6 +205,9 @@ pub struct CellInput {
     /// (cell-local vertices: [`local_gid`]), for the tagged Delaunay kernel: both cells of a face
     /// hand it the same tags for the same points, so both triangulate the face alike.
     pub tags: Vec<PointTags>,
+    /// The apexes of the cell's face planes, through which the kernel's plane rule decides
+    /// ([`plane_apexes`]): the same for every cell that has the plane.
+    pub apexes: PlaneApexes,
     pub slots: Vec<Slot>,
     /// Once slimmed (`tags` then empty): the planes of each cell-local vertex (no pool id), which
     /// the assembly reads.
@@ -224,7 +227,7 @@ pub fn local_gid(local: u32) -> u64 {
 /// predicates for the positions, and the two must be the same points up to rounding.
 ///
 /// Only the planes of the cell's faces (`cell_planes`): a point on the common line of a fan of
-/// planes lies on all of them, and the kernel takes at most three. The two cells of a face see the
+/// planes lies on all of them, and the kernel takes at most `tags::MAX_PLANES`. The two cells of a face see the
 /// same planes through it: a line of that face's plane with another plane meets the face only
 /// along an edge of it, and that other plane bounds both cells there.
 pub fn pool_tags(
@@ -242,6 +245,26 @@ pub fn pool_tags(
     let mut tags = PointTags::new(g as u64, &planes);
     tags.segment = pool.on_segment.get(&g).map(|s| s.map(u64::from));
     tags
+}
+
+/// The kernel's apex of each of `planes`: above the point of the plane nearest the centre of the
+/// arrangement's box, by the box's diagonal (a function of the plane and the box alone, so every
+/// cell with the plane has the same apex; far enough that no triple of the plane's points is
+/// nearly coplanar with it unless it is nearly collinear).
+pub fn plane_apexes(arr: &Arrangement, planes: impl Iterator<Item = PlaneId>) -> PlaneApexes {
+    let (lo, hi) = arr.bbox;
+    let centre: [f64; 3] = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
+    let diag = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    PlaneApexes::new(
+        planes
+            .map(|t| {
+                let plane = &arr.planes[t as usize].plane;
+                let d = plane.signed_distance(centre);
+                let foot: [f64; 3] = std::array::from_fn(|k| centre[k] - d * plane.normal[k]);
+                (t, PlaneApexes::above(foot, plane.normal, diag))
+            })
+            .collect(),
+    )
 }
 
 pub fn edge_key(a: u32, b: u32) -> (u32, u32) {
@@ -397,12 +420,14 @@ impl CellInput {
             .iter()
             .map(|&g| pool_tags(arr, pool, g, &cell_planes))
             .collect();
+        let apexes = plane_apexes(arr, cell_planes.iter().copied());
         Some(CellInput {
             cell,
             global,
             points,
             mask,
             tags,
+            apexes,
             slots,
             local_planes: Vec::new(),
         })
@@ -499,6 +524,7 @@ mod tests {
             points: vec![[0.0; 3]; n],
             mask,
             tags: vec![PointTags::none(); n],
+            apexes: PlaneApexes::default(),
             slots: vec![slot],
             local_planes: Vec::new(),
         };

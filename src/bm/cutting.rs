@@ -523,6 +523,7 @@ pub(super) mod tests {
             points: Vec::new(),
             mask: Vec::new(),
             tags: Vec::new(),
+            apexes: crate::delaunay::PlaneApexes::default(),
             slots: Vec::new(),
             local_planes: Vec::new(),
         };

@@ -233,7 +233,7 @@ impl Delaunay {
     #[inline]
     pub(super) fn conflict_tagged(&self, t: u32, qv: u32, q: P) -> bool {
         let v = tet(&self.tds.tets, t).v;
-        match tags::conflict(self.tags_of(v), (&self.tags[qv as usize], q)) {
+        match tags::conflict(self.tags_of(v), (&self.tags[qv as usize], q), &self.apexes) {
             Some(c) => {
                 self.rule_decided.set(true);
                 c

@@ -86,7 +86,7 @@ pub mod xyz;
 
 use pred::P;
 use std::collections::HashMap;
-pub use tags::PointTags;
+pub use tags::{PlaneApexes, PointTags, MAX_PLANES};
 pub use tds::INFINITE;
 use tds::{Tds, NONE};
 
@@ -148,6 +148,8 @@ pub struct Delaunay {
     tagged: bool,
     /// Plane tags by internal id (empty when not `tagged`).
     tags: Vec<PointTags>,
+    /// The planes' apexes for the plane rule (empty: decided in uv).
+    apexes: PlaneApexes,
     /// A tagged insertion met a cavity that is not star-shaped (an exact cosphericity across
     /// planes the tag rules cannot decide, see `tags`): the triangulation is not to be trusted.
     inconsistent: bool,
@@ -204,6 +206,16 @@ impl Delaunay {
     /// four vertices on one plane or three on one line of two planes. Merged duplicates keep the
     /// first occurrence's tags. Errors on non-finite input, a length mismatch or bad tags.
     pub fn try_new_tagged(points: &[[f64; 3]], tags: &[PointTags]) -> crate::Result<Delaunay> {
+        Self::try_new_tagged_with(points, tags, &PlaneApexes::default())
+    }
+
+    /// [`Delaunay::try_new_tagged`] with the plane rule decided through each plane's apex (see
+    /// [`PlaneApexes`]) on the points' 3D positions, for the planes that have one.
+    pub fn try_new_tagged_with(
+        points: &[[f64; 3]],
+        tags: &[PointTags],
+        apexes: &PlaneApexes,
+    ) -> crate::Result<Delaunay> {
         check_finite(points)?;
         if tags.len() != points.len() {
             return Err(crate::Error::input(
@@ -219,7 +231,7 @@ impl Delaunay {
                     .map_err(|e| crate::Error::input(format!("tags of point {i}"), e))
             })
             .collect::<crate::Result<Vec<_>>>()?;
-        let dt = Self::build(points, Some(&tags), 1);
+        let dt = Self::build(points, Some((&tags, apexes)), 1);
         dt.consistent()?;
         Ok(dt)
     }
@@ -238,13 +250,18 @@ impl Delaunay {
     }
 
     /// The bulk build of [`Delaunay::try_new`] / [`Delaunay::try_new_tagged`] on checked input.
-    fn build(points: &[[f64; 3]], tags: Option<&[PointTags]>, threads: usize) -> Delaunay {
+    fn build(
+        points: &[[f64; 3]],
+        tags: Option<(&[PointTags], &PlaneApexes)>,
+        threads: usize,
+    ) -> Delaunay {
         let mut dt = Delaunay::empty();
         let order = sort::brio_order(points);
         dt.pts = order.iter().map(|&k| norm(points[k as usize])).collect();
-        if let Some(tags) = tags {
+        if let Some((tags, apexes)) = tags {
             dt.tagged = true;
             dt.tags = order.iter().map(|&k| tags[k as usize].clone()).collect();
+            dt.apexes = apexes.clone();
         }
         for p in points {
             dt.lo = std::array::from_fn(|k| dt.lo[k].min(p[k]));
@@ -397,6 +414,7 @@ impl Delaunay {
             track_vtet,
             tagged,
             tags,
+            apexes,
             inconsistent,
             rule_decided,
             stamp: _,
@@ -425,6 +443,7 @@ impl Delaunay {
             track_vtet: *track_vtet,
             tagged: *tagged,
             tags: tags.clone(),
+            apexes: apexes.clone(),
             inconsistent: *inconsistent,
             rule_decided: rule_decided.clone(),
             stamp_gen: *stamp_gen,
@@ -455,6 +474,7 @@ impl Delaunay {
             edge_table: Vec::new(),
             tagged: false,
             tags: Vec::new(),
+            apexes: PlaneApexes::default(),
             inconsistent: false,
             rule_decided: std::cell::Cell::new(false),
             stamp: Vec::new(),

@@ -642,6 +642,50 @@ fn perturbed_incircle_tie(f: [UvPoint; 3], q: UvPoint) -> bool {
     false
 }
 
+/// Whether `q` is inside the circumcircle of `a, b, c`, four points of one plane, decided on their
+/// 3D positions through the plane's `apex` (a fixed point off the plane): every sphere through
+/// three points of a plane meets it in their circle, so the sphere through `a, b, c` and the apex
+/// decides for any `q` on the plane, whatever tetrahedron `a, b, c` belong to. Unlike
+/// [`plane_incircle`] it reads the same floats as the 3D predicates that decide the mixed tuples,
+/// so the two cannot see two different roundings of one configuration (the uv are another
+/// rounding of the ideal points: on a nearly collinear triple the two circles differ
+/// macroscopically). For points exactly on an axis plane it is [`plane_incircle`]. An exact tie is
+/// broken as there (the lexicographically largest point replaced by `q`, oriented against the
+/// apex). `None` when `a, b, c` are collinear (no circle: the caller falls back).
+pub fn plane_insphere(a: P, b: P, c: P, q: P, apex: P) -> Option<bool> {
+    let o = orient(a, b, c, apex);
+    if o == 0.0 {
+        return None;
+    }
+    let f = if o > 0.0 { [a, b, c] } else { [a, c, b] };
+    let s = insphere(f[0], f[1], f[2], apex, q);
+    if s != 0.0 {
+        return Some(s > 0.0);
+    }
+    Some(perturbed_apex_tie(f, q, apex))
+}
+
+#[cold]
+fn perturbed_apex_tie(f: [P; 3], q: P, apex: P) -> bool {
+    let pts = [f[0], f[1], f[2], q];
+    let mut idx = [0usize, 1, 2, 3];
+    idx.sort_by(|&i, &j| cmp_lex(&pts[i], &pts[j]));
+    for k in (0..4).rev() {
+        let j = idx[k];
+        if j == 3 {
+            return false;
+        }
+        let mut r = f;
+        r[j] = q;
+        let o = orient(r[0], r[1], r[2], apex);
+        if o != 0.0 {
+            return o > 0.0;
+        }
+    }
+    debug_assert!(false, "perturbed plane insphere undecided");
+    false
+}
+
 /// Whether `q` is strictly between `a` and `b`, three points known to lie on one line (they share
 /// two planes): compared on the uv axis along which `a` and `b` differ most, by exact float
 /// comparisons (the axis choice only has to be one along which the line is not constant).
@@ -904,6 +948,33 @@ mod tests {
         );
         assert!(line_between([0.0, 1.0], [0.0, 3.0], [1e-17, 2.0]));
         assert!(!line_between([0.0, 1.0], [0.0, 3.0], [0.0, 3.0]));
+    }
+
+    /// On an axis plane the points are exactly coplanar, so the circle through three of them seen
+    /// through any apex off the plane is their circle in (u,v): [`plane_insphere`] answers as
+    /// [`plane_incircle`] does, ties (a small integer grid is massively cocircular) included, from
+    /// either side of the plane.
+    #[test]
+    fn plane_insphere_is_plane_incircle_on_an_axis_plane() {
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let (mut ties, mut n) = (0, 0);
+        for _ in 0..20000 {
+            let z = 0.375;
+            let q: Vec<[f64; 2]> = (0..4)
+                .map(|_| [r.gen_range(-3..=3) as f64, r.gen_range(-3..=3) as f64])
+                .collect();
+            let p: Vec<P> = q.iter().map(|u| [u[0], u[1], z]).collect();
+            let uvp = |i: usize| (q[i], p[i]);
+            let want = plane_incircle(uvp(0), uvp(1), uvp(2), uvp(3));
+            for apex in [[0.3, -0.2, z + 7.0], [-1.1, 0.4, z - 2.5]] {
+                assert_eq!(plane_insphere(p[0], p[1], p[2], p[3], apex), want, "{q:?}");
+            }
+            if want.is_some() {
+                n += 1;
+                ties += (gp::incircle(q[0], q[1], q[2], q[3]) == 0.0) as usize;
+            }
+        }
+        assert!(n > 15000 && ties > 1000, "{n} {ties}");
     }
 
     #[test]

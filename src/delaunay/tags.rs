@@ -17,12 +17,20 @@
 //!   edge `ab` gets the same answer, so no facet of three collinear ideal points is ever created;
 //!   without the rule, the float side of a facet `(a, b, y)` would decide, which is rounding noise.
 //! * **Plane rule.** Otherwise, when the three vertices of a facet `F` and `q` share a plane, `q`
-//!   conflicts iff it is inside `F`'s circumcircle in that plane's uv (ties: a 2D symbolic
-//!   perturbation on gid, [`pred::plane_incircle`]): the circumsphere of *any* tetrahedron on `F`
+//!   conflicts iff it is inside `F`'s circumcircle: the circumsphere of *any* tetrahedron on `F`
 //!   meets the plane in `F`'s circumcircle, so the answer is independent of the apex, hence of the
 //!   cell; and the tetrahedron on the other side of `F` (finite or infinite) gets the same answer,
 //!   so `F` is never a cavity boundary facet for `q`: no flat tetrahedron (four co-tagged vertices)
-//!   can be created.
+//!   can be created. The circle is read on the points' 3D positions through a fixed point off the
+//!   plane, the plane's apex ([`PlaneApexes`], [`pred::plane_insphere`]): the same floats the 3D
+//!   predicates of the mixed tetrahedra read. (Read in the plane's uv instead, as it still is for a
+//!   plane without an apex, [`pred::plane_incircle`], it sees another rounding of the same ideal
+//!   points; where three of them are nearly collinear their circle is so large that the two
+//!   roundings disagree on which side of it a query is, the rule contradicts the neighbouring
+//!   tetrahedra's 3D decisions and the cavity is not star-shaped: two cells of the shared odd033.)
+//!   With one apex per plane the rule is the orientation test of the points inverted about the
+//!   apex, a consistent 2D triangulation of the plane's points; ties by the 2D symbolic
+//!   perturbation in the lexicographic order of the positions.
 //! * Else the float 3D predicates (with their lexicographic perturbation) decide.
 //!
 //! The choice of rule is unique: a tetrahedron cannot have co-tagged facets on two different planes
@@ -30,25 +38,28 @@
 //! precedence (and two co-tagged facets on one plane would be a flat tetrahedron, never created).
 //!
 //! Requirements and limits. The uv frame of a plane must be a similarity of the plane (orthonormal
-//! axes): the plane rule reads circles in uv as the plane's circles. The rules are exact for the
+//! axes): the line rule orders points in uv, and without an apex the plane rule reads circles in
+//! uv as the plane's circles. An apex must be the same point in every triangulation sharing points
+//! of its plane (a function of the plane alone). The rules are exact for the
 //! ideal points; every other decision is the float 3D predicate, equal to the ideal one except
 //! near an ideal degeneracy. Where ideal points are exactly cospherical across *different* planes
-//! (mirror-image grids on two planes through one line; grid rays from a common origin on two
-//! planes; the corners of a lattice cell on orthogonal faces), a mixed 5-tuple is decided by
-//! rounding noise while a co-tagged one is decided by the gid perturbation, and the two can
-//! disagree: the conflict region is then not star-shaped (some new tetrahedron would not be
-//! positive). The insertion is then refused, the triangulation stays valid without the point and
-//! takes no more points, and `Delaunay::consistent` fails; the engine triangulates such a cell
-//! untagged instead (counted). Removing this needs the mixed predicates on the ideal points too
-//! (exact plane-frame coordinates), or a cavity repair; open. (The untagged cells once seen on
-//! axis-plane grids were not this: the star test's inner point, the centroid of a tetrahedron flat
-//! up to rounding, had rounded out of the hull; it is now checked to be strictly inside. With that,
-//! no cell of the generated axis grids up to 200 planes is refused; two odd files keep 1 and 2.)
+//! (mirror-image grids on two planes through one line; a sphere centred on a fan's common line, as
+//! in the shipped `nested_fan.csl`; the corners of a lattice cell on orthogonal faces), a mixed
+//! 5-tuple and a co-tagged one are both decided by rounding noise, of different tetrahedra, and
+//! the two can disagree: the conflict region is then not star-shaped (some new tetrahedron would
+//! not be positive). The insertion is then refused, the triangulation stays valid without the
+//! point and takes no more points, and `Delaunay::consistent` fails; the engine triangulates such
+//! a cell untagged instead (counted). Removing this needs every predicate on the ideal points
+//! (exact plane-frame coordinates, one position per point on two planes); open. (The untagged
+//! cells once seen on axis-plane grids were not this: the star test's inner point, the centroid
+//! of a tetrahedron flat up to rounding, had rounded out of the hull; it is now checked to be
+//! strictly inside. No cell of the generated axis grids up to 200 planes is refused, nor of the
+//! 12 shared files; of the odd files, odd026 keeps one.)
 use super::pred::{self, P};
 use smallvec::SmallVec;
 
-/// The planes a point lies on (up to three: a contour vertex, a crossing of two planes, an
-/// arrangement corner), with the point's exact coordinates in each plane's frame, and the point's
+/// The planes a point lies on (up to [`MAX_PLANES`]: a contour vertex, a crossing of two planes, an
+/// arrangement corner, a corner where more faces of a cell meet), with the point's exact coordinates in each plane's frame, and the point's
 /// global id (ties inside a plane are broken by it, so that every cell decides alike).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PointTags {
@@ -87,12 +98,12 @@ impl PointTags {
         self.planes.iter().any(|p| p.0 == plane)
     }
 
-    /// Sorts the planes and checks them: at most three, distinct ids, finite uv.
+    /// Sorts the planes and checks them: at most [`MAX_PLANES`], distinct ids, finite uv.
     pub(super) fn normalized(&self) -> Result<PointTags, String> {
         let mut t = PointTags::new(self.gid, &self.planes);
         t.segment = self.segment;
-        if t.planes.len() > 3 {
-            return Err(format!("{} planes (at most 3)", t.planes.len()));
+        if t.planes.len() > MAX_PLANES {
+            return Err(format!("{} planes (at most {MAX_PLANES})", t.planes.len()));
         }
         if t.planes.windows(2).any(|w| w[0].0 == w[1].0) {
             return Err("a plane repeated".into());
@@ -103,6 +114,44 @@ impl PointTags {
         Ok(t)
     }
 }
+
+/// Per plane id, a fixed point off the plane (its "apex") through which the plane rule decides
+/// circles on the points' 3D positions ([`pred::plane_insphere`]). It must be the same point in
+/// every triangulation that shares points of the plane (both cells of a face), so it is a function
+/// of the plane alone. A plane without an apex is decided in its uv ([`pred::plane_incircle`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PlaneApexes(Vec<(u32, P)>);
+
+impl PlaneApexes {
+    /// From (plane id, apex) pairs; a repeated id keeps its first apex.
+    pub fn new(mut apexes: Vec<(u32, P)>) -> PlaneApexes {
+        apexes.sort_by_key(|a| a.0);
+        apexes.dedup_by_key(|a| a.0);
+        PlaneApexes(apexes)
+    }
+
+    /// The apex of the plane through `point` with unit `normal`: `height` along the normal.
+    pub fn above(point: P, normal: P, height: f64) -> P {
+        std::array::from_fn(|k| point[k] + height * normal[k])
+    }
+
+    #[inline]
+    pub fn get(&self, plane: u32) -> Option<P> {
+        self.0
+            .binary_search_by_key(&plane, |a| a.0)
+            .ok()
+            .map(|i| self.0[i].1)
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+/// The most planes a point's tags may name: one bit each in the masks of the rules. A corner of a
+/// cell where four or more of its faces meet (the apex of a pyramid cut by four planes through one
+/// point) has that many; a point on three generic planes is already determined.
+pub const MAX_PLANES: usize = 8;
 
 /// A point's tags with its 3D position (the key of the symbolic perturbation, in-plane as in 3D).
 pub type TaggedPoint<'a> = (&'a PointTags, P);
@@ -125,7 +174,11 @@ const PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 
 /// infinite vertex), or `None` when no tag rule applies (the 3D predicates decide). See the module
 /// doc for the rules and why they make the cavity consistent.
 #[inline]
-pub(super) fn conflict(v: [Option<TaggedPoint>; 4], q: TaggedPoint) -> Option<bool> {
+pub(super) fn conflict(
+    v: [Option<TaggedPoint>; 4],
+    q: TaggedPoint,
+    apexes: &PlaneApexes,
+) -> Option<bool> {
     let (q, qp) = q;
     let p = v.map(|t| t.map(|t| t.1));
     let v = v.map(|t| t.map(|t| t.0));
@@ -148,18 +201,35 @@ pub(super) fn conflict(v: [Option<TaggedPoint>; 4], q: TaggedPoint) -> Option<bo
         }
     }
     for k in 0..4 {
-        let c = (0..4).filter(|&i| i != k).fold(7u8, |c, i| c & m[i]);
+        let c = (0..4).filter(|&i| i != k).fold(u8::MAX, |c, i| c & m[i]);
         if c != 0 {
             let pl = q.planes[c.trailing_zeros() as usize].0;
             let f: SmallVec<[(&PointTags, P); 3]> = (0..4)
                 .filter(|&i| i != k)
                 .map(|i| (v[i].unwrap(), p[i].unwrap()))
                 .collect();
-            let uvp = |(t, p): (&PointTags, P)| (t.uv(pl).unwrap(), p);
-            return pred::plane_incircle(uvp(f[0]), uvp(f[1]), uvp(f[2]), uvp((q, qp)));
+            return plane_conflict(pl, [f[0], f[1], f[2]], (q, qp), apexes);
         }
     }
     None
+}
+
+/// Whether `q` is inside the circumcircle of facet `f`, all four on plane `pl`: through the
+/// plane's apex when it has one, else in its uv. `None` when `f` is collinear (no circle).
+#[inline]
+pub(super) fn plane_conflict(
+    pl: u32,
+    f: [TaggedPoint; 3],
+    q: TaggedPoint,
+    apexes: &PlaneApexes,
+) -> Option<bool> {
+    match apexes.get(pl) {
+        Some(apex) => pred::plane_insphere(f[0].1, f[1].1, f[2].1, q.1, apex),
+        None => {
+            let uvp = |(t, p): TaggedPoint| (t.uv(pl).unwrap(), p);
+            pred::plane_incircle(uvp(f[0]), uvp(f[1]), uvp(f[2]), uvp(q))
+        }
+    }
 }
 
 /// The plane in whose uv `a, b, q` are on one line for the ideal points: the lowest plane they
@@ -251,19 +321,27 @@ mod tests {
     /// [`conflict`] with each point's 3D key made from its gid (the rules only need an order).
     fn rule(v: [Option<&PointTags>; 4], q: &PointTags) -> Option<bool> {
         let key = |t: &PointTags| [t.gid as f64, 0.0, 0.0];
-        conflict(v.map(|t| t.map(|t| (t, key(t)))), (q, key(q)))
+        conflict(
+            v.map(|t| t.map(|t| (t, key(t)))),
+            (q, key(q)),
+            &PlaneApexes::default(),
+        )
     }
 
     /// Issue 14, a known failure (the untagged cell of the shipped `data/nested_fan.csl`, reduced
     /// to six of its 88 points): two poles on the fan's common line, mirrored in z, whose float
     /// positions are 600 ulps off each other's mirror, and two mirrored pairs on planes 2 and 3.
-    /// The six are cospherical; the plane rule decides the cavity tetrahedron by its facet on plane 3
-    /// (in-circle +6.5e-25) and its neighbour across a facet mixing both planes by its facet on plane
-    /// 2 (−2.4e-23): each plane's (u,v) come from projecting the rounded points, so the two planes
-    /// see the ideal configuration lean different ways and the cavity is not star-shaped. With the
-    /// second pole's (u,v) consistent with the first's in both planes (the exact mirror), the ties
-    /// are exact and the symbolic perturbation decides them alike. The fix (next): one ideal
-    /// position per point on two planes, its (u,v) in every plane derived from it.
+    /// The six are cospherical; the plane rule in (u,v) decides the cavity tetrahedron by its facet
+    /// on plane 3 (in-circle +6.5e-25) and its neighbour across a facet mixing both planes by its
+    /// facet on plane 2 (−2.4e-23): each plane's (u,v) come from projecting the rounded points, so
+    /// the two planes see the ideal configuration lean different ways and the cavity is not
+    /// star-shaped. With the second pole's (u,v) consistent with the first's in both planes (the
+    /// exact mirror), the ties are exact and the symbolic perturbation decides them alike. The
+    /// engine now reads the plane rule on the 3D positions (one position per point, through each
+    /// plane's apex), which removes the two planes' disagreement but not the tie itself: the 3D
+    /// floats decide exactly cospherical points of two planes by rounding, differently for a mixed
+    /// tetrahedron and a co-tagged one, and the shipped file keeps two untagged cells. Needed: every
+    /// predicate on the ideal points (exact plane-frame coordinates).
     #[test]
     fn fan_poles_rounded_differently_in_two_planes_refuse_the_tagged_kernel() {
         use crate::delaunay::Delaunay;
@@ -393,5 +471,175 @@ mod tests {
         assert!(degenerate([&a, &c, &b, &on(4, 1.0)]));
         assert!(walk_degenerate(v, 2, &on(4, 1.0)));
         assert!(!walk_degenerate(v, 0, &on(4, 1.0)));
+    }
+
+    /// Six points of the shipped `odd033.json` (a cell of 91 points reduced): a row of five on
+    /// oblique plane 5 that a common-line trim left nearly collinear (one of them on plane 7 too)
+    /// and one on plane 7. Their (u,v) are another rounding of the ideal points than their 3D
+    /// positions, and the circle through a nearly collinear triple is so large that the two
+    /// roundings put the query on different sides of it: decided in (u,v), the plane rule
+    /// contradicts the 3D predicates of the neighbouring mixed tetrahedra and the cavity is not
+    /// star-shaped (the cell fell back to the untagged kernel). Decided through the plane's apex on
+    /// the same floats as the 3D predicates, the triangulation is valid.
+    #[test]
+    fn a_nearly_collinear_row_on_an_oblique_plane_is_decided_on_the_3d_positions() {
+        let pts = [
+            [
+                -0.03685385079472842,
+                0.11043625904737553,
+                -0.05036481637403165,
+            ],
+            [
+                -0.07092104040270758,
+                0.1476424478774026,
+                -0.05608358522734733,
+            ],
+            [
+                -0.07530388459264077,
+                0.15242913417925225,
+                -0.05681932206197219,
+            ],
+            [
+                -0.07760104970692842,
+                0.15493796367652335,
+                -0.05720494128924898,
+            ],
+            [
+                -0.09875865578302015,
+                0.17773970213013973,
+                -0.060564407180365404,
+            ],
+            [
+                -0.22563535417657923,
+                0.32059777587877186,
+                -0.06854894904760728,
+            ],
+        ];
+        let tags = vec![
+            t(473, &[(5, [0.12029203715126621, -0.04025933627331001])]),
+            t(498, &[(5, [0.15482620996737786, -0.0774745095249049])]),
+            t(503, &[(5, [0.1592691336598282, -0.08226235107391563])]),
+            t(504, &[(5, [0.16159778803800143, -0.08477178606692462])]),
+            t(
+                518,
+                &[
+                    (5, [0.18268460166788036, -0.10788446383023297]),
+                    (7, [-0.19885815598959905, -0.0504555217639993]),
+                ],
+            ),
+            t(1336, &[(7, [-0.3899164302840689, -0.058617296256634255])]),
+        ];
+        let apexes = PlaneApexes::new(vec![
+            (
+                5,
+                [-1.519391115153065, -1.3734596676492947, -2.935190576642579],
+            ),
+            (
+                7,
+                [-2.777968901140287, -1.905886320907536, 1.0983045935636517],
+            ),
+        ]);
+        use crate::delaunay::Delaunay;
+        assert!(Delaunay::try_new_tagged(&pts, &tags).is_err());
+        let dt = Delaunay::try_new_tagged_with(&pts, &tags, &apexes).unwrap();
+        dt.is_valid().unwrap();
+        assert!(dt.num_finite_tets() > 0);
+    }
+
+    /// A pyramid on a quadrilateral cut by its five planes: its top is on the four side planes (a corner of the
+    /// cell where four faces meet, as in the shared Horsers, whose six such cells fell back to the
+    /// untagged kernel when tags took at most three planes).
+    #[test]
+    fn a_corner_on_four_planes_is_tagged() {
+        use crate::delaunay::Delaunay;
+        let sub = |a: P, b: P| -> P { std::array::from_fn(|k| a[k] - b[k]) };
+        let dot = |a: P, b: P| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let cross = |a: P, b: P| -> P {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let unit = |a: P| -> P {
+            let l = dot(a, a).sqrt();
+            a.map(|c| c / l)
+        };
+        // not a regular pyramid: its five corners would be cospherical across planes
+        let top: P = [0.13, -0.07, 1.1];
+        let base: [P; 4] = [
+            [1.1, 0.9, 0.0],
+            [-0.8, 1.2, 0.0],
+            [-1.3, -0.7, 0.0],
+            [0.9, -1.05, 0.0],
+        ];
+        // plane k (0..4) through the top and base edge k; plane 4 the base; frames (origin, u, v)
+        let mut frames: Vec<(P, P, P)> = (0..4)
+            .map(|k| {
+                let (a, b) = (base[k], base[(k + 1) % 4]);
+                let u = unit(sub(b, a));
+                let n = unit(cross(sub(b, a), sub(top, a)));
+                (top, u, cross(n, u))
+            })
+            .collect();
+        frames.push(([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
+        let on = |p: P| -> Vec<u32> {
+            (0..5u32)
+                .filter(|&k| {
+                    let (o, u, v) = frames[k as usize];
+                    dot(sub(p, o), unit(cross(u, v))).abs() < 1e-12
+                })
+                .collect()
+        };
+        let mut pts = vec![top];
+        pts.extend(base);
+        for k in 0..4 {
+            let (a, b) = (base[k], base[(k + 1) % 4]);
+            // (weights that put no three of a face's points on one line)
+            pts.push(std::array::from_fn(|i| {
+                0.3 * a[i] + 0.45 * b[i] + 0.25 * top[i]
+            }));
+            pts.push(std::array::from_fn(|i| 0.6 * a[i] + 0.4 * top[i]));
+        }
+        pts.push([0.1, -0.2, 0.0]);
+        let tags: Vec<PointTags> = pts
+            .iter()
+            .enumerate()
+            .map(|(g, &p)| {
+                let planes: Vec<(u32, [f64; 2])> = on(p)
+                    .into_iter()
+                    .map(|k| {
+                        let (o, u, v) = frames[k as usize];
+                        (k, [dot(sub(p, o), u), dot(sub(p, o), v)])
+                    })
+                    .collect();
+                t(g as u64, &planes)
+            })
+            .collect();
+        assert_eq!(tags[0].planes.len(), 4);
+        let apexes = PlaneApexes::new(
+            (0..5u32)
+                .map(|k| {
+                    let (o, u, v) = frames[k as usize];
+                    (k, PlaneApexes::above(o, unit(cross(u, v)), 3.0))
+                })
+                .collect(),
+        );
+        for a in [PlaneApexes::default(), apexes] {
+            let dt = Delaunay::try_new_tagged_with(&pts, &tags, &a).unwrap();
+            dt.is_valid().unwrap();
+            // the pyramid's volume, in tetrahedra none of which is flat
+            let vol: f64 = dt
+                .all_tets()
+                .filter(|&t| !dt.is_infinite(t))
+                .map(|t| {
+                    let p = dt.tet_vertices(t).map(|w| pts[w as usize]);
+                    dot(sub(p[1], p[0]), cross(sub(p[2], p[0]), sub(p[3], p[0]))).abs() / 6.0
+                })
+                .sum();
+            let b = |k: usize| sub(base[k], base[0]);
+            let area = 0.5 * (cross(b(1), b(2))[2] + cross(b(2), b(3))[2]);
+            assert!((vol - area * top[2] / 3.0).abs() < 1e-12, "{vol}");
+        }
     }
 }

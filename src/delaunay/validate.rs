@@ -225,7 +225,7 @@ fn tag_rule(dt: &Delaunay, v: [u32; 4], q: u32) -> Option<bool> {
         return None;
     }
     let tv = v.map(|w| (w != INFINITE).then(|| (&dt.tags[w as usize], dt.pts[w as usize])));
-    tags::conflict(tv, (&dt.tags[q as usize], dt.pts[q as usize]))
+    tags::conflict(tv, (&dt.tags[q as usize], dt.pts[q as usize]), &dt.apexes)
 }
 
 fn ext_of(dt: &Delaunay, v: [u32; 4]) -> [u32; 4] {
@@ -258,7 +258,7 @@ fn check_planes(dt: &Delaunay) -> Result<(), String> {
             .iter()
             .map(|&w| (&dt.tags[w as usize], dt.pts[w as usize]))
             .collect();
-        let want: BTreeSet<[u32; 3]> = plane2d::delaunay(pl, &refs)
+        let want: BTreeSet<[u32; 3]> = plane2d::delaunay(pl, &refs, dt.apexes.get(pl))
             .into_iter()
             .map(|t| {
                 let mut f = t.map(|i| ids[i]);

@@ -165,7 +165,7 @@ impl StartParts {
             (tri.dt.clone_compact(), tri.tagged, true)
         } else {
             let mut tagged = true;
-            let dt = points_delaunay(&self.points, &input.tags, &mut tagged)?;
+            let dt = points_delaunay(&self.points, &input.tags, &input.apexes, &mut tagged)?;
             (dt, tagged, false)
         };
         Ok(RunStart {
