@@ -572,11 +572,31 @@ fn coplanar_conflict(t: [P; 4], k: usize, d: P, q: P) -> bool {
         return s > 0.0;
     }
     let f: Vec<P> = (0..4).filter(|&i| i != k).map(|i| t[i]).collect();
-    let f = [f[0], f[1], f[2]];
-    let local = coplanar_orient(f[0], f[1], f[2]);
+    perturbed_tie(
+        [f[0], f[1], f[2]],
+        q,
+        |p| *p,
+        |g| coplanar_orient(g[0], g[1], g[2]),
+    )
+}
+
+/// The planar symbolic perturbation's answer to an exact tie: is `q` inside the circle of the
+/// triangle `f` of one plane? The lexicographically largest of the four points (by `key`, a 3D
+/// position: a function of the points alone, never of the cell or the insertion order) decides:
+/// if it is `q`, `q` is outside; else `q` is inside iff the triangle with that point replaced by
+/// `q` has `f`'s orientation (by `orient`, exact); on a collinear substitution the next point
+/// decides.
+#[cold]
+fn perturbed_tie<T: Copy>(
+    f: [T; 3],
+    q: T,
+    key: impl Fn(&T) -> P,
+    orient: impl Fn([T; 3]) -> f64,
+) -> bool {
+    let own = orient(f) > 0.0;
     let pts = [f[0], f[1], f[2], q];
     let mut idx = [0usize, 1, 2, 3];
-    idx.sort_by(|&i, &j| cmp_lex(&pts[i], &pts[j]));
+    idx.sort_by(|&i, &j| cmp_lex(&key(&pts[i]), &key(&pts[j])));
     for m in (0..4).rev() {
         let j = idx[m];
         if j == 3 {
@@ -584,11 +604,12 @@ fn coplanar_conflict(t: [P; 4], k: usize, d: P, q: P) -> bool {
         }
         let mut g = f;
         g[j] = q;
-        let o = coplanar_orient(g[0], g[1], g[2]);
+        let o = orient(g);
         if o != 0.0 {
-            return (o > 0.0) == (local > 0.0);
+            return (o > 0.0) == own;
         }
     }
+    debug_assert!(false, "perturbed tie undecided");
     false
 }
 
@@ -618,28 +639,12 @@ pub fn plane_incircle(a: UvPoint, b: UvPoint, c: UvPoint, q: UvPoint) -> Option<
     if s != 0.0 {
         return Some(s > 0.0);
     }
-    Some(perturbed_incircle_tie(f, q))
-}
-
-#[cold]
-fn perturbed_incircle_tie(f: [UvPoint; 3], q: UvPoint) -> bool {
-    let pts = [f[0], f[1], f[2], q];
-    let mut idx = [0usize, 1, 2, 3];
-    idx.sort_by(|&i, &j| cmp_lex(&pts[i].1, &pts[j].1));
-    for k in (0..4).rev() {
-        let j = idx[k];
-        if j == 3 {
-            return false;
-        }
-        let mut r = f;
-        r[j] = q;
-        let o = gp::orient2d(r[0].0, r[1].0, r[2].0);
-        if o != 0.0 {
-            return o > 0.0;
-        }
-    }
-    debug_assert!(false, "perturbed incircle undecided");
-    false
+    Some(perturbed_tie(
+        f,
+        q,
+        |p| p.1,
+        |g| gp::orient2d(g[0].0, g[1].0, g[2].0),
+    ))
 }
 
 /// Whether `q` is inside the circumcircle of `a, b, c`, four points of one plane, decided on their
@@ -662,28 +667,12 @@ pub fn plane_insphere(a: P, b: P, c: P, q: P, apex: P) -> Option<bool> {
     if s != 0.0 {
         return Some(s > 0.0);
     }
-    Some(perturbed_apex_tie(f, q, apex))
-}
-
-#[cold]
-fn perturbed_apex_tie(f: [P; 3], q: P, apex: P) -> bool {
-    let pts = [f[0], f[1], f[2], q];
-    let mut idx = [0usize, 1, 2, 3];
-    idx.sort_by(|&i, &j| cmp_lex(&pts[i], &pts[j]));
-    for k in (0..4).rev() {
-        let j = idx[k];
-        if j == 3 {
-            return false;
-        }
-        let mut r = f;
-        r[j] = q;
-        let o = orient(r[0], r[1], r[2], apex);
-        if o != 0.0 {
-            return o > 0.0;
-        }
-    }
-    debug_assert!(false, "perturbed plane insphere undecided");
-    false
+    Some(perturbed_tie(
+        f,
+        q,
+        |p| *p,
+        |g| orient(g[0], g[1], g[2], apex),
+    ))
 }
 
 /// Whether `q` is strictly between `a` and `b`, three points known to lie on one line (they share
