@@ -75,7 +75,7 @@ fn the_tagged_kernel_takes_every_wedge_cell() {
         .collect();
     assert_eq!(cells.len(), 32);
     for (k, c) in cells.iter().enumerate() {
-        let dt = Delaunay::try_new_tagged(&c.points, &c.tags)
+        let dt = Delaunay::try_new_tagged_with(&c.points, &c.tags, &c.apexes)
             .unwrap_or_else(|e| panic!("cell {k} ({} points): {e}", c.points.len()));
         // the validator re-derives every face's 2D Delaunay triangulation: a few cells suffice
         if k % 8 == 0 {

@@ -227,7 +227,8 @@ pub fn local_gid(local: u32) -> u64 {
 /// predicates for the positions, and the two must be the same points up to rounding.
 ///
 /// Only the planes of the cell's faces (`cell_planes`): a point on the common line of a fan of
-/// planes lies on all of them, and the kernel takes at most `tags::MAX_PLANES`. The two cells of a face see the
+/// planes lies on all of them (the kernel refuses more than `tags::MAX_PLANES`, and the cell is
+/// then triangulated untagged). The two cells of a face see the
 /// same planes through it: a line of that face's plane with another plane meets the face only
 /// along an edge of it, and that other plane bounds both cells there.
 pub fn pool_tags(

@@ -47,10 +47,12 @@
 //! the input planes they lie on, with exact uv in each plane's frame, and a global id
 //! ([`PointTags`]). Decisions that are degenerate for the ideal points (exactly on their planes)
 //! follow the line and plane rules of [`tags`]; the hull facets on a face plane are then the 2D
-//! Delaunay triangulation of its points in uv with ties by gid ([`plane2d`] is the reference), the
-//! same in every cell that has those points, and no tetrahedron has four vertices on one plane.
-//! The uv frame of a plane must be a similarity (orthonormal axes, one scale): the plane rule uses
-//! circles in uv as the plane's circles. [`Delaunay::plane_hull_triangles`] gives the restriction.
+//! Delaunay triangulation of its points ([`plane2d`] is the reference), the same in every cell that
+//! has those points, and no tetrahedron has four vertices on one plane. Circles are read on the 3D
+//! positions through each plane's apex ([`PlaneApexes`], [`Delaunay::try_new_tagged_with`]), or in
+//! uv for a plane without one (then the uv frame must be a similarity: orthonormal axes, one
+//! scale); ties by a symbolic perturbation in the lexicographic order of the positions.
+//! [`Delaunay::plane_hull_triangles`] gives the restriction.
 //!
 //! Layout: `tds` (flat records and free list), `insert` (walk, conflict region, starring, and the
 //! public insertion methods), `query` (accessors, facets, edges, point location),
@@ -202,7 +204,8 @@ impl Delaunay {
     /// points (the points exactly on their planes, which floats are not for oblique planes) follow
     /// the plane and line rules of [`tags`]: the triangles whose vertices share a plane and that
     /// are hull facets are, by construction, the 2D Delaunay triangulation of that plane's points
-    /// in its uv (ties by gid, the same in every cell that has those points), and no tetrahedron has
+    /// (here in its uv, ties in the lexicographic order of the positions: the same in every cell
+    /// that has those points; the engine passes apexes, [`Delaunay::try_new_tagged_with`]), and no tetrahedron has
     /// four vertices on one plane or three on one line of two planes. Merged duplicates keep the
     /// first occurrence's tags. Errors on non-finite input, a length mismatch or bad tags.
     pub fn try_new_tagged(points: &[[f64; 3]], tags: &[PointTags]) -> crate::Result<Delaunay> {

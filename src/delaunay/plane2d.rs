@@ -1,14 +1,15 @@
-//! A small reference 2D Delaunay triangulation of the points of one plane, in that plane's uv, with
-//! the tagged kernel's tie-breaking (exact `incircle`, 2D symbolic perturbation in the lexicographic
-//! order of the 3D positions, the line rule
-//! for points sharing a second plane). Brute force on purpose: a triangle is kept iff it is not
+//! A small reference 2D Delaunay triangulation of the points of one plane with the tagged kernel's
+//! rules: circles through the plane's apex on the 3D positions (or in the plane's uv without one),
+//! exact, ties by the 2D symbolic perturbation in the lexicographic order of the 3D positions, the
+//! line rule for points sharing a second plane. Brute force on purpose: a triangle is kept iff it is not
 //! degenerate and no other point conflicts with it, which is the definition, with no incremental
 //! state that could share a bug with the 3D kernel. O(n⁴): for checks on up to a few hundred points.
 use super::pred;
 use super::tags::{line_plane, on_one_line, PointTags, TaggedPoint};
 
 /// Whether `q` conflicts with triangle `f` of `plane`: the line rule when two of `f`'s vertices
-/// and `q` lie on one line (share a second plane), else the perturbed in-circle test in uv.
+/// and `q` lie on one line (share a second plane), else the perturbed in-circle test (through the
+/// apex, or in uv).
 fn conflicts(plane: u32, f: [TaggedPoint; 3], q: TaggedPoint, apex: Option<pred::P>) -> bool {
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
         if let Some(pl) = line_plane(f[i].0, f[j].0, q.0) {

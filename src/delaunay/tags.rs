@@ -18,8 +18,8 @@
 //!   without the rule, the float side of a facet `(a, b, y)` would decide, which is rounding noise.
 //! * **Plane rule.** Otherwise, when the three vertices of a facet `F` and `q` share a plane, `q`
 //!   conflicts iff it is inside `F`'s circumcircle: the circumsphere of *any* tetrahedron on `F`
-//!   meets the plane in `F`'s circumcircle, so the answer is independent of the apex, hence of the
-//!   cell; and the tetrahedron on the other side of `F` (finite or infinite) gets the same answer,
+//!   meets the plane in `F`'s circumcircle, so the answer is independent of the tetrahedron's
+//!   fourth vertex, hence of the cell; and the tetrahedron on the other side of `F` (finite or infinite) gets the same answer,
 //!   so `F` is never a cavity boundary facet for `q`: no flat tetrahedron (four co-tagged vertices)
 //!   can be created. The circle is read on the points' 3D positions through a fixed point off the
 //!   plane, the plane's apex ([`PlaneApexes`], [`pred::plane_insphere`]): the same floats the 3D
@@ -58,9 +58,9 @@
 use super::pred::{self, P};
 use smallvec::SmallVec;
 
-/// The planes a point lies on (up to [`MAX_PLANES`]: a contour vertex, a crossing of two planes, an
-/// arrangement corner, a corner where more faces of a cell meet), with the point's exact coordinates in each plane's frame, and the point's
-/// global id (ties inside a plane are broken by it, so that every cell decides alike).
+/// The planes a point lies on (up to [`MAX_PLANES`]: a contour vertex, a crossing of two planes,
+/// an arrangement corner, a corner where more faces of a cell meet), with the point's exact
+/// coordinates in each plane's frame, and the point's global id (a segment's ends are named by it).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PointTags {
     /// (global plane id, uv in that plane); sorted by plane id by the kernel.
