@@ -5,30 +5,26 @@
 //! degenerate and no other point conflicts with it, which is the definition, with no incremental
 //! state that could share a bug with the 3D kernel. O(n⁴): for checks on up to a few hundred points.
 use super::pred;
-use super::tags::{line_plane, on_one_line, PointTags, TaggedPoint};
+use super::tags::{line_plane, on_one_line, plane_conflict, PlaneApexes, PointTags, TaggedPoint};
 
 /// Whether `q` conflicts with triangle `f` of `plane`: the line rule when two of `f`'s vertices
 /// and `q` lie on one line (share a second plane), else the perturbed in-circle test (through the
 /// apex, or in uv).
-fn conflicts(plane: u32, f: [TaggedPoint; 3], q: TaggedPoint, apex: Option<pred::P>) -> bool {
+fn conflicts(plane: u32, f: [TaggedPoint; 3], q: TaggedPoint, apexes: &PlaneApexes) -> bool {
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
         if let Some(pl) = line_plane(f[i].0, f[j].0, q.0) {
             let uv = |t: &PointTags| t.uv(pl).unwrap();
             return pred::line_between(uv(f[i].0), uv(f[j].0), uv(q.0));
         }
     }
-    if let Some(apex) = apex {
-        return pred::plane_insphere(f[0].1, f[1].1, f[2].1, q.1, apex).unwrap_or(false);
-    }
-    let uvp = |(t, p): TaggedPoint| (t.uv(plane).unwrap(), p);
-    pred::plane_incircle(uvp(f[0]), uvp(f[1]), uvp(f[2]), uvp(q)).unwrap_or(false)
+    plane_conflict(plane, f, q, apexes).unwrap_or(false)
 }
 
 /// The Delaunay triangles of `pts` (every one must lie on `plane`), as index triples counter-
 /// clockwise in uv, sorted. Collinear triples (in uv, or by sharing a second plane) are never
-/// triangles. With the plane's `apex` (see `tags::PlaneApexes`) circles and collinearity are
-/// decided through it on the 3D positions, as the kernel does.
-pub fn delaunay(plane: u32, pts: &[TaggedPoint], apex: Option<pred::P>) -> Vec<[usize; 3]> {
+/// triangles. Where the plane has an apex in `apexes`, circles and collinearity are decided
+/// through it on the 3D positions, as the kernel does.
+pub fn delaunay(plane: u32, pts: &[TaggedPoint], apexes: &PlaneApexes) -> Vec<[usize; 3]> {
     assert!(
         pts.iter().all(|p| p.0.on(plane)),
         "a point is not on the plane"
@@ -40,7 +36,7 @@ pub fn delaunay(plane: u32, pts: &[TaggedPoint], apex: Option<pred::P>) -> Vec<[
     for i in 0..n {
         for j in i + 1..n {
             for k in j + 1..n {
-                let o = match apex {
+                let o = match apexes.get(plane) {
                     // counter-clockwise in uv is positive against an apex above the plane
                     Some(a) => pred::orient(pts[i].1, pts[j].1, pts[k].1, a),
                     None => crate::geom::predicates::orient2d(uv(i), uv(j), uv(k)),
@@ -52,10 +48,10 @@ pub fn delaunay(plane: u32, pts: &[TaggedPoint], apex: Option<pred::P>) -> Vec<[
                 // the last witness first: a point that spoiled a neighbouring triple usually
                 // spoils this one (the search stays brute force, only faster to refute)
                 let others = |m: &usize| *m != i && *m != j && *m != k;
-                let empty = !(others(&witness) && conflicts(plane, f, pts[witness], apex))
+                let empty = !(others(&witness) && conflicts(plane, f, pts[witness], apexes))
                     && match (0..n)
                         .filter(others)
-                        .find(|&m| conflicts(plane, f, pts[m], apex))
+                        .find(|&m| conflicts(plane, f, pts[m], apexes))
                     {
                         Some(m) => {
                             witness = m;
@@ -88,7 +84,7 @@ mod tests {
             .enumerate()
             .map(|(k, t)| (t, [k as f64, 0.0, 0.0]))
             .collect();
-        let tris = delaunay(4, &refs, None);
+        let tris = delaunay(4, &refs, &PlaneApexes::default());
         assert_eq!(tris.len(), 12);
         let area: f64 = tris
             .iter()

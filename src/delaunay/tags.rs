@@ -142,10 +142,6 @@ impl PlaneApexes {
             .ok()
             .map(|i| self.0[i].1)
     }
-
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
 }
 
 /// The most planes a point's tags may name: one bit each in the masks of the rules. A corner of a

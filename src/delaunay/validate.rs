@@ -258,7 +258,7 @@ fn check_planes(dt: &Delaunay) -> Result<(), String> {
             .iter()
             .map(|&w| (&dt.tags[w as usize], dt.pts[w as usize]))
             .collect();
-        let want: BTreeSet<[u32; 3]> = plane2d::delaunay(pl, &refs, dt.apexes.get(pl))
+        let want: BTreeSet<[u32; 3]> = plane2d::delaunay(pl, &refs, &dt.apexes)
             .into_iter()
             .map(|t| {
                 let mut f = t.map(|i| ids[i]);
