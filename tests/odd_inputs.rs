@@ -32,11 +32,13 @@ const KNOWN: [(&str, usize, usize, usize); 3] = [
 const SECTION_BOUND: f64 = 6.5e-3;
 
 /// Cells that fall back to the untagged kernel (a cavity the tag rules leave not star-shaped; its
-/// faces may then differ from the neighbours'): none but these. odd033 had two until the plane rule
-/// read circles on the 3D positions (through each plane's apex) instead of the (u,v), another
-/// rounding of the same points: a row of nearly collinear points left by a common-line trim has a
-/// circle so large that the two roundings disagree on which side of it a query is.
-const UNTAGGED: [(&str, u64); 1] = [("odd026", 1)];
+/// faces may then differ from the neighbours'): none. odd033 had two until the plane rule read
+/// circles on the 3D positions (through each plane's apex) instead of the (u,v), another rounding
+/// of the same points: a row of nearly collinear points left by a common-line trim has a circle so
+/// large that the two roundings disagree on which side of it a query is. odd026 had one until the
+/// trim broke rows along the whole line of a strip's edge, over all regions of the section (two
+/// stretches of one line, or two contours cut by one strip, left collinear rows of two each).
+const UNTAGGED: [(&str, u64); 0] = [];
 
 fn run(stem: &str) -> slice2solid::eval::check::CheckReport {
     let path = shared_dir().join(format!("data/odd/{stem}.json"));
