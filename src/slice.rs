@@ -31,6 +31,7 @@ use crate::sections::{Contour, Plane, Region, Section, Sections};
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 
+pub mod odd;
 mod partition;
 mod planes;
 pub mod synthetic;

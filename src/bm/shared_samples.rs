@@ -29,11 +29,86 @@ pub struct SharedSample {
 #[derive(Clone, Debug, Default)]
 pub struct SharedSamples {
     pub by_face: Vec<Vec<SharedSample>>,
+    /// Two samples of one face closer than this (in every coordinate) are one sample
+    /// ([`SAME_SAMPLE_RELATIVE`] of the arrangement's box diagonal; 0 before `extend`).
+    pub same: f64,
 }
+
+/// Relative to the arrangement's box diagonal: samples of one face closer than this are one. The
+/// two cells of a face can compute the same diagram point (a cutting sample of the face's own
+/// section, a branching sample both sides see) in another float order, a few ulps apart; kept as
+/// two vertices, both cells insert both, and a cavity through the pair is not star-shaped (the
+/// cell falls back to the untagged kernel: generated odd files g041, g098).
+pub const SAME_SAMPLE_RELATIVE: f64 = 1e-11;
 
 /// The exact position of a sample, as a lookup key.
 pub fn key(p3: [f64; 3]) -> [u64; 3] {
     p3.map(f64::to_bits)
+}
+
+/// A face's samples by position, found exactly or within a tolerance: a hash grid of cells as
+/// wide as the tolerance, a query probing the 27 cells around it.
+#[derive(Clone, Debug, Default)]
+pub struct NearSamples {
+    tol: f64,
+    samples: Vec<SharedSample>,
+    grid: HashMap<[i64; 3], Vec<usize>>,
+}
+
+impl NearSamples {
+    pub fn new(tol: f64, samples: impl IntoIterator<Item = SharedSample>) -> NearSamples {
+        let mut out = NearSamples {
+            tol,
+            ..Default::default()
+        };
+        for x in samples {
+            out.insert(x);
+        }
+        out
+    }
+
+    fn cell(&self, p: [f64; 3]) -> [i64; 3] {
+        if self.tol > 0.0 {
+            p.map(|c| (c / self.tol).floor() as i64)
+        } else {
+            [0; 3]
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.samples.is_empty()
+    }
+
+    pub fn insert(&mut self, x: SharedSample) {
+        let c = self.cell(x.p3);
+        self.grid.entry(c).or_default().push(self.samples.len());
+        self.samples.push(x);
+    }
+
+    /// The sample at `p` exactly, else the nearest within the tolerance (the first inserted of
+    /// equally near ones).
+    pub fn find(&self, p: [f64; 3]) -> Option<SharedSample> {
+        let c = self.cell(p);
+        let mut best: Option<(f64, usize)> = None;
+        let reach = if self.tol > 0.0 { 1 } else { 0 };
+        for dx in -reach..=reach {
+            for dy in -reach..=reach {
+                for dz in -reach..=reach {
+                    let Some(list) = self.grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) else {
+                        continue;
+                    };
+                    for &i in list {
+                        let q = self.samples[i].p3;
+                        let d = (0..3).map(|k| (q[k] - p[k]).abs()).fold(0.0, f64::max);
+                        if d <= self.tol && best.is_none_or(|b| (d, i) < b) {
+                            best = Some((d, i));
+                        }
+                    }
+                }
+            }
+        }
+        best.map(|(_, i)| self.samples[i])
+    }
 }
 
 impl SharedSamples {
@@ -49,10 +124,10 @@ impl SharedSamples {
         results: &[Option<CellResult>],
     ) -> Vec<FaceId> {
         self.by_face.resize(arr.faces.len(), Vec::new());
+        self.same = same_tolerance(arr);
         let mut changed = Vec::new();
         for (f, face) in arr.faces.iter().enumerate() {
-            let mut seen: HashMap<[u64; 3], u32> =
-                self.by_face[f].iter().map(|x| (key(x.p3), x.gid)).collect();
+            let mut seen = NearSamples::new(self.same, self.by_face[f].iter().copied());
             let before = self.by_face[f].len();
             for (input, s) in face_sides(f, face, results) {
                 // slimmed inputs: the slot's cell-local vertices with their (u,v)
@@ -62,14 +137,15 @@ impl SharedSamples {
                         continue;
                     }
                     let p3 = input.points[l];
-                    seen.entry(key(p3)).or_insert_with(|| {
+                    if seen.find(p3).is_none() {
                         pool.positions.push(p3);
                         pool.tags.push(smallvec![face.plane]);
                         pool.uv.push(smallvec![uv]);
                         let gid = (pool.positions.len() - 1) as u32;
-                        self.by_face[f].push(SharedSample { gid, uv, p3 });
-                        gid
-                    });
+                        let x = SharedSample { gid, uv, p3 };
+                        self.by_face[f].push(x);
+                        seen.insert(x);
+                    }
                 }
             }
             if self.by_face[f].len() > before {
@@ -86,26 +162,17 @@ impl SharedSamples {
         let Some(input) = result.input.as_mut() else {
             return;
         };
-        let lookup: Vec<HashMap<[u64; 3], u32>> = input
-            .slots
-            .iter()
-            .map(|sl| {
-                self.on_face(sl.face)
-                    .iter()
-                    .map(|x| (key(x.p3), x.gid))
-                    .collect()
-            })
-            .collect();
+        let lookup: Vec<NearSamples> = input.slots.iter().map(|sl| self.near(sl.face)).collect();
         for l in 0..input.points.len() {
             if input.global[l] != u32::MAX {
                 continue;
             }
             let m = input.mask[l];
-            if let Some(&g) = (0..input.slots.len())
+            if let Some(x) = (0..input.slots.len())
                 .filter(|&s| m >> s & 1 == 1)
-                .find_map(|s| lookup[s].get(&key(input.points[l])))
+                .find_map(|s| lookup[s].find(input.points[l]))
             {
-                input.global[l] = g;
+                input.global[l] = x.gid;
             }
         }
     }
@@ -137,6 +204,7 @@ impl SharedSamples {
         use crate::geom::predicates::orient2d;
         let mut out = SharedSamples {
             by_face: vec![Vec::new(); arr.faces.len()],
+            same: same_tolerance(arr),
         };
         let mut faces_of: HashMap<u32, Vec<usize>> = HashMap::new();
         for (f, face) in arr.faces.iter().enumerate() {
@@ -181,6 +249,11 @@ impl SharedSamples {
         (out, placed)
     }
 
+    /// The samples of face `f` by position, within [`SharedSamples::same`].
+    pub fn near(&self, f: FaceId) -> NearSamples {
+        NearSamples::new(self.same, self.on_face(f).iter().copied())
+    }
+
     pub fn on_face(&self, f: FaceId) -> &[SharedSample] {
         self.by_face.get(f as usize).map_or(&[], Vec::as_slice)
     }
@@ -199,6 +272,12 @@ impl SharedSamples {
     }
 }
 
+/// [`SAME_SAMPLE_RELATIVE`] of the arrangement's box diagonal.
+fn same_tolerance(arr: &Arrangement) -> f64 {
+    let (lo, hi) = arr.bbox;
+    SAME_SAMPLE_RELATIVE * (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
+}
+
 /// The cells of face `f` that ran, with the slot of the face in each.
 fn face_sides<'a>(
     f: usize,
@@ -213,4 +292,47 @@ fn face_sides<'a>(
             let s = input.slots.iter().position(|sl| sl.face as usize == f)?;
             Some((input, s))
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(gid: u32, p3: [f64; 3]) -> SharedSample {
+        SharedSample {
+            gid,
+            uv: [p3[0], p3[1]],
+            p3,
+        }
+    }
+
+    #[test]
+    fn a_sample_a_few_ulps_off_is_found_and_a_distinct_one_is_not() {
+        let x = 0.009518436077619128;
+        let near = NearSamples::new(
+            1e-11,
+            [sample(1, [x, -0.3085, 0.1182]), sample(2, [0.5, 0.5, 0.5])],
+        );
+        // the two roundings of one diagram point of g098 (a generated odd file)
+        let off = [x, -0.3085 + 5.6e-17, 0.1182 + 1.4e-17];
+        assert_eq!(near.find(off).map(|s| s.gid), Some(1));
+        assert_eq!(near.find([x, -0.3085, 0.1182]).map(|s| s.gid), Some(1));
+        assert_eq!(near.find([x + 2e-11, -0.3085, 0.1182]), None);
+        assert_eq!(near.find([0.5, 0.5 + 9e-12, 0.5]).map(|s| s.gid), Some(2));
+        // across a grid cell's border, the nearest of two
+        let t = 1e-11;
+        let near = NearSamples::new(
+            t,
+            [
+                sample(7, [3.0 * t, 0.0, 0.0]),
+                sample(8, [3.9 * t, 0.0, 0.0]),
+            ],
+        );
+        assert_eq!(near.find([3.6 * t, 0.0, 0.0]).map(|s| s.gid), Some(8));
+        assert_eq!(near.find([2.05 * t, 0.0, 0.0]).map(|s| s.gid), Some(7));
+        // without a tolerance, only the exact position
+        let exact = NearSamples::new(0.0, [sample(3, [0.1, 0.2, 0.3])]);
+        assert_eq!(exact.find([0.1, 0.2, 0.3]).map(|s| s.gid), Some(3));
+        assert_eq!(exact.find([0.1, 0.2, 0.3 + 1e-16]), None);
+    }
 }

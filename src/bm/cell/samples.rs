@@ -2,11 +2,11 @@
 //! the triangulation the last round left and inserted into it with the other sides' shared
 //! samples, and consecutive samples joined by Delaunay edges (`chains`).
 use super::{cell_delaunay, points_delaunay, Clock, RunStart, Sampling, Start, BRANCHING_ROUNDS};
-use crate::bm::cell_input::{CellInput, IdMap, IdSet};
+use crate::bm::cell_input::{CellInput, IdSet};
 use crate::bm::chains::{conform_pairs, Chains, DiagramSample, Kind, SamplePair};
 use crate::bm::classify::{tet_types, Classifier};
 use crate::bm::complex::Complex;
-use crate::bm::shared_samples::SharedSamples;
+use crate::bm::shared_samples::{NearSamples, SharedSamples};
 use crate::error::Result;
 
 /// Add to `input` (and `batch`) the shared samples on its faces that it did not sample itself
@@ -36,19 +36,13 @@ fn add_foreign_samples(
     n
 }
 
-/// Per slot of `input`: the position key → global id of the shared samples on its face.
-fn shared_lookup(input: &CellInput, shared: Option<&SharedSamples>) -> Vec<IdMap<[u64; 3], u32>> {
+/// Per slot of `input`: the shared samples on its face by position (exact, or within the
+/// samples' tolerance: the cell's own computation of a shared sample may be a few ulps off).
+fn shared_lookup(input: &CellInput, shared: Option<&SharedSamples>) -> Vec<NearSamples> {
     input
         .slots
         .iter()
-        .map(|slot| {
-            shared.map_or_else(IdMap::default, |sh| {
-                sh.on_face(slot.face)
-                    .iter()
-                    .map(|x| (crate::bm::shared_samples::key(x.p3), x.gid))
-                    .collect()
-            })
-        })
+        .map(|slot| shared.map_or_else(NearSamples::default, |sh| sh.near(slot.face)))
         .collect()
 }
 
@@ -181,8 +175,8 @@ impl StartParts {
 
 /// What one round's batch of samples inserts.
 struct Batch<'a> {
-    /// Per slot, the shared samples' global ids by position.
-    lookup: &'a [IdMap<[u64; 3], u32>],
+    /// Per slot, the shared samples by position.
+    lookup: &'a [NearSamples],
     /// Local id of the round's first cutting sample.
     first_cut: usize,
     /// The other sides' shared samples go in too.
@@ -202,6 +196,13 @@ fn insert_samples(
     out: &mut Sampled,
 ) -> Result<()> {
     let mut batch = Vec::with_capacity(chains.samples.len());
+    // a shared sample stands for one vertex of the cell: a second own sample near it stays local
+    let mut taken: IdSet<u32> = input
+        .global
+        .iter()
+        .copied()
+        .filter(|&g| g != u32::MAX)
+        .collect();
     for &DiagramSample {
         slot: s, uv: q, p3, ..
     } in &chains.samples
@@ -213,8 +214,9 @@ fn insert_samples(
             ));
         }
         let gid = b.lookup[s]
-            .get(&crate::bm::shared_samples::key(p3))
-            .copied()
+            .find(p3)
+            .map(|x| x.gid)
+            .filter(|&g| taken.insert(g))
             .unwrap_or(u32::MAX);
         let l = input.add_vertex(s, q, p3, gid);
         batch.push(p3);
