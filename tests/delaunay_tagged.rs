@@ -539,3 +539,56 @@ fn hull_face_of_points_from_several_planes_on_one_oblique_plane_is_tagged() {
     dt.is_valid().unwrap();
     assert_eq!(flat_tets(&dt, &tags), 0);
 }
+
+/// A cell of a generated odd input (`slice::odd` seed 3, before common-line trims broke rows
+/// across regions): four planes' points with their tags and the cells' plane apexes, dumped as the
+/// engine passed them. Inserting vertex 12 made a cavity of float decisions alone (no tag rule
+/// decided any of it) that was star-shaped by its finite facets but not a ball; the kernel checked
+/// the ball only after a tag rule, glued it, and the next insertion read a broken neighbour: a
+/// segfault. A tagged triangulation is not Delaunay by the float predicates (the rules decided
+/// earlier cavities), so a float cavity need not be a ball either: it is checked on every tagged
+/// insertion now. The build must not crash, and be valid or refused.
+#[test]
+fn a_float_cavity_that_is_no_ball_in_a_tagged_triangulation_is_refused() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/tagged_cell_cavity_not_a_ball.json");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let num = |v: &serde_json::Value| v.as_f64().unwrap();
+    let mut pts: Vec<P> = Vec::new();
+    let mut tags = Vec::new();
+    for x in doc["points"].as_array().unwrap() {
+        let p = x["p"].as_array().unwrap();
+        pts.push([num(&p[0]), num(&p[1]), num(&p[2])]);
+        let planes: Vec<(u32, [f64; 2])> = x["planes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| (t[0].as_u64().unwrap() as u32, [num(&t[1]), num(&t[2])]))
+            .collect();
+        let mut t = PointTags::new(x["gid"].as_u64().unwrap(), &planes);
+        if let Some(s) = x["segment"].as_array() {
+            t.segment = Some([s[0].as_u64().unwrap(), s[1].as_u64().unwrap()]);
+        }
+        tags.push(t);
+    }
+    let apexes = slice2solid::delaunay::PlaneApexes::new(
+        doc["apexes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|a| {
+                let p = a[1].as_array().unwrap();
+                (
+                    a[0].as_u64().unwrap() as u32,
+                    [num(&p[0]), num(&p[1]), num(&p[2])],
+                )
+            })
+            .collect(),
+    );
+    assert_eq!((pts.len(), apexes.get(8).is_some()), (131, true));
+    match Delaunay::try_new_tagged_with(&pts, &tags, &apexes) {
+        Ok(dt) => dt.is_valid().expect("an Ok tagged build is valid"),
+        Err(e) => assert!(matches!(e, slice2solid::Error::Input { .. }), "{e}"),
+    }
+}

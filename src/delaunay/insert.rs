@@ -234,10 +234,7 @@ impl Delaunay {
     pub(super) fn conflict_tagged(&self, t: u32, qv: u32, q: P) -> bool {
         let v = tet(&self.tds.tets, t).v;
         match tags::conflict(self.tags_of(v), (&self.tags[qv as usize], q), &self.apexes) {
-            Some(c) => {
-                self.rule_decided.set(true);
-                c
-            }
+            Some(c) => c,
             None => self.conflict(t, q),
         }
     }
@@ -301,20 +298,16 @@ impl Delaunay {
     /// were inconsistent across a cavity facet (an exact cosphericity across planes) and the
     /// triangulation records it (`Delaunay::consistent` then fails).
     ///
-    /// When a tag rule decided part of the cavity, a new infinite tetrahedron is checked through a point strictly inside the hull (the centroid
-    /// of a finite tetrahedron outside the cavity): with it in the infinite vertex's place, the
-    /// tetrahedron must be negative (the kernel's convention: the infinite vertex stands beyond its
-    /// hull facet), i.e. its new hull facet has the solid on its inner side.
+    /// A new infinite tetrahedron is checked through a point strictly inside the hull (the
+    /// centroid of a finite tetrahedron outside the cavity): with it in the infinite vertex's
+    /// place, the tetrahedron must be negative (the kernel's convention: the infinite vertex stands
+    /// beyond its hull facet), i.e. its new hull facet has the solid on its inner side.
     fn cavity_is_star(&mut self, boundary: &[BoundaryFacet], outside: &[u32]) -> bool {
-        let inner: Option<P> = if self.rule_decided.get() {
-            outside
-                .iter()
-                .map(|&t| self.tds.tets[t as usize].v)
-                .filter(|v| !v.contains(&INFINITE))
-                .find_map(|v| strictly_inner_point(v.map(|w| self.pts[w as usize])))
-        } else {
-            None
-        };
+        let inner: Option<P> = outside
+            .iter()
+            .map(|&t| self.tds.tets[t as usize].v)
+            .filter(|v| !v.contains(&INFINITE))
+            .find_map(|v| strictly_inner_point(v.map(|w| self.pts[w as usize])));
         for b in boundary {
             // a new hull facet may be flat (collinear on a hull plane, allowed by the
             // perturbation): only the wrong side is an error there; a finite tet must be positive
@@ -342,9 +335,12 @@ impl Delaunay {
     /// tetrahedra on it. The star test decides the finite facets by orientation; hull facets (with
     /// the infinite vertex) it can only test against an inner point, so a tag-rule cavity that
     /// wraps around the hull can pass it and would be glued into a broken structure (seen on a
-    /// fan's axis when the arrangement left near-duplicate points there: a segfault). Only a tag
-    /// rule can make such a cavity (the perturbed float predicates always give a ball), so it is
-    /// checked only then. Combinatorial, so exact.
+    /// fan's axis when the arrangement left near-duplicate points there: a segfault). Checked on
+    /// every tagged insertion, not only where a tag rule decided part of the cavity: the float
+    /// predicates give a ball on a triangulation that is Delaunay by them, and a tagged one is not
+    /// (the rules decided earlier cavities), so a cavity of float decisions alone can be no ball
+    /// either (generated odd input seed 3: a segfault in the next insertion). Combinatorial, so
+    /// exact.
     fn cavity_is_ball(&mut self, boundary: &[BoundaryFacet], cavity: &[u32]) -> bool {
         // vertices by stamp (a fresh generation per test), edges counted in an open-addressing
         // table: linear in the cavity's size (this runs on most tagged insertions)
@@ -483,9 +479,6 @@ impl Delaunay {
     #[inline(always)]
     fn insert_vertex_with<const TAGGED: bool>(&mut self, v: u32) -> u32 {
         let q = self.pts[v as usize];
-        if TAGGED {
-            self.rule_decided.set(false);
-        }
         let t0 = if TAGGED {
             match self.locate_tagged(v, q) {
                 Ok(t) => t,
@@ -568,7 +561,7 @@ impl Delaunay {
         if TAGGED
             && (boundary.is_empty()
                 || !self.cavity_is_star(&boundary, &outside)
-                || (self.rule_decided.get() && !self.cavity_is_ball(&boundary, &cavity)))
+                || !self.cavity_is_ball(&boundary, &cavity))
         {
             // leave the triangulation as it was (valid, without `v`): a non-star cavity, or one
             // that swallowed everything (tag rules contradicting the float predicates on a fan's

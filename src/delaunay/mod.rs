@@ -155,9 +155,6 @@ pub struct Delaunay {
     /// A tagged insertion met a cavity that is not star-shaped (an exact cosphericity across
     /// planes the tag rules cannot decide, see `tags`): the triangulation is not to be trusted.
     inconsistent: bool,
-    /// A tag rule decided a conflict during the current tagged insertion (then its new hull facets
-    /// are checked too: without a rule the cavity is the exact one).
-    rule_decided: std::cell::Cell<bool>,
     /// Visit stamps of the tagged locate's fallback search (by tetrahedron slot).
     stamp: Vec<u32>,
     stamp_gen: u32,
@@ -419,7 +416,6 @@ impl Delaunay {
             tags,
             apexes,
             inconsistent,
-            rule_decided,
             stamp: _,
             stamp_gen,
             vmark: _,
@@ -448,7 +444,6 @@ impl Delaunay {
             tags: tags.clone(),
             apexes: apexes.clone(),
             inconsistent: *inconsistent,
-            rule_decided: rule_decided.clone(),
             stamp_gen: *stamp_gen,
             vmark_gen: *vmark_gen,
             parallel_deferred: *parallel_deferred,
@@ -479,7 +474,6 @@ impl Delaunay {
             tags: Vec::new(),
             apexes: PlaneApexes::default(),
             inconsistent: false,
-            rule_decided: std::cell::Cell::new(false),
             stamp: Vec::new(),
             stamp_gen: 0,
             vmark: Vec::new(),
