@@ -1,0 +1,102 @@
+//! Inputs of the odd-sections generator (`slice::odd`, seeds `0..SEEDS`): random planes in
+//! parallel families, axis planes, planes through the origin and random directions, with
+//! star-shaped contours at scales 1e-5 to 0.5 that disagree along most common lines. The shared
+//! `data/odd` files came from such a generator; this one found three classes of failure in the
+//! engine (rows of collinear trim vertices across regions and stretches, near-duplicate shared
+//! samples, overhangs the snapping could not pair). Every valid one must come out a closed,
+//! oriented manifold without crossings or double sheets, every section within 2% of the input's
+//! (exact `check`); the ones that do not yet are listed with their defects at most, and a listed
+//! seed that becomes clean, or a clean one that regresses, fails here (move it between the lists).
+use slice2solid::eval::check::check_mesh;
+use slice2solid::io::json::parse_json;
+use slice2solid::slice::odd::odd_sections_json;
+use slice2solid::Options;
+
+const SEEDS: u64 = 40;
+
+/// Seeds refused with an input error: the reader's (two planes of a family at one offset) or the
+/// engine's (every plane empty).
+const REFUSED: [u64; 5] = [15, 20, 27, 29, 30];
+
+/// Not clean today: (seed, non-manifold edges, non-manifold vertices, overlapping near-coplanar
+/// pairs) at most. What is left: singular simplices the resolution inside the complex cannot
+/// remove beside slabs of flat zones, and double sheets of slab tops (docs/design/
+/// conforming-complex.md, session 30). Of seeds 0..120, 90 of 111 valid inputs are clean (80 at
+/// 2342426, which also segfaulted on seed 3).
+const KNOWN: [(u64, usize, usize, usize); 5] = [
+    (1, 1, 2, 1),
+    (16, 0, 0, 37),
+    (17, 2, 4, 72),
+    (32, 3, 6, 85),
+    (37, 0, 1, 0),
+];
+
+const SECTION_BOUND: f64 = 0.02;
+
+#[test]
+fn generated_odd_inputs_are_clean_or_listed() {
+    let mut problems = Vec::new();
+    let mut refused = Vec::new();
+    for seed in 0..SEEDS {
+        let name = format!("odd seed {seed}");
+        let sections = match parse_json(&odd_sections_json(seed), &name) {
+            Ok(s) => s,
+            Err(e) => {
+                refused.push(seed);
+                if !REFUSED.contains(&seed) {
+                    problems.push(format!("{name}: refused: {e}"));
+                }
+                continue;
+            }
+        };
+        let solid = match slice2solid::reconstruct(&sections, &Options::default()) {
+            Ok(s) => s,
+            Err(e @ slice2solid::Error::Input { .. }) => {
+                // every plane empty: nothing to bound the arrangement with
+                refused.push(seed);
+                if !REFUSED.contains(&seed) {
+                    problems.push(format!("{name}: refused: {e}"));
+                }
+                continue;
+            }
+            Err(e) => {
+                problems.push(format!("{name}: reconstruct failed: {e}"));
+                continue;
+            }
+        };
+        let c = check_mesh(&solid.surface, Some(&sections));
+        let worst = c.worst_section.as_ref().map_or(0.0, |w| w.relative);
+        let clean = c.closed
+            && c.manifold
+            && c.oriented
+            && c.self_intersections == 0
+            && c.overlapping_coplanar_pairs == 0
+            && worst <= SECTION_BOUND;
+        let measured = format!(
+            "({seed}, {}, {}, {}) crossings {} worst section {worst:.2e}",
+            c.nonmanifold_edges,
+            c.nonmanifold_vertices,
+            c.overlapping_coplanar_pairs,
+            c.self_intersections
+        );
+        match KNOWN.iter().find(|k| k.0 == seed) {
+            None if !clean => problems.push(format!("{name}: not clean: {measured}")),
+            None => {}
+            Some(_) if clean => problems.push(format!("{name}: clean now, unlist it: {measured}")),
+            Some(&(_, edges, vertices, overlaps)) => {
+                let worse = c.self_intersections > 0
+                    || c.nonmanifold_edges > edges
+                    || c.nonmanifold_vertices > vertices
+                    || c.overlapping_coplanar_pairs > overlaps
+                    || worst > SECTION_BOUND;
+                if worse {
+                    problems.push(format!("{name}: worse than listed: {measured}"));
+                }
+            }
+        }
+    }
+    if refused != REFUSED {
+        problems.push(format!("refused seeds {refused:?}, listed {REFUSED:?}"));
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
