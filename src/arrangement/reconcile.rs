@@ -152,7 +152,8 @@ fn snap_line(
             sb.len()
         ));
     }
-    let pairs = close_pairs_on_one_edge(lp, tol);
+    let seg = |s: f64| lp.breaks.partition_point(|&b| b < s);
+    let pairs = crate::geom::close_pairs(&sa, &sb, tol, |s, t| seg(s) == seg(t));
     let mut used_a = vec![false; lp.a.len()];
     let mut used_b = vec![false; lp.b.len()];
     let mut keep_b = vec![true; lp.b.len()];
@@ -180,26 +181,6 @@ fn snap_line(
             .collect();
     lp.b = kept;
     d
-}
-
-/// Candidate pairs (gap, index in `a`, index in `b`) on the same arrangement edge within `tol`,
-/// closest first (the line's points and breaks sorted).
-fn close_pairs_on_one_edge(lp: &LinePoints, tol: f64) -> Vec<(f64, usize, usize)> {
-    let seg = |s: f64| lp.breaks.partition_point(|&b| b < s);
-    let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
-    for (x, &(s, _)) in lp.a.iter().enumerate() {
-        let lo = lp.b.partition_point(|y| y.0 < s - tol);
-        for (y, &(t, _)) in lp.b.iter().enumerate().skip(lo) {
-            if t > s + tol {
-                break;
-            }
-            if seg(s) == seg(t) {
-                pairs.push(((s - t).abs(), x, y));
-            }
-        }
-    }
-    pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
-    pairs
 }
 
 /// Replace merged vertices by their survivors in the pieces and on every line.

@@ -303,17 +303,21 @@ impl Delaunay {
     /// place, the tetrahedron must be negative (the kernel's convention: the infinite vertex stands
     /// beyond its hull facet), i.e. its new hull facet has the solid on its inner side.
     fn cavity_is_star(&mut self, boundary: &[BoundaryFacet], outside: &[u32]) -> bool {
-        let inner: Option<P> = outside
-            .iter()
-            .map(|&t| self.tds.tets[t as usize].v)
-            .filter(|v| !v.contains(&INFINITE))
-            .find_map(|v| strictly_inner_point(v.map(|w| self.pts[w as usize])));
+        // found at the first new hull facet (most cavities have none)
+        let mut inner: Option<Option<P>> = None;
         for b in boundary {
             // a new hull facet may be flat (collinear on a hull plane, allowed by the
             // perturbation): only the wrong side is an error there; a finite tet must be positive
             let (p, infinite) = match b.v.iter().position(|&w| w == INFINITE) {
                 None => (b.v.map(|w| self.pts[w as usize]), false),
                 Some(k) => {
+                    let inner = *inner.get_or_insert_with(|| {
+                        outside
+                            .iter()
+                            .map(|&t| self.tds.tets[t as usize].v)
+                            .filter(|v| !v.contains(&INFINITE))
+                            .find_map(|v| strictly_inner_point(v.map(|w| self.pts[w as usize])))
+                    });
                     let Some(c) = inner else { continue };
                     let p =
                         std::array::from_fn(|m| if m == k { c } else { self.pts[b.v[m] as usize] });

@@ -24,3 +24,31 @@ pub fn segment_distance_2d(q: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     let e = [a[0] + t * d[0] - q[0], a[1] + t * d[1] - q[1]];
     (e[0] * e[0] + e[1] * e[1]).sqrt()
 }
+
+/// Candidate pairs (gap, index in `a`, index in `b`) of two sorted lists of positions along a line
+/// that lie within `tol` of each other and in one group (`same`), closest first, ties in index
+/// order. The snapping of two sections' crossings on their common line pairs them in this order
+/// (`arrangement::reconcile`), and the common-line trims predict that snapping with it
+/// (`validate::common_lines`): one rule, so the two cannot drift apart.
+pub fn close_pairs(
+    a: &[f64],
+    b: &[f64],
+    tol: f64,
+    same: impl Fn(f64, f64) -> bool,
+) -> Vec<(f64, usize, usize)> {
+    let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
+    for (x, &s) in a.iter().enumerate() {
+        let lo = b.partition_point(|&t| t < s - tol);
+        for (y, &t) in b.iter().enumerate().skip(lo) {
+            if t > s + tol {
+                break;
+            }
+            if same(s, t) {
+                pairs.push(((s - t).abs(), x, y));
+            }
+        }
+    }
+    // stable: equal gaps stay in index order
+    pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
+    pairs
+}

@@ -287,19 +287,12 @@ fn stretches_to_clear(
 }
 
 /// The crossings of the line (intervals' ends, as bits) of `mine` that the snapping merges with
-/// one of `theirs`, with that one: pairs within `tol`, closest first, one to one.
+/// one of `theirs`, with that one: pairs within `tol`, closest first, one to one (the snapping's
+/// order, [`crate::geom::close_pairs`]; the intervals are sorted, so are their ends).
 fn snap_partners(mine: &[(f64, f64)], theirs: &[(f64, f64)], tol: f64) -> HashMap<u64, u64> {
     let ends = |x: &[(f64, f64)]| -> Vec<f64> { x.iter().flat_map(|&(a, b)| [a, b]).collect() };
     let (a, b) = (ends(mine), ends(theirs));
-    let mut pairs: Vec<(f64, usize, usize)> = Vec::new();
-    for (i, &s) in a.iter().enumerate() {
-        for (j, &t) in b.iter().enumerate() {
-            if (s - t).abs() <= tol {
-                pairs.push(((s - t).abs(), i, j));
-            }
-        }
-    }
-    pairs.sort_by(|p, q| p.0.total_cmp(&q.0).then((p.1, p.2).cmp(&(q.1, q.2))));
+    let pairs = crate::geom::close_pairs(&a, &b, tol, |_, _| true);
     let (mut used_a, mut used_b) = (vec![false; a.len()], vec![false; b.len()]);
     let mut out = HashMap::new();
     for (_, i, j) in pairs {

@@ -10,19 +10,15 @@ use crate::bm::shared_samples::{NearSamples, SharedSamples};
 use crate::error::Result;
 
 /// Add to `input` (and `batch`) the shared samples on its faces that it did not sample itself
-/// (those already there by global id). Returns how many.
+/// (those already there by global id: `present`, the global ids of `input`'s vertices). Returns
+/// how many.
 fn add_foreign_samples(
     input: &mut CellInput,
     shared: Option<&SharedSamples>,
+    present: &IdSet<u32>,
     batch: &mut Vec<[f64; 3]>,
 ) -> u64 {
     let Some(shared) = shared else { return 0 };
-    let present: IdSet<u32> = input
-        .global
-        .iter()
-        .copied()
-        .filter(|&g| g != u32::MAX)
-        .collect();
     let mut n = 0;
     for s in 0..input.slots.len() {
         for x in shared.on_face(input.slots[s].face) {
@@ -196,7 +192,8 @@ fn insert_samples(
     out: &mut Sampled,
 ) -> Result<()> {
     let mut batch = Vec::with_capacity(chains.samples.len());
-    // a shared sample stands for one vertex of the cell: a second own sample near it stays local
+    // the global ids of the cell's vertices: a shared sample stands for one vertex of the cell (a
+    // second own sample near it stays local), and the other sides' samples not among them go in
     let mut taken: IdSet<u32> = input
         .global
         .iter()
@@ -225,7 +222,7 @@ fn insert_samples(
         }
     }
     if b.has_shared {
-        out.foreign += add_foreign_samples(input, how.shared, &mut batch);
+        out.foreign += add_foreign_samples(input, how.shared, &taken, &mut batch);
     }
     let batch = &batch[b.present..];
     let first = input.points.len() - batch.len();
