@@ -275,7 +275,7 @@ pub fn run_cells_seeded(
         share_samples(
             arr,
             &mut pool,
-            &loops_now(arr, &splits),
+            &mut splits,
             sampling,
             &mut results,
             &mut timing,
@@ -303,10 +303,6 @@ pub fn run_cells_seeded(
     ))
 }
 
-fn loops_now(arr: &Arrangement, splits: &conform::Splits) -> Vec<Vec<Vec<u32>>> {
-    conform::face_loops(arr, splits)
-}
-
 /// What sharing the diagram samples did.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct SharingCounts {
@@ -326,6 +322,7 @@ pub struct SharingCounts {
 }
 
 /// What a rerun with shared samples did to its cell's result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Rerun {
     /// The rerun's result replaced the cell's.
     Shared,
@@ -347,20 +344,26 @@ fn rerun_cell(
     split: bool,
     c: usize,
     slot: &mut Option<CellResult>,
-) -> Result<Option<(Rerun, CellTiming)>> {
+) -> Result<Option<(Rerun, CellTiming, Vec<(u32, u32)>)>> {
     let start = slot.as_mut().and_then(|r| r.start.take());
     let Some(input) = CellInput::build(arr, pool, loops, c as u32) else {
         return Ok(None);
     };
+    // a finished run on other contour points (before a contour edge was split) is not kept
+    let current = slot
+        .as_ref()
+        .and_then(|p| p.input.as_ref())
+        .is_some_and(|old| old.points == input.points);
     let mut r = cell::run_cell_sharing(input, sampling, shared, split, start)?;
     let timing = r.timing;
+    let missing = r.missing.clone();
     let what = if r.missing.is_empty() {
         Rerun::Shared
-    } else if let Some(p) = slot.as_mut().filter(|p| p.pruned) {
+    } else if let Some(p) = slot.as_mut().filter(|p| p.pruned && current) {
         // the other side's samples took a contour edge away: keep a finished run without them
         // if there is one, else this one (its section then misses that edge)
         p.start = r.start.take();
-        return Ok(Some((Rerun::KeptUnshared, timing)));
+        return Ok(Some((Rerun::KeptUnshared, timing, missing)));
     } else {
         Rerun::MissingEdges
     };
@@ -369,20 +372,26 @@ fn rerun_cell(
         input.slim();
     }
     *slot = Some(r);
-    Ok(Some((what, timing)))
+    Ok(Some((what, timing, missing)))
 }
 
-/// Most rounds of sharing: each round's cells may split diagram pairs that the other side's
-/// samples took away (new Steiner points, shared in the next round).
-const MAX_SHARING_ROUNDS: usize = 6;
+/// Most rounds of sharing: each round's cells may add diagram samples and split contour edges that
+/// the other side's samples took away (new points, inserted by both sides in the next round). A
+/// round ending with points one side has not inserted leaves that face non-conforming; the
+/// generated odd inputs need up to 12 (one on sweeps).
+const MAX_SHARING_ROUNDS: usize = 16;
 
 /// Make every cell's diagram samples (and their Steiner points) pool vertices and run again every
 /// cell with such points on a face, inserting those of both sides (`shared_samples`), until no
-/// cell adds a point of its own. The reruns' times are added to `timing`.
+/// cell adds a point of its own. A contour edge that a rerun misses (the other side's samples took
+/// it away) is split in `splits`, for every cell that has it, and those cells run again: keeping
+/// the run without the other side's samples, as before, left the two cells of a face with
+/// different points on it, a non-conforming face and exact crossings (generated odd seed 45). The
+/// reruns' times are added to `timing`.
 fn share_samples(
     arr: &Arrangement,
     pool: &mut crate::arrangement::VertexPool,
-    loops: &[Vec<Vec<u32>>],
+    splits: &mut conform::Splits,
     sampling: Sampling,
     results: &mut [Option<CellResult>],
     timing: &mut CellTiming,
@@ -391,6 +400,9 @@ fn share_samples(
     let mut shared = seeds;
     let mut counts = SharingCounts::default();
     let mut dirty_faces = shared.extend(arr, pool, results);
+    let mut loops = conform::face_loops(arr, splits);
+    // per cell, what its last rerun did (the counts are of the final state)
+    let mut last: Vec<Option<Rerun>> = vec![None; results.len()];
     // at least one round: the cells stopped at conformity
     while (counts.rounds == 0 || !dirty_faces.is_empty())
         && (counts.rounds as usize) < MAX_SHARING_ROUNDS
@@ -412,24 +424,56 @@ fn share_samples(
         // each rerun replaces its cell's result in place, so that the old and the new results of
         // every cell are never held at once (on a 1000-frame sweep they were gigabytes)
         let (pool_now, shared_now) = (&*pool, &shared);
-        let outcomes: Vec<Result<Option<(Rerun, CellTiming)>>> = results
+        let loops_now = &loops;
+        let outcomes: Vec<(usize, Result<Option<(Rerun, CellTiming, Vec<(u32, u32)>)>>)> = results
             .par_iter_mut()
             .enumerate()
             .filter(|(c, _)| run[*c])
-            .map(|(c, slot)| rerun_cell(arr, pool_now, loops, sampling, shared_now, split, c, slot))
+            .map(|(c, slot)| {
+                let r = rerun_cell(
+                    arr, pool_now, loops_now, sampling, shared_now, split, c, slot,
+                );
+                (c, r)
+            })
             .collect();
-        for outcome in outcomes {
-            let Some((what, t)) = outcome? else { continue };
+        let mut missing = Vec::new();
+        for (c, outcome) in outcomes {
+            let Some((what, t, lost)) = outcome? else {
+                continue;
+            };
             counts.cells_rerun += 1;
             timing.add(&t);
-            match what {
-                Rerun::Shared => {}
-                Rerun::KeptUnshared => counts.cells_kept_unshared += 1,
-                Rerun::MissingEdges => counts.cells_missing_contour_edges += 1,
-            }
+            last[c] = Some(what);
+            missing.extend(lost);
         }
         dirty_faces = shared.extend(arr, pool, results);
+        // a contour edge the other side's samples took away is split, for both sides (the two
+        // cells of a face then insert the same points again, and the Steiner point restores the
+        // edge's halves), and the cells of the faces whose loops changed run again
+        if !missing.is_empty() && (counts.rounds as usize) < MAX_SHARING_ROUNDS {
+            missing.sort_unstable();
+            missing.dedup();
+            for (a, b) in missing {
+                splits.split(pool, a, b);
+            }
+            let now = conform::face_loops(arr, splits);
+            let changed = (0..now.len())
+                .filter(|&f| now[f] != loops[f])
+                .map(|f| f as u32);
+            dirty_faces.extend(changed);
+            dirty_faces.sort_unstable();
+            dirty_faces.dedup();
+            loops = now;
+        }
     }
+    counts.cells_kept_unshared = last
+        .iter()
+        .filter(|w| **w == Some(Rerun::KeptUnshared))
+        .count() as u64;
+    counts.cells_missing_contour_edges = last
+        .iter()
+        .filter(|w| **w == Some(Rerun::MissingEdges))
+        .count() as u64;
     // the starts' triangulations are dropped in parallel too (tens of MB on big inputs)
     results.par_iter_mut().flatten().for_each(|r| {
         shared.adopt_ids(r);
