@@ -354,9 +354,17 @@ fn rerun_cell(
         .as_ref()
         .and_then(|p| p.input.as_ref())
         .is_some_and(|old| old.points == input.points);
+    let before: std::collections::HashSet<(u32, u32)> = slot
+        .as_ref()
+        .map(|p| p.missing.iter().copied().collect())
+        .unwrap_or_default();
     let mut r = cell::run_cell_sharing(input, sampling, shared, split, start)?;
     let timing = r.timing;
-    let missing = r.missing.clone();
+    // the contour edges the other side's samples took away (not those the cell's own run missed)
+    let missing: Vec<(u32, u32)> = (r.missing.iter())
+        .filter(|e| !before.contains(e))
+        .copied()
+        .collect();
     let what = if r.missing.is_empty() {
         Rerun::Shared
     } else if let Some(p) = slot.as_mut().filter(|p| p.pruned && current) {
@@ -403,6 +411,7 @@ fn share_samples(
     let mut loops = conform::face_loops(arr, splits);
     // per cell, what its last rerun did (the counts are of the final state)
     let mut last: Vec<Option<Rerun>> = vec![None; results.len()];
+    let mut lost_first: Option<usize> = None;
     // at least one round: the cells stopped at conformity
     while (counts.rounds == 0 || !dirty_faces.is_empty())
         && (counts.rounds as usize) < MAX_SHARING_ROUNDS
@@ -450,7 +459,13 @@ fn share_samples(
         // a contour edge the other side's samples took away is split, for both sides (the two
         // cells of a face then insert the same points again, and the Steiner point restores the
         // edge's halves), and the cells of the faces whose loops changed run again
-        if !missing.is_empty() && (counts.rounds as usize) < MAX_SHARING_ROUNDS {
+        // only while that converges: never more edges than the first round lost (where splits
+        // do not restore an edge, its halves would be lost again, twice as many every round)
+        let first_lost = *lost_first.get_or_insert(missing.len());
+        if !missing.is_empty()
+            && missing.len() <= first_lost
+            && (counts.rounds as usize) < MAX_SHARING_ROUNDS
+        {
             missing.sort_unstable();
             missing.dedup();
             for (a, b) in missing {
