@@ -97,6 +97,11 @@ impl Plane {
         Plane::from_equation(normal, d)
     }
 
+    /// The plane's equation `[n, d]` (n · x + d = 0).
+    pub fn equation(&self) -> [f64; 4] {
+        [self.normal[0], self.normal[1], self.normal[2], self.offset]
+    }
+
     pub fn signed_distance(&self, p: [f64; 3]) -> f64 {
         dot(self.normal, p) + self.offset
     }

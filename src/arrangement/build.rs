@@ -15,10 +15,6 @@ use smallvec::SmallVec;
 /// positions it compares, far below any feature.
 const REACH_MARGIN: f64 = 1e-9;
 
-fn eq_of(p: &Plane) -> [f64; 4] {
-    [p.normal[0], p.normal[1], p.normal[2], p.offset]
-}
-
 pub(super) fn build(sections: &Sections, options: &ArrangementOptions) -> Result<Arrangement> {
     let n_input = sections.sections.len();
     let (lo, hi, diag) = bounding_box_and_diagonal(sections)?;
@@ -89,7 +85,11 @@ fn bounding_box_and_diagonal(sections: &Sections) -> Result<([f64; 3], [f64; 3],
 /// The input planes' equations: finite, and no two the same plane.
 fn checked_input_equations(sections: &Sections) -> Result<Vec<[f64; 4]>> {
     let n_input = sections.sections.len();
-    let input_eq: Vec<[f64; 4]> = sections.sections.iter().map(|s| eq_of(&s.plane)).collect();
+    let input_eq: Vec<[f64; 4]> = sections
+        .sections
+        .iter()
+        .map(|s| s.plane.equation())
+        .collect();
     for (i, e) in input_eq.iter().enumerate() {
         if e.iter().any(|x| !x.is_finite()) {
             return Err(Error::input(
@@ -139,7 +139,7 @@ fn box_walls(
         }
         let clash = walls
             .iter()
-            .any(|w| input_eq.iter().any(|e| same_plane(*e, eq_of(w))));
+            .any(|w| input_eq.iter().any(|e| same_plane(*e, w.equation())));
         if !clash {
             return (blo, bhi, walls);
         }
@@ -156,7 +156,7 @@ fn cut_box(
     options: &ArrangementOptions,
 ) -> Result<CellBuilder> {
     let n_input = sections.sections.len();
-    let eq: Vec<[f64; 4]> = planes.iter().map(|p| eq_of(&p.plane)).collect();
+    let eq: Vec<[f64; 4]> = planes.iter().map(|p| p.plane.equation()).collect();
     let wall_ids: [u32; 6] = std::array::from_fn(|k| (n_input + k) as u32);
     let mut builder = CellBuilder::new_box(eq, wall_ids);
     let reach = super::reach::SectionReach::new(sections, REACH_MARGIN * diag);

@@ -17,6 +17,7 @@ use super::exact::{sign_det3, sign_det4};
 use super::signs::SignVec;
 use super::PlaneTags;
 use crate::fxhash::FxHashMap as HashMap;
+use crate::sections::{cross, dot};
 
 /// A face of a cell during construction: counter-clockwise seen from outside the cell.
 #[derive(Clone, Debug)]
@@ -63,19 +64,8 @@ pub(crate) struct CellBuilder {
 pub(crate) type Keep<'a> = &'a dyn Fn(&CellBuilder, &BCell) -> bool;
 
 pub(crate) fn plane_point(eq: &[[f64; 4]], t: [u32; 3]) -> [f64; 3] {
-    let (a, b, c) = (eq[t[0] as usize], eq[t[1] as usize], eq[t[2] as usize]);
-    let n1 = [a[0], a[1], a[2]];
-    let n2 = [b[0], b[1], b[2]];
-    let n3 = [c[0], c[1], c[2]];
-    let c23 = cross(n2, n3);
-    let c31 = cross(n3, n1);
-    let c12 = cross(n1, n2);
-    let det = dot(n1, c23);
-    let mut x = [0.0; 3];
-    for k in 0..3 {
-        x[k] = -(a[3] * c23[k] + b[3] * c31[k] + c[3] * c12[k]) / det;
-    }
-    x
+    let [a, b, c] = t.map(|p| eq[p as usize]);
+    crate::geom::three_planes_point(a, b, c)
 }
 
 /// Bound on the error of every coordinate of `plane_point(eq, t)` (at `x`), from the rounding of
@@ -98,17 +88,6 @@ pub(crate) fn point_error(eq: &[[f64; 4]], t: [u32; 3], x: [f64; 3]) -> f64 {
         return f64::INFINITY;
     }
     2.0 * ((dnum + xm * ddet) / (det.abs() - ddet) + eps * xm)
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 impl CellBuilder {

@@ -116,10 +116,7 @@ impl<'a> Ctx<'a> {
         if self.triples.get(&t).is_some_and(|&(_, n)| n >= 2) {
             return true;
         }
-        let eq = |p: u32| {
-            let p = &self.arr.planes[p as usize].plane;
-            [p.normal[0], p.normal[1], p.normal[2], p.offset]
-        };
+        let eq = |p: u32| self.arr.planes[p as usize].plane.equation();
         rank2(eq(i), eq(j), eq(k))
     }
 

@@ -152,8 +152,7 @@ fn snap_line(
             sb.len()
         ));
     }
-    let seg = |s: f64| lp.breaks.partition_point(|&b| b < s);
-    let pairs = crate::geom::close_pairs(&sa, &sb, tol, |s, t| seg(s) == seg(t));
+    let pairs = crate::geom::close_pairs(&sa, &sb, tol, &lp.breaks);
     let mut used_a = vec![false; lp.a.len()];
     let mut used_b = vec![false; lp.b.len()];
     let mut keep_b = vec![true; lp.b.len()];

@@ -19,6 +19,7 @@
 //! plane), not decisions of the engine: the arrangement computes the crossings it uses itself.
 use super::{material_of, model_diagonal, pieces_of, repair::region_of_piece, NUDGE_RELATIVE};
 use crate::error::Result;
+use crate::geom::three_planes_point;
 use crate::sections::{cross, dot, polygon_signed_area, Plane, Section, Sections};
 use i_overlay::core::{fill_rule::FillRule, overlay_rule::OverlayRule};
 use i_overlay::float::single::SingleFloatOverlay;
@@ -212,21 +213,13 @@ fn pair_trims(
 /// length `dir · x`, sorted): the arrangement's vertices on it.
 fn line_breaks(sections: &Sections, i: usize, j: usize, dir: [f64; 3]) -> Vec<f64> {
     let (a, b) = (&sections.sections[i].plane, &sections.sections[j].plane);
-    let ab = cross(a.normal, b.normal);
     let mut out: Vec<f64> = (sections.sections.iter().enumerate())
         .filter(|&(k, _)| k != i && k != j)
-        .filter_map(|(_, s)| {
-            let c = &s.plane;
-            // the point on all three planes (Cramer): -(oa (nb × nc) + ob (nc × na) + oc (na × nb)) / det
-            let det = dot(a.normal, cross(b.normal, c.normal));
-            if det.abs() < PARALLEL {
-                return None;
-            }
-            let (bc, ca) = (cross(b.normal, c.normal), cross(c.normal, a.normal));
-            let x: [f64; 3] = std::array::from_fn(|m| {
-                -(a.offset * bc[m] + b.offset * ca[m] + c.offset * ab[m]) / det
-            });
-            Some(dot(dir, x))
+        // a plane parallel to the line does not cross it
+        .filter(|(_, s)| dot(a.normal, cross(b.normal, s.plane.normal)).abs() >= PARALLEL)
+        .map(|(_, s)| {
+            let x = three_planes_point(a.equation(), b.equation(), s.plane.equation());
+            dot(dir, x)
         })
         .collect();
     out.sort_by(f64::total_cmp);
@@ -330,8 +323,7 @@ fn snap_partners(
 ) -> HashMap<u64, u64> {
     let ends = |x: &[(f64, f64)]| -> Vec<f64> { x.iter().flat_map(|&(a, b)| [a, b]).collect() };
     let (a, b) = (ends(mine), ends(theirs));
-    let seg = |s: f64| breaks.partition_point(|&x| x < s);
-    let pairs = crate::geom::close_pairs(&a, &b, tol, |s, t| seg(s) == seg(t));
+    let pairs = crate::geom::close_pairs(&a, &b, tol, breaks);
     let (mut used_a, mut used_b) = (vec![false; a.len()], vec![false; b.len()]);
     let mut out = HashMap::new();
     for (_, i, j) in pairs {
