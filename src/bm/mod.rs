@@ -332,6 +332,14 @@ enum Rerun {
     MissingEdges,
 }
 
+/// A rerun: what it did, its times, and the contour edges it lost to the other side's samples
+/// (edges its cell's previous run had).
+struct RerunOutcome {
+    what: Rerun,
+    timing: CellTiming,
+    lost: Vec<(u32, u32)>,
+}
+
 /// Run cell `c` again with the shared samples, its result `slot` replaced in place; what it did
 /// and the rerun's times (`None`: the cell has no input any more, its result stays).
 #[allow(clippy::too_many_arguments)]
@@ -344,7 +352,7 @@ fn rerun_cell(
     split: bool,
     c: usize,
     slot: &mut Option<CellResult>,
-) -> Result<Option<(Rerun, CellTiming, Vec<(u32, u32)>)>> {
+) -> Result<Option<RerunOutcome>> {
     let start = slot.as_mut().and_then(|r| r.start.take());
     let Some(input) = CellInput::build(arr, pool, loops, c as u32) else {
         return Ok(None);
@@ -354,14 +362,11 @@ fn rerun_cell(
         .as_ref()
         .and_then(|p| p.input.as_ref())
         .is_some_and(|old| old.points == input.points);
-    let before: std::collections::HashSet<(u32, u32)> = slot
-        .as_ref()
-        .map(|p| p.missing.iter().copied().collect())
-        .unwrap_or_default();
     let mut r = cell::run_cell_sharing(input, sampling, shared, split, start)?;
     let timing = r.timing;
     // the contour edges the other side's samples took away (not those the cell's own run missed)
-    let missing: Vec<(u32, u32)> = (r.missing.iter())
+    let before: &[(u32, u32)] = slot.as_ref().map_or(&[], |p| &p.missing);
+    let lost: Vec<(u32, u32)> = (r.missing.iter())
         .filter(|e| !before.contains(e))
         .copied()
         .collect();
@@ -371,7 +376,11 @@ fn rerun_cell(
         // the other side's samples took a contour edge away: keep a finished run without them
         // if there is one, else this one (its section then misses that edge)
         p.start = r.start.take();
-        return Ok(Some((Rerun::KeptUnshared, timing, missing)));
+        return Ok(Some(RerunOutcome {
+            what: Rerun::KeptUnshared,
+            timing,
+            lost,
+        }));
     } else {
         Rerun::MissingEdges
     };
@@ -380,7 +389,7 @@ fn rerun_cell(
         input.slim();
     }
     *slot = Some(r);
-    Ok(Some((what, timing, missing)))
+    Ok(Some(RerunOutcome { what, timing, lost }))
 }
 
 /// Most rounds of sharing: each round's cells may add diagram samples and split contour edges that
@@ -434,7 +443,7 @@ fn share_samples(
         // every cell are never held at once (on a 1000-frame sweep they were gigabytes)
         let (pool_now, shared_now) = (&*pool, &shared);
         let loops_now = &loops;
-        let outcomes: Vec<(usize, Result<Option<(Rerun, CellTiming, Vec<(u32, u32)>)>>)> = results
+        let outcomes: Vec<(usize, Result<Option<RerunOutcome>>)> = results
             .par_iter_mut()
             .enumerate()
             .filter(|(c, _)| run[*c])
@@ -447,13 +456,13 @@ fn share_samples(
             .collect();
         let mut missing = Vec::new();
         for (c, outcome) in outcomes {
-            let Some((what, t, lost)) = outcome? else {
+            let Some(o) = outcome? else {
                 continue;
             };
             counts.cells_rerun += 1;
-            timing.add(&t);
-            last[c] = Some(what);
-            missing.extend(lost);
+            timing.add(&o.timing);
+            last[c] = Some(o.what);
+            missing.extend(o.lost);
         }
         dirty_faces = shared.extend(arr, pool, results);
         // a contour edge the other side's samples took away is split, for both sides (the two
