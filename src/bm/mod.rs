@@ -50,6 +50,7 @@ pub mod refine;
 pub mod shared_samples;
 pub mod singular;
 pub mod slab;
+pub mod spacing;
 pub mod tunnels;
 pub mod voids;
 

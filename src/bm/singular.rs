@@ -10,6 +10,7 @@
 //! of crossing diagrams: the part near v of every gap but the largest is kept). The rounds repeat
 //! on the new boundary up to a bound; what stays singular is counted by the caller.
 use super::refine::{edge, grow, key3, on_a_plane, Growth, Planes, Triangulation};
+use super::spacing::{Spaced, Stagger, MIN_GAP};
 use crate::fxhash::{FxHashMap, FxHashSet};
 use smallvec::SmallVec;
 
@@ -187,13 +188,6 @@ impl Snapshot {
     }
 }
 
-/// Split points keep at least this fraction of the growth distance (1e-8 of the diagonal) from
-/// each other and from the vertices around their cores. Edges from one core to near-duplicate
-/// vertices (a contour jittering within 1e-7) point the same way, and points at one distance
-/// along them would be near-duplicates too, which tools that weld vertices closer than about 1e-8
-/// (trimesh) merge into a non-manifold surface.
-const MIN_GAP: f64 = 1e-5;
-
 /// Per core vertex of `groups`, the positions of the other vertices of its tetrahedra (with it).
 fn points_near_cores(t: &Triangulation, groups: &[Vec<Growth>]) -> Vec<([f64; 3], u32)> {
     let n = t.positions.len();
@@ -221,64 +215,10 @@ fn points_near_cores(t: &Triangulation, groups: &[Vec<Growth>]) -> Vec<([f64; 3]
         .collect()
 }
 
-/// Points around cores, kept apart by at least `gap`: a grid of cells of that size.
-struct Spaced {
-    gap: f64,
-    cells: FxHashMap<[i64; 3], Vec<([f64; 3], u32)>>,
-}
-
-impl Spaced {
-    fn new(gap: f64, points: &[([f64; 3], u32)]) -> Spaced {
-        let mut s = Spaced {
-            gap,
-            cells: FxHashMap::default(),
-        };
-        for &(p, c) in points {
-            s.insert(p, c);
-        }
-        s
-    }
-
-    fn cell(&self, p: [f64; 3]) -> [i64; 3] {
-        p.map(|x| (x / self.gap).floor() as i64)
-    }
-
-    fn insert(&mut self, p: [f64; 3], core: u32) {
-        let c = self.cell(p);
-        self.cells.entry(c).or_default().push((p, core));
-    }
-
-    /// Whether a point around `core` lies closer than `gap` (at most the grid's) to `p` (one
-    /// equal to it too).
-    fn crowds(&self, p: [f64; 3], core: u32, gap: f64) -> bool {
-        let c = self.cell(p);
-        let g2 = gap.min(self.gap).powi(2);
-        (0..27).any(|i| {
-            let k = [i % 3 - 1, i / 3 % 3 - 1, i / 9 - 1];
-            let key = [c[0] + k[0], c[1] + k[1], c[2] + k[2]];
-            self.cells.get(&key).is_some_and(|ps| {
-                ps.iter().any(|&(q, qc)| {
-                    let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-                    qc == core && d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < g2
-                })
-            })
-        })
-    }
-}
-
-/// On an edge shorter than the gap over this, the gap is this fraction of the edge: near-duplicate
-/// points come from long edges converging at a core, not from a contour drawn at a far smaller
-/// scale than the diagonal, whose own vertices are that close.
-const SHORT_EDGE: f64 = 1e-2;
-
-/// Shifts of the split distance tried, in order, where a point would crowd another
-/// (`MIN_GAP`): near-parallel edges then part along their length.
-const STAGGER: [f64; 5] = [1.0, 1.01, 0.99, 1.02, 0.98];
-
 /// Per growth, the edges from its core to its other vertices, split at `distance` from the core
 /// vertex (at most halfway); an edge asked for twice keeps its first point. A point that would
 /// lie within `MIN_GAP` (or `SHORT_EDGE` of its edge) of another split point of its core or of a
-/// vertex around its core (`near`) moves along its edge (`STAGGER`) where that clears it.
+/// vertex around its core (`near`) moves along its edge where that clears it (`spacing`).
 fn split_points(
     positions: &[[f64; 3]],
     planes: &[Planes],
@@ -301,21 +241,11 @@ fn split_points(
                     continue;
                 }
                 let (p, q) = (positions[c as usize], positions[x as usize]);
-                let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
-                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                if len > 0.0 && !out.contains_key(&edge(c, x)) {
-                    let at = |k: f64| {
-                        let s = (k * distance / len).min(0.5);
-                        [p[0] + s * d[0], p[1] + s * d[1], p[2] + s * d[2]]
-                    };
-                    // short edges (a contour at a far smaller scale) are dense by nature
-                    let gap = SHORT_EDGE * len;
-                    let point = STAGGER
-                        .iter()
-                        .map(|&k| at(k))
-                        .find(|&y| !spaced.crowds(y, c, gap))
-                        .unwrap_or_else(|| at(1.0));
-                    spaced.insert(point, c);
+                if p != q && !out.contains_key(&edge(c, x)) {
+                    let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
+                    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    let fraction = |k: f64| k * distance / len;
+                    let (point, _) = spaced.place([p, q], fraction, Stagger::Both, c, Some(c));
                     out.insert(edge(c, x), point);
                 }
             }

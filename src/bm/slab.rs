@@ -21,6 +21,7 @@
 //! axis-aligned planes) is tried once more with those edges split too; `refine::grow` then keeps
 //! a slab only where its faces on a plane lie inside that plane's section.
 use super::refine::{edge, grow, key3, key4, Growth, Planes, Triangulation};
+use super::spacing::{Spaced, Stagger, MIN_GAP};
 use crate::fxhash::{FxHashMap, FxHashSet};
 /// A section triangle as one cell has it: global ids, outward from the cell, whether a kept
 /// tetrahedron of the cell stands on it, and that cell's tetrahedron's fourth vertex (`u32::MAX`
@@ -56,6 +57,7 @@ pub struct SlabStats {
 /// `thickness` inside K.
 pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> SlabStats {
     let (candidates, unsided) = parents_of_zones(faces);
+    let first_new = t.positions.len();
     let mut stats = SlabStats {
         left: unsided,
         min_thickness: f64::INFINITY,
@@ -68,7 +70,7 @@ pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> Sl
     let mut left: Vec<&[Parent]> = Vec::new();
     while !pending.is_empty() {
         let parents: Vec<&Parent> = pending.iter().map(|c| &c.0[0]).collect();
-        let refused = grow_slabs(t, &parents, thickness, false, &mut stats);
+        let refused = grow_slabs(t, &parents, thickness, false, first_new, &mut stats);
         let next = refused.iter().filter_map(|&i| pending[i].0.get(1));
         let existing = existing_among(t, next.map(|p| p.tet));
         pending = refused
@@ -94,7 +96,8 @@ pub fn thicken(t: &mut Triangulation, faces: &[Vec<Side>], thickness: f64) -> Sl
         .filter_map(|all| all.iter().find(|p| existing.contains(&key4(p.tet))))
         .collect();
     let unusable = left.len() - last.len();
-    stats.left += (unusable + grow_slabs(t, &last, thickness, true, &mut stats).len()) as u64;
+    stats.left +=
+        (unusable + grow_slabs(t, &last, thickness, true, first_new, &mut stats).len()) as u64;
     if stats.points == 0 {
         stats.min_thickness = 0.0;
     }
@@ -122,19 +125,27 @@ fn existing_among(
         .collect()
 }
 
-/// Grow the slabs of `parents` (with `on_planes`, splitting edges that lie on a plane too);
-/// returns the indices of those refused.
+/// Grow the slabs of `parents` (with `on_planes`, splitting edges that lie on a plane too; the
+/// slabs' points so far from `first_new` on); returns the indices of those refused.
 fn grow_slabs(
     t: &mut Triangulation,
     parents: &[&Parent],
     thickness: f64,
     on_planes: bool,
+    first_new: usize,
     stats: &mut SlabStats,
 ) -> Vec<usize> {
     if parents.is_empty() {
         return Vec::new();
     }
-    let points = split_points(t.positions, t.planes, parents, thickness, on_planes);
+    let points = split_points(
+        t.positions,
+        t.planes,
+        parents,
+        thickness,
+        on_planes,
+        first_new,
+    );
     let min_thickness = points.values().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let groups: Vec<Vec<Growth>> = parents
         .iter()
@@ -308,13 +319,17 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 /// Per edge (zone vertex, apex) of the parents whose ends share no plane: the split point and its
 /// height above the zone. An edge shared by several parents is split once, where its first parent
-/// puts it.
+/// puts it. A point that would come near another slab point (from `first_new` on, or of this
+/// call) moves farther along its edge (`spacing`): zone vertices whose parents' apexes are nearly
+/// in line, or a cluster, would otherwise get near-duplicate split points and nearly coplanar
+/// walls between them.
 fn split_points(
     positions: &[[f64; 3]],
     planes: &[Planes],
     parents: &[&Parent],
     thickness: f64,
     on_planes: bool,
+    first_new: usize,
 ) -> FxHashMap<(u32, u32), ([f64; 3], f64)> {
     use crate::sections::{cross, dot};
     let on_a_plane = |a: u32, b: u32| {
@@ -322,6 +337,11 @@ fn split_points(
             .iter()
             .any(|g| planes[b as usize].contains(g))
     };
+    let earlier: Vec<([f64; 3], u32)> = positions[first_new..]
+        .iter()
+        .map(|&p| (p, u32::MAX))
+        .collect();
+    let mut spaced = Spaced::new(MIN_GAP * thickness, &earlier);
     let mut out: FxHashMap<(u32, u32), ([f64; 3], f64)> = FxHashMap::default();
     for p in parents {
         let z = p.zone.map(|v| positions[v as usize]);
@@ -332,16 +352,15 @@ fn split_points(
         if !(h > 0.0 && len > 0.0) {
             continue;
         }
-        let s = (thickness / h).min(0.5);
+        let s = |k: f64| k * (thickness / h);
         for (&v, &pv) in p.zone.iter().zip(&z) {
             if !on_planes && on_a_plane(v, p.tet[3]) {
                 continue;
             }
-            let d = sub(apex, pv);
-            out.entry(edge(v, p.tet[3])).or_insert((
-                [pv[0] + s * d[0], pv[1] + s * d[1], pv[2] + s * d[2]],
-                s * h,
-            ));
+            if let std::collections::hash_map::Entry::Vacant(e) = out.entry(edge(v, p.tet[3])) {
+                let (x, at) = spaced.place([pv, apex], s, Stagger::Farther, v, None);
+                e.insert((x, at * h));
+            }
         }
     }
     out
@@ -517,5 +536,53 @@ mod tests {
         let (s, kept) = run(&mut positions, &mut pl, &faces, &mut Vec::new());
         assert_eq!((s.thickened, s.left, s.tets), (0, 1, 0));
         assert!(kept.is_empty());
+    }
+
+    #[test]
+    fn zone_vertices_whose_apexes_are_nearly_in_line_get_split_points_apart() {
+        // two zone triangles on z = 0 sharing the edge (1, 2), their apexes 4 and 5 1e-10 apart:
+        // the edges from 1 and from 2 to the two apexes are nearly parallel, and split at one
+        // fraction their points would be 1e-11 apart
+        let positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.5, 0.5, 1.0],
+            [0.5, 0.5 + 1e-10, 1.0],
+        ];
+        let pl = vec![Planes::new(); 6];
+        let parents = [
+            Parent {
+                zone: [0, 1, 2],
+                tet: [0, 1, 2, 4],
+            },
+            Parent {
+                zone: [1, 3, 2],
+                tet: [1, 3, 2, 5],
+            },
+        ];
+        let thickness = 0.01;
+        let points = split_points(
+            &positions,
+            &pl,
+            &[&parents[0], &parents[1]],
+            thickness,
+            false,
+            6,
+        );
+        assert_eq!(points.len(), 6);
+        let ps: Vec<([f64; 3], f64)> = points.values().copied().collect();
+        for (i, a) in ps.iter().enumerate() {
+            // at least the thickness above the zone
+            assert!(a.1 >= thickness && (a.0[2] - a.1).abs() < 1e-15, "{a:?}");
+            for b in &ps[i + 1..] {
+                let d = (0..3)
+                    .map(|k| (a.0[k] - b.0[k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                assert!(d >= MIN_GAP * thickness, "{a:?} {b:?}: {d:e}");
+            }
+        }
     }
 }

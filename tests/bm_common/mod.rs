@@ -239,3 +239,31 @@ pub fn closest_vertex_gap(mesh: &slice2solid::TriMesh) -> f64 {
     }
     best / diag
 }
+
+/// How many pairs of vertices of `mesh` lie closer than `relative` of its diagonal (tools that
+/// weld vertices, trimesh at about 1e-8, merge them).
+pub fn close_vertex_pairs(mesh: &slice2solid::TriMesh, relative: f64) -> usize {
+    let v = &mesh.vertices;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for p in v {
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+    let limit = relative * diag;
+    let mut order: Vec<usize> = (0..v.len()).collect();
+    order.sort_by(|&a, &b| v[a][0].total_cmp(&v[b][0]));
+    let mut count = 0;
+    for (i, &a) in order.iter().enumerate() {
+        for &b in &order[i + 1..] {
+            if v[b][0] - v[a][0] >= limit {
+                break;
+            }
+            let d2: f64 = (0..3).map(|k| (v[a][k] - v[b][k]).powi(2)).sum();
+            count += usize::from(d2 < limit * limit);
+        }
+    }
+    count
+}
