@@ -579,13 +579,18 @@ fn count_faces(faces: &[Vec<Side>], positions: &[[f64; 3]], out: &mut Assembled)
             .filter(|t| t.attached)
             .map(|t| sorted3(t.tri))
             .collect();
-        // a triangle of the first side that no side attaches to (by key)
-        for t in sides.first().map_or(&[][..], |s| &s.tris[..]) {
-            let k = sorted3(t.tri);
-            if !attached.contains(&k) {
-                out.flat_triangles += 1;
-                out.flat_area += crate::geom::triangle_area(k.map(|v| positions[v as usize]));
-            }
+        // a triangle of any side that no side attaches to (by key, once), as `slab` takes them:
+        // on a non-conforming face the sides' triangles differ, and the first side's alone
+        // undercounted them (a warning of "8 of 7" left out)
+        let mut flat: Vec<[u32; 3]> = (sides.iter().flat_map(|s| &s.tris))
+            .map(|t| sorted3(t.tri))
+            .filter(|k| !attached.contains(k))
+            .collect();
+        flat.sort_unstable();
+        flat.dedup();
+        for k in flat {
+            out.flat_triangles += 1;
+            out.flat_area += crate::geom::triangle_area(k.map(|v| positions[v as usize]));
         }
     }
 }
@@ -648,6 +653,37 @@ pub fn singularities(tris: &[[u32; 3]]) -> (u64, u64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn flat_triangles_of_a_non_conforming_face_are_counted_from_both_sides() {
+        // the unit square (0,1,2,3) split along one diagonal by one cell, the other by the other,
+        // no kept tetrahedron on it: four flat-zone triangles for the slabs, area 2
+        let side = |tris: [[u32; 3]; 2]| Side {
+            tris: tris
+                .iter()
+                .map(|&tri| FaceTri {
+                    tri,
+                    attached: false,
+                    apex: 4,
+                })
+                .collect(),
+            has_volume: true,
+        };
+        let faces = vec![vec![
+            side([[0, 1, 2], [0, 2, 3]]),
+            side([[0, 3, 1], [1, 3, 2]]),
+        ]];
+        let positions = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let mut out = Assembled::default();
+        count_faces(&faces, &positions, &mut out);
+        assert_eq!((out.nonconforming_faces, out.flat_triangles), (1, 4));
+        assert!((out.flat_area - 2.0).abs() < 1e-12);
+    }
 
     #[test]
     fn two_tets_share_an_interior_face() {
