@@ -393,8 +393,9 @@ fn shipped_example_is_a_partition() {
 /// 1 − IoU, volume error, interface area error, and the domains' defects (`Measured::singular`).
 /// The defects are known failures listed here, not accepted ones: where the labels' tetrahedra
 /// meet in a checkerboard the relabelling (`partition::manifold`) does not undo; on the stacked
-/// cylinder cut by a fan, the solid of all labels as one material is itself not closed (the
-/// one-material union of the touching labels rounds the vertices the fan's planes share).
+/// cylinder cut by a fan, the solid of all labels as one material is itself not a manifold (11
+/// singular edges: wedge cells fall back to the untagged kernel where mirror-image points of two
+/// planes through the axis are exactly cospherical, the kernel's open case, `delaunay::tags`).
 fn run_all_delaunay(case: &SyntheticPartition, pins: [[f64; 5]; 3]) {
     // every mode measured before any pin is checked, so a failure shows all three
     let measured: Vec<(SliceMode, Measured)> = (MODES.into_iter())
@@ -445,13 +446,16 @@ fn delaunay_boxes_touching_on_a_face() {
 #[test]
 fn delaunay_cylinder_of_three_stacked_materials() {
     // measured: parallel 0 0.108 0.108 0.108 0, random 3.0e-9 0.351 0.284 1.621 107,
-    // fan 3.3e-11 0.117 0.107 0.565 6464
+    // fan 6.1e-11 0.189 0.170 0.197 46 (was 3.3e-11 0.117 0.107 0.565 6464 while every section's
+    // vertex on the fan's axis, rounded 1e-16 beside it, left a micro edge and 13 of 16 wedge
+    // cells of the one-material complex fell back to the untagged kernel: no longer, and the
+    // labelling of the conforming complex gives the middle layer 15% too much volume)
     run_all_delaunay(
         &stacked_cylinder(),
         [
             [1e-8, 0.115, 0.115, 0.115, 0.0],
             [1e-8, 0.36, 0.295, 1.7, 115.0],
-            [1e-8, 0.125, 0.115, 0.6, 6800.0],
+            [1e-8, 0.195, 0.175, 0.21, 50.0],
         ],
     );
 }
