@@ -536,7 +536,13 @@ fn push_edge_crossings(
             let t = (vp / (vp - vq)).clamp(0.0, 1.0);
             let (p2, q2) = (c.points2[a], c.points2[b]);
             let uv = [p2[0] + t * (q2[0] - p2[0]), p2[1] + t * (q2[1] - p2[1])];
-            (ctx.arr.planes[i as usize].plane.to_3d(uv), uv)
+            let own = &ctx.arr.planes[i as usize].plane;
+            // exactly on the axis-aligned planes it crosses (and, on an axis-aligned plane of its
+            // own, its uv read back from that point, which is then exact too)
+            let crossed: Vec<[f64; 4]> = z.iter().map(|&j| eq[j as usize]).collect();
+            let pos = crate::geom::on_axis_planes(own.to_3d(uv), &crossed);
+            let axis_aligned = own.normal.iter().filter(|&&x| x == 0.0).count() == 2;
+            (pos, if axis_aligned { own.to_2d(pos) } else { uv })
         });
         pts.push(Pt { id, sv: s });
         g = e;

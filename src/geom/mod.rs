@@ -22,7 +22,23 @@ pub fn three_planes_point(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> [f64; 3] {
     let c31 = cross(n3, n1);
     let c12 = cross(n1, n2);
     let det = dot(n1, c23);
-    std::array::from_fn(|k| -(a[3] * c23[k] + b[3] * c31[k] + c[3] * c12[k]) / det)
+    let p = std::array::from_fn(|k| -(a[3] * c23[k] + b[3] * c31[k] + c[3] * c12[k]) / det);
+    on_axis_planes(p, &[a, b, c])
+}
+
+/// `p` with its coordinate along each axis-aligned plane of `planes` (`[n, d]`, a unit normal with
+/// two zero components) set to that plane's, exactly as `Plane::to_3d` puts its points. A point
+/// made on such a plane from other planes (a crossing, an arrangement vertex) is otherwise an ulp
+/// off it, and points of one axis plane (a CT or MRI grid, a box phantom) that are exactly coplanar
+/// and cospherical read as a noisy near-degeneracy the tagged kernel's plane rules contradict.
+pub fn on_axis_planes(mut p: [f64; 3], planes: &[[f64; 4]]) -> [f64; 3] {
+    for e in planes {
+        let zeros = (0..3).filter(|&k| e[k] == 0.0).count();
+        if let (2, Some(k)) = (zeros, (0..3).find(|&k| e[k].abs() == 1.0)) {
+            p[k] = -e[3] * e[k];
+        }
+    }
+    p
 }
 
 /// Distance from `q` to the segment `ab` in the plane (a construction, in floats).
@@ -62,4 +78,26 @@ pub fn close_pairs(a: &[f64], b: &[f64], tol: f64, breaks: &[f64]) -> Vec<(f64, 
     // stable: equal gaps stay in index order
     pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
     pairs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axis_planes_give_their_coordinate_exactly() {
+        // z = 7/30 (not a float) from a crossing an ulp off, and an oblique plane left alone
+        let z = [0.0, 0.0, 1.0, -(7.0 / 30.0)];
+        let oblique = [0.6, 0.8, 0.0, -1.0];
+        let p = on_axis_planes([2.0, 0.25, 0.23333333333333328], &[z, oblique]);
+        assert_eq!(p, [2.0, 0.25, 7.0 / 30.0]);
+        let flipped = [0.0, -1.0, 0.0, 0.25];
+        assert_eq!(
+            on_axis_planes([1.0, 0.2500000000000001, 3.0], &[flipped])[1],
+            0.25
+        );
+        // an arrangement vertex on two axis planes and an oblique one
+        let v = three_planes_point(z, [1.0, 0.0, 0.0, -0.1], [0.0, 0.6, 0.8, -0.3]);
+        assert_eq!((v[0], v[2]), (0.1, 7.0 / 30.0));
+    }
 }
