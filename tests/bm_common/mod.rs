@@ -208,19 +208,24 @@ pub fn section_area(sections: &Sections) -> f64 {
         .sum()
 }
 
-/// The smallest distance between two vertices of `mesh`, relative to its bounding-box diagonal
-/// (tools such as trimesh weld vertices closer than about 1e-8 and so break a surface there).
-#[allow(dead_code)]
-pub fn closest_vertex_gap(mesh: &slice2solid::TriMesh) -> f64 {
-    let v = &mesh.vertices;
+/// The diagonal of the bounding box of `points`.
+pub fn diagonal(points: &[[f64; 3]]) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in v {
+    for p in points {
         for i in 0..3 {
             lo[i] = lo[i].min(p[i]);
             hi[i] = hi[i].max(p[i]);
         }
     }
-    let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
+    (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The smallest distance between two vertices of `mesh`, relative to its bounding-box diagonal
+/// (tools such as trimesh weld vertices closer than about 1e-8 and so break a surface there).
+#[allow(dead_code)]
+pub fn closest_vertex_gap(mesh: &slice2solid::TriMesh) -> f64 {
+    let v = &mesh.vertices;
+    let diag = diagonal(v);
     // sorted by x, each vertex against those after it within the best distance so far
     let mut order: Vec<usize> = (0..v.len()).collect();
     order.sort_by(|&a, &b| v[a][0].total_cmp(&v[b][0]));
@@ -244,15 +249,7 @@ pub fn closest_vertex_gap(mesh: &slice2solid::TriMesh) -> f64 {
 /// weld vertices, trimesh at about 1e-8, merge them).
 pub fn close_vertex_pairs(mesh: &slice2solid::TriMesh, relative: f64) -> usize {
     let v = &mesh.vertices;
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in v {
-        for i in 0..3 {
-            lo[i] = lo[i].min(p[i]);
-            hi[i] = hi[i].max(p[i]);
-        }
-    }
-    let diag = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
-    let limit = relative * diag;
+    let limit = relative * diagonal(v);
     let mut order: Vec<usize> = (0..v.len()).collect();
     order.sort_by(|&a, &b| v[a][0].total_cmp(&v[b][0]));
     let mut count = 0;
