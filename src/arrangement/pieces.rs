@@ -541,7 +541,7 @@ fn push_edge_crossings(
             // own, its uv read back from that point, which is then exact too)
             let crossed: Vec<[f64; 4]> = z.iter().map(|&j| eq[j as usize]).collect();
             let pos = crate::geom::on_axis_planes(own.to_3d(uv), &crossed);
-            let axis_aligned = own.normal.iter().filter(|&&x| x == 0.0).count() == 2;
+            let axis_aligned = crate::geom::axis_of(&own.equation()).is_some();
             (pos, if axis_aligned { own.to_2d(pos) } else { uv })
         });
         pts.push(Pt { id, sv: s });

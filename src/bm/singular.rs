@@ -10,7 +10,7 @@
 //! of crossing diagrams: the part near v of every gap but the largest is kept). The rounds repeat
 //! on the new boundary up to a bound; what stays singular is counted by the caller.
 use super::refine::{edge, grow, key3, on_a_plane, Growth, Planes, Triangulation};
-use super::spacing::{Spaced, Stagger, MIN_GAP};
+use super::spacing::{Rule, Spaced, MIN_GAP};
 use crate::fxhash::{FxHashMap, FxHashSet};
 use smallvec::SmallVec;
 
@@ -242,10 +242,10 @@ fn split_points(
                 }
                 let (p, q) = (positions[c as usize], positions[x as usize]);
                 if p != q && !out.contains_key(&edge(c, x)) {
-                    let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
-                    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                    let d = crate::sections::sub(q, p);
+                    let len = crate::sections::dot(d, d).sqrt();
                     let fraction = |k: f64| k * distance / len;
-                    let (point, _) = spaced.place([p, q], fraction, Stagger::Both, c, Some(c));
+                    let (point, _) = spaced.place([p, q], fraction, Rule::Growth, c);
                     out.insert(edge(c, x), point);
                 }
             }

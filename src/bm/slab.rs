@@ -21,7 +21,7 @@
 //! axis-aligned planes) is tried once more with those edges split too; `refine::grow` then keeps
 //! a slab only where its faces on a plane lie inside that plane's section.
 use super::refine::{edge, grow, key3, key4, Growth, Planes, Triangulation};
-use super::spacing::{Spaced, Stagger, MIN_GAP};
+use super::spacing::{Rule, Spaced, MIN_GAP};
 use crate::fxhash::{FxHashMap, FxHashSet};
 /// A section triangle as one cell has it: global ids, outward from the cell, whether a kept
 /// tetrahedron of the cell stands on it, and that cell's tetrahedron's fourth vertex (`u32::MAX`
@@ -358,7 +358,7 @@ fn split_points(
                 continue;
             }
             if let std::collections::hash_map::Entry::Vacant(e) = out.entry(edge(v, p.tet[3])) {
-                let (x, at) = spaced.place([pv, apex], s, Stagger::Farther, v, None);
+                let (x, at) = spaced.place([pv, apex], s, Rule::Slab, v);
                 e.insert((x, at * h));
             }
         }

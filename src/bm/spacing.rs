@@ -25,14 +25,15 @@ const STAGGER: [f64; 5] = [1.0, 1.01, 0.99, 1.02, 0.98];
 const FINE_STEPS: usize = 200;
 const FINE_RANGE: f64 = 0.1;
 
-/// Which way a point may move from its distance.
+/// How a point of each refinement is spaced.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Stagger {
-    /// Nearer or farther (growth: any point near its core does).
-    Both,
-    /// Only farther, unless the distance was capped at the middle of the edge (a slab keeps at
-    /// least its thickness).
-    Farther,
+pub enum Rule {
+    /// A growth's point: crowded by its own core's points only, it may move nearer or farther
+    /// (any point near its core does).
+    Growth,
+    /// A slab's point: crowded by every point of the slabs, it moves only farther, unless its
+    /// distance was capped at the middle of the edge (a slab keeps at least its thickness).
+    Slab,
 }
 
 /// Points kept apart by at least `gap`: a grid of cells of that size. Each point has an owner (a
@@ -81,33 +82,35 @@ impl Spaced {
     }
 
     /// The point on the edge from `p` to `q` at the fraction `fraction(1)` of it, at most a
-    /// half, moved along the edge (`fraction(k)` for the factors `k` tried, in the direction
-    /// `how` allows) where it would crowd a point (`crowded_by`: of `owner` only, or of anyone);
-    /// recorded as `owner`'s. Where every place tried is crowded, the one at `fraction(1)`.
-    /// Returns the point and the fraction it is at.
+    /// half, moved along the edge (`fraction(k)` for the factors `k` tried, as `rule` allows)
+    /// where it would crowd a point; recorded as `owner`'s. Where every place tried is crowded,
+    /// the one at `fraction(1)`. Returns the point and the fraction it is at.
     pub fn place(
         &mut self,
         [p, q]: [[f64; 3]; 2],
         fraction: impl Fn(f64) -> f64,
-        how: Stagger,
+        rule: Rule,
         owner: u32,
-        crowded_by: Option<u32>,
     ) -> ([f64; 3], f64) {
         let d = [q[0] - p[0], q[1] - p[1], q[2] - p[2]];
         let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         // capped at the middle, the point is staggered nearer: where edges are capped (edges to
         // the previous round's split points are as long as the distance), moving the distance
         // alone would move nothing
-        let capped = fraction(1.0) >= 0.5;
+        let base = fraction(1.0);
+        let capped = base >= 0.5;
         let at = |k: f64| {
             let s = if capped { 0.5 * k } else { fraction(k) };
-            let allowed = s <= 0.5 && (how == Stagger::Both || capped || k >= 1.0);
+            let allowed = s <= 0.5 && (rule == Rule::Growth || capped || k >= 1.0);
             allowed.then_some(([p[0] + s * d[0], p[1] + s * d[1], p[2] + s * d[2]], s))
+        };
+        let crowded_by = match rule {
+            Rule::Growth => Some(owner),
+            Rule::Slab => None,
         };
         // short edges (a contour at a far smaller scale) are dense by nature
         let gap = (SHORT_EDGE * len).min(self.gap);
-        let base = fraction(1.0).min(0.5);
-        let placed = factors(3.0 * gap / (base * len))
+        let placed = factors(3.0 * gap / (base.min(0.5) * len))
             .filter_map(at)
             .find(|&(y, _)| !self.crowds(y, crowded_by, gap))
             .unwrap_or_else(|| at(1.0).expect("at most halfway"));
@@ -153,7 +156,7 @@ mod tests {
         let mut spaced = Spaced::new(MIN_GAP * distance, &[]);
         let mut placed = Vec::new();
         for q in cluster(30) {
-            let (x, s) = spaced.place([core, q], |k| k * distance / 1.0, Stagger::Both, 0, Some(0));
+            let (x, s) = spaced.place([core, q], |k| k * distance / 1.0, Rule::Growth, 0);
             assert!((0.5 * (1.0 - FINE_RANGE)..=0.5).contains(&s), "{s}");
             assert!(on_segment(x, core, q));
             placed.push(x);
@@ -173,32 +176,14 @@ mod tests {
         let (zone_vertex, thickness) = ([0.0; 3], 1e-3);
         let mut spaced = Spaced::new(MIN_GAP * thickness, &[]);
         for q in cluster(12) {
-            let (x, s) = spaced.place(
-                [zone_vertex, q],
-                |k| k * thickness,
-                Stagger::Farther,
-                7,
-                None,
-            );
+            let (x, s) = spaced.place([zone_vertex, q], |k| k * thickness, Rule::Slab, 7);
             assert!(s >= thickness && on_segment(x, zone_vertex, q), "{s}");
         }
         // capped: half the apex's height at most, so nearer
         let mut spaced = Spaced::new(MIN_GAP * thickness, &[]);
         let near_apex = [[2e-3, 0.0, 0.0], [2e-3, 1e-12, 0.0]];
-        let (_, s0) = spaced.place(
-            [zone_vertex, near_apex[0]],
-            |k| k,
-            Stagger::Farther,
-            8,
-            None,
-        );
-        let (_, s1) = spaced.place(
-            [zone_vertex, near_apex[1]],
-            |k| k,
-            Stagger::Farther,
-            8,
-            None,
-        );
+        let (_, s0) = spaced.place([zone_vertex, near_apex[0]], |k| k, Rule::Slab, 8);
+        let (_, s1) = spaced.place([zone_vertex, near_apex[1]], |k| k, Rule::Slab, 8);
         assert_eq!(s0, 0.5);
         assert!(s1 < 0.5, "{s1}");
     }

@@ -33,12 +33,17 @@ pub fn three_planes_point(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> [f64; 3] {
 /// and cospherical read as a noisy near-degeneracy the tagged kernel's plane rules contradict.
 pub fn on_axis_planes(mut p: [f64; 3], planes: &[[f64; 4]]) -> [f64; 3] {
     for e in planes {
-        let zeros = (0..3).filter(|&k| e[k] == 0.0).count();
-        if let (2, Some(k)) = (zeros, (0..3).find(|&k| e[k].abs() == 1.0)) {
+        if let Some(k) = axis_of(e) {
             p[k] = -e[3] * e[k];
         }
     }
     p
+}
+
+/// The axis a plane `[n, d]` is perpendicular to: its unit normal has two zero components.
+pub fn axis_of(e: &[f64; 4]) -> Option<usize> {
+    let zeros = (0..3).filter(|&k| e[k] == 0.0).count();
+    (0..3).find(|&k| e[k].abs() == 1.0).filter(|_| zeros == 2)
 }
 
 /// Distance from `q` to the segment `ab` in the plane (a construction, in floats).
