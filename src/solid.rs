@@ -46,7 +46,7 @@ pub struct DelaunayOptions {
     pub shared_samples: bool,
     /// Keep the raw Boissonnat–Memari topology: voids between the planes that no section witnesses
     /// are otherwise taken into the solid (`bm::voids`), and handles that none witnesses closed by
-    /// membranes of tetrahedra (`bm::tunnels`).
+    /// membranes of tetrahedra (`bm::tunnels`) or cut where no section is (`bm::cuts`).
     pub keep_topology: bool,
     /// Height of the collar, relative to the bounding-box diagonal (0: none): near every plane the
     /// solid is the prism over its section (`bm::collar`), so that sections just off a plane are the

@@ -59,6 +59,8 @@ pub struct Assembled {
     pub hull_slivers: u64,
     /// Handles no section witnesses, closed by membranes of step-1 survivors (`tunnels`).
     pub tunnels: super::tunnels::TunnelStats,
+    /// Handles no section witnesses, cut by layers of kept tetrahedra (`cuts`).
+    pub cuts: super::tunnels::TunnelStats,
     /// The prisms over the sections near every plane (`collar`).
     pub collar: super::collar::CollarStats,
     /// Wall-clock seconds of each stage of the assembly, in order.
@@ -232,6 +234,7 @@ pub fn assemble(
             min_gap: TUNNEL_MIN_GAP * diag,
         };
         out.tunnels = super::tunnels::close(&mut k, &on_hole, settle);
+        out.cuts = super::cuts::cut(&mut k, settle);
     }
     laps.lap("tunnels");
     let mut boundary = None;

@@ -115,6 +115,12 @@ fn cones_at(kept: &[[u32; 4]], core: &[u32]) -> Vec<Vec<[u32; 4]>> {
         .copied()
         .filter(|t| core.iter().all(|v| t.contains(v)))
         .collect();
+    cones_of(&star, core)
+}
+
+/// The tetrahedra of `star` (all containing `core`) in cones, connected through faces containing
+/// the core; largest first, ties by the smallest tetrahedron (deterministic).
+pub(super) fn cones_of(star: &[[u32; 4]], core: &[u32]) -> Vec<Vec<[u32; 4]>> {
     let mut parent: Vec<usize> = (0..star.len()).collect();
     fn find(p: &mut [usize], mut x: usize) -> usize {
         while p[x] != x {

@@ -12,8 +12,8 @@
 //! tags) + prune (`prune`, steps 1–3) → `assembly`: the kept tetrahedra as one complex; flat zones
 //! get slabs of tetrahedra (`slab`), singular edges and pinched vertices are filled (`fill`), grown
 //! into (`refine`, `singular`) or toggled away (`manifold`), enclosed voids no section witnesses
-//! are filled (`voids`) and handles none witnesses closed by membranes of tetrahedra (`tunnels`),
-//! never by moving a vertex.
+//! are filled (`voids`) and handles none witnesses closed by membranes of tetrahedra (`tunnels`)
+//! or cut where no section is (`cuts`), never by moving a vertex.
 //!
 //! Decisions (see each module's doc): flat tets (four vertices on one plane by tags) are left out in
 //! the cells; tet types by the tag rule in `classify`; step 3 uses the paper's face-count rule plus
@@ -40,6 +40,7 @@ pub mod classify;
 pub mod collar;
 pub mod complex;
 pub mod conform;
+pub mod cuts;
 pub mod cutting;
 pub(crate) mod faces;
 pub mod fill;
@@ -677,6 +678,13 @@ fn assemble_cells(
     report.count("tunnel_batches_undone", k.tunnels.batches_undone);
     report.count("tunnel_membranes_untested", k.tunnels.membranes_untested);
     report.count("tunnel_tets_added", k.tunnels.tets_added);
+    report.count("cut_candidates", k.cuts.candidates);
+    report.count("cuts", k.cuts.membranes);
+    report.count("handles_cut", k.cuts.tunnels_closed);
+    report.count("cuts_refused", k.cuts.membranes_refused);
+    report.count("cut_batches_undone", k.cuts.batches_undone);
+    report.count("cuts_untested", k.cuts.membranes_untested);
+    report.count("cut_tets", k.cuts.tets_added);
     report.count("collar_cells", k.collar.cells);
     report.count("collar_cells_refused", k.collar.cells_refused);
     report.count("collar_cells_too_sharp", k.collar.cells_too_sharp);
@@ -710,6 +718,12 @@ fn assemble_cells(
         report.warnings.push(format!(
             "tunnels: {} membranes closing handles no section witnesses were not tried (the budget of batches ran out): those handles stay",
             k.tunnels.membranes_untested
+        ));
+    }
+    if k.cuts.membranes_untested > 0 {
+        report.warnings.push(format!(
+            "cuts: {} layers cutting handles no section witnesses were not tried (the budget of tries ran out): those handles stay",
+            k.cuts.membranes_untested
         ));
     }
     if k.collar.cells_left_singular > 0 {

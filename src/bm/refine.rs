@@ -497,6 +497,42 @@ pub(crate) mod test_support {
         }
     }
 
+    /// Positions, K's tetrahedra and the step-1 survivors of a test complex.
+    pub type Complex = (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<[u32; 4]>);
+
+    /// A solid torus of tetrahedra: a ring of `n` triangular prisms (3 tets each), plus the tets
+    /// of the ring's hole as step-1 survivors (a disk of them spans it).
+    pub fn ring(n: u32) -> Complex {
+        // vertices: per station i, three around the ring tube: 3i, 3i+1, 3i+2; plus centre c
+        let mut pos = Vec::new();
+        for i in 0..n {
+            let a = i as f64 / n as f64 * std::f64::consts::TAU;
+            let (c, s) = (a.cos(), a.sin());
+            pos.push([2.0 * c, 2.0 * s, 0.0]);
+            pos.push([3.0 * c, 3.0 * s, 0.0]);
+            pos.push([2.5 * c, 2.5 * s, 1.0]);
+        }
+        pos.push([0.0, 0.0, 0.0]);
+        pos.push([0.0, 0.0, 1.0]);
+        let (c0, c1) = (3 * n, 3 * n + 1);
+        let mut kept = Vec::new();
+        let mut fill = Vec::new();
+        for i in 0..n {
+            let j = (i + 1) % n;
+            let [a, b, c] = [3 * i, 3 * i + 1, 3 * i + 2];
+            let [d, e, f] = [3 * j, 3 * j + 1, 3 * j + 2];
+            // prism abc-def as three tets
+            kept.push([a, b, c, d]);
+            kept.push([b, c, d, e]);
+            kept.push([c, d, e, f]);
+            // the hole: a fan of tets from the axis to the inner wall (a, d, c, f)
+            fill.push([c0, c1, a, d]);
+            fill.push([c1, a, d, c]);
+            fill.push([c1, d, c, f]);
+        }
+        (pos, kept, fill)
+    }
+
     /// A triangulation that owns its lists (a test builds one and lends it with `view`).
     #[derive(Default)]
     pub struct Owned {

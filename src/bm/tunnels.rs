@@ -217,6 +217,7 @@ pub fn close(k: &mut Triangulation, on_hole: &[bool], settle: Settle) -> TunnelS
     let now = Topology::of(k.kept);
     stats.genus_before = now.genus;
     let mut batches = Batches {
+        how: Move::Close,
         settle,
         now,
         budget: TESTS_BASE + membranes.len() / 8,
@@ -267,18 +268,59 @@ fn thin(k: &Triangulation, on_hole: &[bool], stats: &mut TunnelStats) -> Vec<Vec
         .collect()
 }
 
-/// Step 3's state: how to settle, ∂K's topology now, the batches left.
-struct Batches<'a> {
-    settle: Settle,
-    now: Topology,
-    budget: usize,
-    stats: &'a mut TunnelStats,
+/// What a batch does to K: membranes of unkept tetrahedra close tunnels (taken into K), cuts of
+/// kept ones cut handles (`cuts`: they leave K for `external`, so that settling cannot take them
+/// back).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Move {
+    Close,
+    Cut,
+}
+
+impl Move {
+    /// Make the move with `batch` and settle ∂K: the singular simplices left.
+    fn apply(
+        self,
+        k: &mut Triangulation,
+        batch: &[Vec<[u32; 4]>],
+        settle: Settle,
+    ) -> super::assembly::Sets {
+        let keys: FxHashSet<[u32; 4]> = batch.iter().flatten().map(|&t| key4(t)).collect();
+        match self {
+            Move::Close => {
+                k.fillable.retain(|t| !keys.contains(&key4(*t)));
+                k.kept.extend(batch.iter().flatten().copied());
+                settled(k, settle)
+            }
+            Move::Cut => {
+                k.kept.retain(|t| !keys.contains(&key4(*t)));
+                k.external.extend(batch.iter().flatten().copied());
+                // only the stars of the cut's vertices changed; its sides are then separated
+                // (the resolution's fill would only close the cut again)
+                let mut touched: Vec<u32> = batch.iter().flatten().flatten().copied().collect();
+                touched.sort_unstable();
+                touched.dedup();
+                let sets =
+                    super::assembly::singular_sets_after(k.kept, Default::default(), &touched);
+                super::cuts::separate(k, sets)
+            }
+        }
+    }
+}
+
+/// Step 3's state: the move, how to settle, ∂K's topology now, the batches left.
+pub(super) struct Batches<'a> {
+    pub how: Move,
+    pub settle: Settle,
+    pub now: Topology,
+    pub budget: usize,
+    pub stats: &'a mut TunnelStats,
 }
 
 impl Batches<'_> {
     /// Step 3 for `batch`: take it if [`Batches::try_batch`] keeps it; else without the membranes
     /// blamed for the failure, then each of those alone; else each half.
-    fn take(&mut self, k: &mut Triangulation, batch: &[Vec<[u32; 4]>]) {
+    pub fn take(&mut self, k: &mut Triangulation, batch: &[Vec<[u32; 4]>]) {
         if batch.is_empty() {
             return;
         }
@@ -328,10 +370,7 @@ impl Batches<'_> {
         let (settle, now) = (self.settle, &mut self.now);
         let before = Snapshot::of(k);
         let (kept_before, points_before) = (k.kept.len(), k.positions.len());
-        let keys: FxHashSet<[u32; 4]> = batch.iter().flatten().map(|&t| key4(t)).collect();
-        k.fillable.retain(|t| !keys.contains(&key4(*t)));
-        k.kept.extend(batch.iter().flatten().copied());
-        let mut left = settled(k, settle);
+        let mut left = self.how.apply(k, batch, settle);
         let crowded = crowded_points(k, points_before, settle.min_gap);
         left.1.extend(crowded);
         let blamed = if !left.0.is_empty() || !left.1.is_empty() {
@@ -341,7 +380,7 @@ impl Batches<'_> {
             let after = boundary.topology();
             if after.components <= now.components && after.genus + batch.len() as i64 <= now.genus {
                 *now = after;
-                return Ok(k.kept.len().saturating_sub(kept_before) as u64);
+                return Ok(k.kept.len().abs_diff(kept_before) as u64);
             }
             if after.components > now.components {
                 // a membrane closed a pocket into a cavity a section witnesses: on its boundary
@@ -444,20 +483,20 @@ fn settled(k: &mut Triangulation, settle: Settle) -> super::assembly::Sets {
 
 /// Most batches tried (each costs a few passes over K): this many, plus one per eight membranes;
 /// membranes left when they are spent are counted as untested.
-const TESTS_BASE: usize = 24;
+pub(super) const TESTS_BASE: usize = 24;
 
 /// Most rounds of filling gaps after membranes were added.
 const FILL_ROUNDS: usize = 8;
 
 /// Components and total genus of ∂K (a manifold surface).
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Topology {
-    components: usize,
-    genus: i64,
+pub(super) struct Topology {
+    pub components: usize,
+    pub genus: i64,
 }
 
 impl Topology {
-    fn of(tets: &[[u32; 4]]) -> Topology {
+    pub fn of(tets: &[[u32; 4]]) -> Topology {
         Boundary::of(tets).topology()
     }
 }
@@ -527,10 +566,20 @@ impl Boundary {
 
 /// The survivors that thinning left, in groups joined through shared vertices.
 fn membranes(s: &Thinning, n_kept: usize) -> Vec<Vec<usize>> {
-    let mut group = vec![false; s.tets.len()];
+    vertex_groups(s.tets, s.stars, |t| t >= n_kept && s.in_s[t])
+}
+
+/// The tetrahedra that pass `member`, in groups joined through shared vertices (`stars`: the
+/// tetrahedra around each vertex), each in the order found, groups by their first member.
+pub(super) fn vertex_groups(
+    tets: &[[u32; 4]],
+    stars: &Stars<u32>,
+    member: impl Fn(usize) -> bool,
+) -> Vec<Vec<usize>> {
+    let mut group = vec![false; tets.len()];
     let mut out: Vec<Vec<usize>> = Vec::new();
-    for t0 in n_kept..s.tets.len() {
-        if !s.in_s[t0] || group[t0] {
+    for t0 in 0..tets.len() {
+        if !member(t0) || group[t0] {
             continue;
         }
         group[t0] = true;
@@ -539,10 +588,10 @@ fn membranes(s: &Thinning, n_kept: usize) -> Vec<Vec<usize>> {
         while i < members.len() {
             let t = members[i];
             i += 1;
-            for &v in &s.tets[t] {
-                for &o in &s.stars[v as usize] {
+            for &v in &tets[t] {
+                for &o in &stars[v as usize] {
                     let o = o as usize;
-                    if o >= n_kept && s.in_s[o] && !group[o] {
+                    if member(o) && !group[o] {
                         group[o] = true;
                         members.push(o);
                     }
@@ -589,14 +638,24 @@ fn simplices<'a>(tets: impl Iterator<Item = &'a [u32; 4]>) -> Simplices {
 /// Per tetrahedron of S, its distance in face steps within S from K (the first `n_kept`); those
 /// that no path reaches get the largest depth (they go first).
 fn depths(s: &Thinning, n_kept: usize) -> Vec<u32> {
-    let mut depth = vec![u32::MAX; s.tets.len()];
-    let mut queue: VecDeque<usize> = (0..n_kept).collect();
-    for d in &mut depth[..n_kept] {
-        *d = 0;
+    face_steps(s.tets.len(), |t| t < n_kept, |t, i| s.across(t, i))
+}
+
+/// Per tetrahedron (of `n`), its distance in face steps (`across`: the neighbour across face `i`
+/// of `t`, if any) from the `seed` ones; `u32::MAX` where no path reaches.
+pub(super) fn face_steps(
+    n: usize,
+    seed: impl Fn(usize) -> bool,
+    across: impl Fn(usize, usize) -> Option<usize>,
+) -> Vec<u32> {
+    let mut depth = vec![u32::MAX; n];
+    let mut queue: VecDeque<usize> = (0..n).filter(|&t| seed(t)).collect();
+    for &t in &queue {
+        depth[t] = 0;
     }
     while let Some(t) = queue.pop_front() {
         for i in 0..4 {
-            if let Some(o) = s.across(t, i) {
+            if let Some(o) = across(t, i) {
                 if depth[o] == u32::MAX {
                     depth[o] = depth[t] + 1;
                     queue.push_back(o);
@@ -610,43 +669,7 @@ fn depths(s: &Thinning, n_kept: usize) -> Vec<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bm::refine::test_support::Owned;
-
-    /// Positions, K's tetrahedra and the step-1 survivors of a test complex.
-    type Complex = (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<[u32; 4]>);
-
-    /// A solid torus of tetrahedra: a ring of `n` triangular prisms (3 tets each), plus the tets
-    /// of the ring's hole as step-1 survivors (a disk of them spans it).
-    fn ring(n: u32) -> Complex {
-        // vertices: per station i, three around the ring tube: 3i, 3i+1, 3i+2; plus centre c
-        let mut pos = Vec::new();
-        for i in 0..n {
-            let a = i as f64 / n as f64 * std::f64::consts::TAU;
-            let (c, s) = (a.cos(), a.sin());
-            pos.push([2.0 * c, 2.0 * s, 0.0]);
-            pos.push([3.0 * c, 3.0 * s, 0.0]);
-            pos.push([2.5 * c, 2.5 * s, 1.0]);
-        }
-        pos.push([0.0, 0.0, 0.0]);
-        pos.push([0.0, 0.0, 1.0]);
-        let (c0, c1) = (3 * n, 3 * n + 1);
-        let mut kept = Vec::new();
-        let mut fill = Vec::new();
-        for i in 0..n {
-            let j = (i + 1) % n;
-            let [a, b, c] = [3 * i, 3 * i + 1, 3 * i + 2];
-            let [d, e, f] = [3 * j, 3 * j + 1, 3 * j + 2];
-            // prism abc-def as three tets
-            kept.push([a, b, c, d]);
-            kept.push([b, c, d, e]);
-            kept.push([c, d, e, f]);
-            // the hole: a fan of tets from the axis to the inner wall (a, d, c, f)
-            fill.push([c0, c1, a, d]);
-            fill.push([c1, a, d, c]);
-            fill.push([c1, d, c, f]);
-        }
-        (pos, kept, fill)
-    }
+    use crate::bm::refine::test_support::{ring, Complex, Owned};
 
     /// Euler characteristic of the complex of `tets` (β0 − β1 + β2).
     fn euler(tets: &[[u32; 4]]) -> i64 {

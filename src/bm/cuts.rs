@@ -1,0 +1,582 @@
+//! Handles that no section witnesses, cut inside the complex (issue 19): the dual of `tunnels`.
+//! A handle of K that no membrane of step-1 survivors can close is often a bridge: tetrahedra
+//! joining two parts of the solid across a gap the sections leave open (a web between two
+//! fingers, under a belly). It is cut where no section is, so every section stays exact.
+//!
+//! 1. *Growth.* K is seen through its dual complex (a tetrahedron a vertex, an inner face an edge,
+//!    an inner edge of K the 2-cell of its ring, an inner vertex the 3-cell of its star; with ∂K
+//!    a manifold, K retracts onto it). Start from K' = the *section layer*: the tetrahedra with a
+//!    face in a section or an edge inside one (the fans around such an edge join the section's
+//!    triangles: a cut there could not separate anything). Add the others one at a time, deepest
+//!    in K first (face steps from ∂K), while an addition closes no loop: with f faces on K' whose
+//!    tetrahedra lie in c components of K', and e rings of inner edges that it completes, H₁
+//!    grows by f − c − e (Mayer–Vietoris on the dual cells). So K' gains no handle that its
+//!    section layer does not have; a loop through a section stays.
+//! 2. *Cuts.* What growth leaves of K are layers across K's other handles, where growth fronts
+//!    met. Each layer (joined through shared vertices), smallest first, leaves K for `external`;
+//!    its sides still touch at vertices and edges of the sections' contours (every vertex lies
+//!    on a plane), so they are separated (`separate`): at each singular simplex the cones not
+//!    standing on a section lose their tips. A cut stays when ∂K is then a manifold with no more
+//!    components and at least one handle fewer (`tunnels::Batches`), else it is undone.
+use super::complex::{outward_face, TET_EDGES};
+use super::faces::FaceTable;
+use super::refine::{edge, key3, Triangulation};
+use super::tunnels::{
+    face_steps, vertex_groups, Batches, Move, Settle, Topology, TunnelStats, TESTS_BASE,
+};
+use crate::eval::topology::UnionFind;
+use crate::fxhash::FxHashMap;
+use crate::mesh::Stars;
+use std::collections::BinaryHeap;
+
+/// Cut K's unwitnessed handles (the module's steps); counted in a [`TunnelStats`] (membranes are
+/// cuts, tunnels closed are handles cut). Nothing is tried when ∂K is not a manifold.
+pub fn cut(k: &mut Triangulation, settle: Settle) -> TunnelStats {
+    let mut stats = TunnelStats::default();
+    let (edges, vertices) = super::assembly::singular_sets(k.kept);
+    if !edges.is_empty() || !vertices.is_empty() {
+        stats.skipped_singular = true;
+        return stats;
+    }
+    let now = Topology::of(k.kept);
+    if now.genus == 0 {
+        return stats;
+    }
+    let mut cuts = grow(k, &mut stats);
+    if cuts.is_empty() {
+        return stats;
+    }
+    stats.genus_before = now.genus;
+    let mut batches = Batches {
+        how: Move::Cut,
+        settle,
+        now,
+        budget: TESTS_BASE + cuts.len() / 8,
+        stats: &mut stats,
+    };
+    // one at a time, smallest first: a batch of them rarely all cut, and each try costs a few
+    // passes over K
+    cuts.sort_by_key(|c| c.len());
+    for c in &cuts {
+        batches.take(k, std::slice::from_ref(c));
+    }
+    stats.genus_after = batches.now.genus;
+    stats
+}
+
+/// K' during growth, seen through its dual complex (a tetrahedron a vertex, an inner face an
+/// edge, an inner edge of K the 2-cell of its ring, an inner vertex the 3-cell of its star; ∂K a
+/// manifold makes it a deformation retract of K): which tetrahedra are in K', how many of each
+/// inner edge's ring are, and K''s components (over tetrahedra, through faces).
+struct Growing<'a> {
+    tets: &'a [[u32; 4]],
+    faces: &'a FaceTable,
+    stars: &'a Stars<u32>,
+    in_k: Vec<bool>,
+    /// Per inner edge of K: its ring's tetrahedra, and how many of them are in K'.
+    ring: FxHashMap<(u32, u32), (u32, u32)>,
+    parts: UnionFind,
+}
+
+impl Growing<'_> {
+    /// The tetrahedron across face `i` of `t` (in K), if any.
+    fn across(&self, t: usize, i: usize) -> Option<usize> {
+        let mut f = outward_face(&self.tets[t], i);
+        f.sort_unstable();
+        self.faces.owners(&f).map(|o| o as usize).find(|&o| o != t)
+    }
+
+    /// Whether adding `t` to K' closes no loop (the module's rule): with f faces on K', whose
+    /// tetrahedra lie in c components of K', and e rings of inner edges that `t` completes,
+    /// H₁ grows by f − c − e (each completed ring fills the loop it closes; an inner vertex's
+    /// completed star fills the cavity its rings close). False when no face touches K'.
+    fn addable(&mut self, t: usize) -> bool {
+        let mut roots: smallvec::SmallVec<[usize; 4]> = smallvec::SmallVec::new();
+        for i in 0..4 {
+            if let Some(o) = self.across(t, i).filter(|&o| self.in_k[o]) {
+                roots.push(self.parts.find(o));
+            }
+        }
+        let f = roots.len() as i64;
+        if f == 0 {
+            return false;
+        }
+        roots.sort_unstable();
+        roots.dedup();
+        let tet = self.tets[t];
+        let e = TET_EDGES
+            .iter()
+            .filter(|&&(a, b)| {
+                self.ring
+                    .get(&edge(tet[a], tet[b]))
+                    .is_some_and(|&(total, inside)| inside + 1 == total)
+            })
+            .count() as i64;
+        f - roots.len() as i64 - e <= 0
+    }
+
+    /// Put `t` in K'; the tetrahedra whose rule may have changed go to `push`.
+    fn add(&mut self, t: usize, mut push: impl FnMut(usize)) {
+        self.in_k[t] = true;
+        let tet = self.tets[t];
+        for i in 0..4 {
+            if let Some(o) = self.across(t, i) {
+                if self.in_k[o] {
+                    self.parts.union(t, o);
+                }
+                push(o);
+            }
+        }
+        for (a, b) in TET_EDGES {
+            let key = edge(tet[a], tet[b]);
+            if let Some(r) = self.ring.get_mut(&key) {
+                r.1 += 1;
+                if r.1 + 1 == r.0 {
+                    for &o in &self.stars[key.0 as usize] {
+                        if self.tets[o as usize].contains(&key.1) {
+                            push(o as usize);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Per inner edge of a tetrahedron that is not `grounded` (on no face of ∂K: `open` has a bit
+/// per face on it): how many tetrahedra hold it (and 0 in K' so far).
+fn inner_edges(
+    tets: &[[u32; 4]],
+    grounded: &[bool],
+    open: &[u8],
+) -> FxHashMap<(u32, u32), (u32, u32)> {
+    let mut ring: FxHashMap<(u32, u32), (u32, u32)> = FxHashMap::default();
+    for t in (0..tets.len()).filter(|&t| !grounded[t]) {
+        for (a, b) in TET_EDGES {
+            ring.insert(edge(tets[t][a], tets[t][b]), (0, 0));
+        }
+    }
+    for (t, tet) in tets.iter().enumerate() {
+        for (a, b) in TET_EDGES {
+            if let Some(r) = ring.get_mut(&edge(tet[a], tet[b])) {
+                r.0 += 1;
+            }
+        }
+        for i in (0..4).filter(|i| open[t] >> i & 1 == 1) {
+            let f = outward_face(tet, i);
+            for j in 0..3 {
+                ring.remove(&edge(f[j], f[(j + 1) % 3]));
+            }
+        }
+    }
+    ring
+}
+
+/// Step 1: the cuts (groups of K's tetrahedra joined through shared vertices) that growth from
+/// the grounded core leaves out.
+fn grow(k: &Triangulation, stats: &mut TunnelStats) -> Vec<Vec<[u32; 4]>> {
+    let tets: &[[u32; 4]] = k.kept;
+    let faces = FaceTable::new(tets);
+    let n = k.positions.len();
+    let stars = Stars::<u32>::new(n, tets);
+    // edges inside a section (two of its triangles on them): the fans around them join the
+    // section's triangles, a cut through them cannot separate anything
+    let mut section_edges: FxHashMap<(u32, u32), u32> = FxHashMap::default();
+    for f in k.internal.iter() {
+        for i in 0..3 {
+            *section_edges.entry(edge(f[i], f[(i + 1) % 3])).or_default() += 1;
+        }
+    }
+    let grounded: Vec<bool> = tets
+        .iter()
+        .map(|t| {
+            (0..4).any(|i| k.internal.contains(&key3(outward_face(t, i))))
+                || (TET_EDGES.iter()).any(|&(a, b)| {
+                    section_edges
+                        .get(&edge(t[a], t[b]))
+                        .is_some_and(|&n| n >= 2)
+                })
+        })
+        .collect();
+    // per tetrahedron, a bit per face on ∂K
+    let open: Vec<u8> = (0..tets.len())
+        .map(|t| {
+            (0..4).fold(0u8, |m, i| {
+                let mut f = outward_face(&tets[t], i);
+                f.sort_unstable();
+                m | (u8::from(faces.owners(&f).len() == 1) << i)
+            })
+        })
+        .collect();
+    let mut g = Growing {
+        tets,
+        faces: &faces,
+        stars: &stars,
+        in_k: vec![false; tets.len()],
+        ring: inner_edges(tets, &grounded, &open),
+        parts: UnionFind::new(tets.len()),
+    };
+    for t in (0..tets.len()).filter(|&t| grounded[t]) {
+        g.add(t, |_| {});
+    }
+    stats.candidates = grounded.iter().filter(|&&b| !b).count() as u64;
+    let depth = face_steps(tets.len(), |t| open[t] != 0, |t, i| g.across(t, i));
+    let mut heap: BinaryHeap<(u32, usize)> = (0..tets.len())
+        .filter(|&t| !grounded[t])
+        .map(|t| (depth[t], t))
+        .collect();
+    while let Some((_, t)) = heap.pop() {
+        if g.in_k[t] || !g.addable(t) {
+            continue;
+        }
+        let mut pushed = Vec::new();
+        g.add(t, |o| pushed.push(o));
+        for o in pushed {
+            if !g.in_k[o] {
+                heap.push((depth[o], o));
+            }
+        }
+    }
+    // what growth left out, in groups joined through shared vertices
+    let groups = vertex_groups(tets, &stars, |t| !g.in_k[t]);
+    stats.membranes = groups.len() as u64;
+    groups
+        .into_iter()
+        .map(|m| m.into_iter().map(|t| tets[t]).collect())
+        .collect()
+}
+
+/// Most rounds of separating (each takes every independent singular simplex at once).
+const SEPARATE_ROUNDS: usize = 6;
+
+/// After a cut, ∂K is singular where its two sides still touch (at vertices and edges of the
+/// sections' contours, which both sides hold). At each singular vertex and edge, every cone but
+/// the one standing on a section there (else the largest) loses its tip: the edges from the
+/// simplex into those cones are split `SIDE_FRACTION` along (`APEX_FRACTION` at an apex) and the
+/// children at the simplex leave K for `external`. Simplices whose cones share an edge with
+/// another's wait for the next round, so one refinement serves a whole round.
+pub fn separate(k: &mut Triangulation, sets: super::assembly::Sets) -> super::assembly::Sets {
+    let mut sets = sets;
+    for _ in 0..SEPARATE_ROUNDS {
+        let (edges, vertices) = &sets;
+        if edges.is_empty() && vertices.is_empty() {
+            break;
+        }
+        let cores: Vec<Vec<u32>> = vertices
+            .iter()
+            .map(|&v| vec![v])
+            .chain(edges.iter().map(|&(a, b)| vec![a, b]))
+            .collect();
+        let plans = plan_round(k, &cores);
+        if plans.is_empty() {
+            break;
+        }
+        let touched = apply_round(k, plans);
+        // only the stars of the split tetrahedra's vertices changed
+        sets = super::assembly::singular_sets_after(k.kept, sets, &touched);
+    }
+    sets
+}
+
+/// One simplex's carving: its core, the tetrahedra of the cones that lose their tips, and the
+/// split point of every edge from the core into them.
+struct Plan {
+    core: Vec<u32>,
+    carved: Vec<[u32; 4]>,
+    points: Vec<((u32, u32), [f64; 3])>,
+}
+
+/// The carvings of a round: per core, its cones (from K's stars), the one kept, the others'
+/// split points; a core whose tetrahedra share an edge with an earlier core's waits.
+fn plan_round(k: &Triangulation, cores: &[Vec<u32>]) -> Vec<Plan> {
+    // the kept tetrahedra through a core's first vertex (one pass over K)
+    let mut first: crate::fxhash::FxHashMap<u32, Vec<u32>> =
+        cores.iter().map(|c| (c[0], Vec::new())).collect();
+    for (i, t) in k.kept.iter().enumerate() {
+        for v in t {
+            if let Some(star) = first.get_mut(v) {
+                star.push(i as u32);
+            }
+        }
+    }
+    let mut claimed: crate::fxhash::FxHashSet<(u32, u32)> = Default::default();
+    let mut plans = Vec::new();
+    for core in cores {
+        let star: Vec<[u32; 4]> = first[&core[0]]
+            .iter()
+            .map(|&t| k.kept[t as usize])
+            .filter(|t| core.iter().all(|v| t.contains(v)))
+            .collect();
+        let cones = super::carve::cones_of(&star, core);
+        if cones.len() < 2 {
+            continue;
+        }
+        let grounded: Vec<usize> = (0..cones.len())
+            .filter(|&i| cones[i].iter().any(|t| stands_on_section(k, t, core)))
+            .collect();
+        // the cones that lose their tips, at which core, how far along their edges
+        let (at, carved, far): (Vec<u32>, Vec<[u32; 4]>, bool) = match grounded.len() {
+            0 | 1 => {
+                let keep = grounded.first().copied().unwrap_or(0);
+                let carved = (cones.into_iter().enumerate())
+                    .filter(|&(i, _)| i != keep)
+                    .flat_map(|(_, c)| c)
+                    .collect();
+                (core.clone(), carved, false)
+            }
+            _ => match apex_cut(k, core, &cones, &grounded) {
+                Some((apex, i)) => (vec![apex], cones[i].clone(), true),
+                None => {
+                    continue;
+                }
+            },
+        };
+        let tet_edges = || {
+            carved
+                .iter()
+                .flat_map(|t| TET_EDGES.iter().map(move |&(a, b)| edge(t[a], t[b])))
+        };
+        if tet_edges().any(|e| claimed.contains(&e)) {
+            continue;
+        }
+        claimed.extend(tet_edges());
+        let mut points = Vec::new();
+        for tet in &carved {
+            for &v in &at {
+                let pv = k.positions[v as usize];
+                for &w in tet.iter().filter(|w| !at.contains(w)) {
+                    let d = crate::sections::sub(k.positions[w as usize], pv);
+                    let s = if far { APEX_FRACTION } else { SIDE_FRACTION };
+                    points.push((edge(v, w), [0, 1, 2].map(|i| pv[i] + s * d[i])));
+                }
+            }
+        }
+        points.sort_unstable_by_key(|p| p.0);
+        points.dedup_by_key(|p| p.0);
+        plans.push(Plan {
+            core: at,
+            carved,
+            points,
+        });
+    }
+    plans
+}
+
+/// How far along its edges a cone is carved at its apex (more than half: the two cones of an
+/// edge between two planes then keep disjoint parts of it).
+const APEX_FRACTION: f64 = 0.6;
+
+/// How far along its edges a cone is carved at the simplex its sides share: a fraction of each
+/// edge, not a distance (fans of slivers have nearly parallel edges, whose points at one
+/// distance would crowd).
+const SIDE_FRACTION: f64 = 0.4;
+
+/// At a singular edge between two planes whose two cones each stand on a section through one
+/// end only (slivers standing on the two planes, the sides of a cut between them): the smaller
+/// cone and its apex, the other end; its tip there (beyond the edge's middle) goes, and the next
+/// round separates what is left.
+fn apex_cut(
+    k: &Triangulation,
+    core: &[u32],
+    cones: &[Vec<[u32; 4]>],
+    grounded: &[usize],
+) -> Option<(u32, usize)> {
+    let &[a, b] = core else { return None };
+    if grounded.len() != 2 {
+        return None;
+    }
+    // per grounded cone, the core ends its section faces hold
+    let ends = |i: usize| {
+        let (mut on_a, mut on_b) = (false, false);
+        for t in &cones[i] {
+            for j in 0..4 {
+                let f = key3(outward_face(t, j));
+                if k.internal.contains(&f) {
+                    on_a |= f.contains(&a);
+                    on_b |= f.contains(&b);
+                }
+            }
+        }
+        (on_a, on_b)
+    };
+    let (x, y) = (grounded[0], grounded[1]);
+    match (ends(x), ends(y)) {
+        ((true, false), (false, true)) | ((false, true), (true, false)) => {
+            let i = if cones[x].len() <= cones[y].len() {
+                x
+            } else {
+                y
+            };
+            let apex = if ends(i).0 { b } else { a };
+            Some((apex, i))
+        }
+        _ => None,
+    }
+}
+
+/// Whether `t` has a face through `core` in a section.
+fn stands_on_section(k: &Triangulation, t: &[u32; 4], core: &[u32]) -> bool {
+    (0..4).any(|j| {
+        let f = key3(outward_face(t, j));
+        f.iter().any(|v| core.contains(v)) && k.internal.contains(&f)
+    })
+}
+
+/// Split at every plan's points (one refinement) and take each plan's tips out of K, where the
+/// split was made and every face of a tip on a plane keeps a kept tetrahedron on its other side.
+/// The vertices whose stars changed.
+fn apply_round(k: &mut Triangulation, plans: Vec<Plan>) -> Vec<u32> {
+    let all: FxHashMap<(u32, u32), [f64; 3]> = plans
+        .iter()
+        .flat_map(|p| p.points.iter().copied())
+        .collect();
+    let first_new = k.positions.len();
+    let touched = super::refine::grow(k, &[], all).touched;
+    let id_of: FxHashMap<[u64; 3], u32> = k.positions[first_new..]
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.map(f64::to_bits), (first_new + i) as u32))
+        .collect();
+    let mut tips: Vec<[u32; 4]> = Vec::new();
+    for plan in &plans {
+        let ids: Option<FxHashMap<(u32, u32), u32>> = (plan.points.iter())
+            .map(|(e, p)| id_of.get(&p.map(f64::to_bits)).map(|&id| (*e, id)))
+            .collect();
+        let Some(ids) = ids else { continue }; // a split refused (it would flip a neighbour)
+        let mine: crate::fxhash::FxHashSet<u32> = ids.values().copied().collect();
+        tips.extend(
+            (plan.carved.iter())
+                .flat_map(|&tet| super::refine::split(tet, &ids))
+                .filter(|c| c.iter().all(|v| plan.core.contains(v) || mine.contains(v))),
+        );
+    }
+    take_tips(k, &tips);
+    touched
+}
+
+/// Move `tips` from K to `external` when each tip face on a plane keeps a kept tetrahedron
+/// that is not a tip on its other side (a section stays covered); else nothing moves.
+fn take_tips(k: &mut Triangulation, tips: &[[u32; 4]]) -> u64 {
+    use super::refine::key4;
+    let tip_keys: crate::fxhash::FxHashSet<[u32; 4]> = tips.iter().map(|&x| key4(x)).collect();
+    let on_plane: crate::fxhash::FxHashSet<[u32; 3]> = (tips.iter())
+        .flat_map(|tip| (0..4).map(move |i| key3(outward_face(tip, i))))
+        .filter(|f| super::refine::on_a_plane(k.planes, f))
+        .collect();
+    let mut covered: crate::fxhash::FxHashSet<[u32; 3]> = Default::default();
+    let uncovered = |tet: &&[u32; 4]| !on_plane.is_empty() && !tip_keys.contains(&key4(**tet));
+    for tet in k.kept.iter().filter(uncovered) {
+        for i in 0..4 {
+            let f = key3(outward_face(tet, i));
+            if on_plane.contains(&f) {
+                covered.insert(f);
+            }
+        }
+    }
+    // tips are children of kept tetrahedra split this round: all in K
+    if tips.is_empty() || covered.len() < on_plane.len() {
+        return 0;
+    }
+    k.kept.retain(|x| !tip_keys.contains(&key4(*x)));
+    k.external.extend(tips.iter().copied());
+    tips.len() as u64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bm::refine::test_support::{ring, Owned};
+
+    /// The ring of `ring(n)` (a solid torus of prisms, no survivors) with the floor (z = 0) of
+    /// the prisms `stations` in a section.
+    fn ring_with_floor(n: u32, stations: impl Iterator<Item = u32>) -> Owned {
+        let (positions, kept, _) = ring(n);
+        let mut owned = Owned {
+            kept,
+            ..Owned::at(positions)
+        };
+        for i in stations {
+            let (j, base) = ((i + 1) % n, 3 * i);
+            let [a, b, d, e] = [base, base + 1, 3 * j, 3 * j + 1];
+            owned.internal.insert(key3([a, b, d]));
+            owned.internal.insert(key3([b, d, e]));
+        }
+        owned
+    }
+
+    fn settle() -> Settle {
+        Settle {
+            growth_rounds: 1,
+            growth_distance: 1e-3,
+            min_gap: 1e-7,
+        }
+    }
+
+    #[test]
+    fn a_ring_whose_section_is_one_floor_is_cut_elsewhere() {
+        let mut owned = ring_with_floor(8, 0..1);
+        let floor = owned.internal.clone();
+        let mut k = owned.view();
+        let before = Topology::of(k.kept);
+        assert_eq!((before.components, before.genus), (1, 1));
+        let stats = cut(&mut k, settle());
+        assert_eq!((stats.membranes, stats.tunnels_closed), (1, 1), "{stats:?}");
+        let after = Topology::of(k.kept);
+        assert_eq!((after.components, after.genus), (1, 0));
+        let (edges, vertices) = super::super::assembly::singular_sets(k.kept);
+        assert!(edges.is_empty() && vertices.is_empty());
+        // the section keeps its tetrahedra
+        for f in floor {
+            assert!(k
+                .kept
+                .iter()
+                .any(|t| (0..4).any(|i| key3(outward_face(t, i)) == f)));
+        }
+    }
+
+    #[test]
+    fn the_cone_off_the_section_loses_its_tip_at_a_shared_edge() {
+        use crate::bm::refine::test_support::positive;
+        // two tetrahedra sharing only the edge (0, 1); the first stands on a section there
+        let positions = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.5, 1.0, 0.0],
+            [0.5, 0.5, 1.0],
+            [0.5, -1.0, 0.0],
+            [0.5, -0.5, -1.0],
+        ];
+        let on_section = positive(&positions, [0, 1, 2, 3]);
+        let off = positive(&positions, [0, 1, 4, 5]);
+        let mut owned = Owned {
+            kept: vec![on_section, off],
+            ..Owned::at(positions)
+        };
+        owned.internal.insert([0, 1, 2]);
+        let mut k = owned.view();
+        let sets = super::super::assembly::singular_sets(k.kept);
+        assert_eq!(sets.0, vec![(0, 1)]);
+        let left = separate(&mut k, sets);
+        assert!(left.0.is_empty() && left.1.is_empty(), "{left:?}");
+        assert_eq!(left, super::super::assembly::singular_sets(k.kept));
+        // the first is whole, the second lost the part near the edge
+        assert!(k.kept.contains(&on_section));
+        assert!(!k
+            .kept
+            .iter()
+            .any(|t| t != &on_section && t.contains(&0) && t.contains(&1)));
+        assert!(k.kept.iter().any(|t| t.contains(&4) && t.contains(&5)));
+    }
+
+    #[test]
+    fn a_loop_through_a_section_is_not_cut() {
+        // the floor of every prism is in a section: the ring's loop lies in the section layer
+        let mut owned = ring_with_floor(8, 0..8);
+        let mut k = owned.view();
+        let n = k.kept.len();
+        let stats = cut(&mut k, settle());
+        assert_eq!((stats.membranes, stats.tunnels_closed), (0, 0), "{stats:?}");
+        assert_eq!(k.kept.len(), n);
+        assert_eq!(Topology::of(k.kept).genus, 1);
+    }
+}
