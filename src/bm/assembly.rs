@@ -232,6 +232,7 @@ pub fn assemble(
             growth_rounds: GROW_ROUNDS,
             growth_distance: SINGULAR_GROWTH * diag,
             min_gap: TUNNEL_MIN_GAP * diag,
+            near_coplanar: crate::eval::near_coplanar::NEAR_COPLANAR_RELATIVE_TOLERANCE * diag,
         };
         out.tunnels = super::tunnels::close(&mut k, &on_hole, settle);
         out.cuts = super::cuts::cut(&mut k, settle);

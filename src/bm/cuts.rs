@@ -252,10 +252,15 @@ const SEPARATE_ROUNDS: usize = 6;
 /// After a cut, ∂K is singular where its two sides still touch (at vertices and edges of the
 /// sections' contours, which both sides hold). At each singular vertex and edge, every cone but
 /// the one standing on a section there (else the largest) loses its tip: the edges from the
-/// simplex into those cones are split `SIDE_FRACTION` along (`APEX_FRACTION` at an apex) and the
+/// simplex into those cones are split `SIDE_FRACTION` along (`APEX_FRACTION` at an apex; moved
+/// where that would crowd a neighbour, `split_point`) and the
 /// children at the simplex leave K for `external`. Simplices whose cones share an edge with
 /// another's wait for the next round, so one refinement serves a whole round.
-pub fn separate(k: &mut Triangulation, sets: super::assembly::Sets) -> super::assembly::Sets {
+pub fn separate(
+    k: &mut Triangulation,
+    sets: super::assembly::Sets,
+    min_gap: f64,
+) -> super::assembly::Sets {
     let mut sets = sets;
     for _ in 0..SEPARATE_ROUNDS {
         let (edges, vertices) = &sets;
@@ -267,7 +272,7 @@ pub fn separate(k: &mut Triangulation, sets: super::assembly::Sets) -> super::as
             .map(|&v| vec![v])
             .chain(edges.iter().map(|&(a, b)| vec![a, b]))
             .collect();
-        let plans = plan_round(k, &cores);
+        let plans = plan_round(k, &cores, min_gap);
         if plans.is_empty() {
             break;
         }
@@ -288,10 +293,10 @@ struct Plan {
 
 /// The carvings of a round: per core, its cones (from K's stars), the one kept, the others'
 /// split points; a core whose tetrahedra share an edge with an earlier core's waits.
-fn plan_round(k: &Triangulation, cores: &[Vec<u32>]) -> Vec<Plan> {
+fn plan_round(k: &Triangulation, cores: &[Vec<u32>], min_gap: f64) -> Vec<Plan> {
     // the kept tetrahedra through a core's first vertex (one pass over K)
     let mut first: crate::fxhash::FxHashMap<u32, Vec<u32>> =
-        cores.iter().map(|c| (c[0], Vec::new())).collect();
+        cores.iter().flatten().map(|&v| (v, Vec::new())).collect();
     for (i, t) in k.kept.iter().enumerate() {
         for v in t {
             if let Some(star) = first.get_mut(v) {
@@ -346,8 +351,16 @@ fn plan_round(k: &Triangulation, cores: &[Vec<u32>]) -> Vec<Plan> {
                 let pv = k.positions[v as usize];
                 for &w in tet.iter().filter(|w| !at.contains(w)) {
                     let d = crate::sections::sub(k.positions[w as usize], pv);
-                    let s = if far { APEX_FRACTION } else { SIDE_FRACTION };
-                    points.push((edge(v, w), [0, 1, 2].map(|i| pv[i] + s * d[i])));
+                    // the point's neighbours: the tetrahedra around its edge, the points placed
+                    let near: Vec<[f64; 3]> = (first[&v].iter())
+                        .map(|&t| k.kept[t as usize])
+                        .filter(|t| t.contains(&w))
+                        .flatten()
+                        .map(|x| k.positions[x as usize])
+                        .chain(points.iter().map(|&(_, q)| q))
+                        .collect();
+                    let p = split_point(pv, d, far, &near, min_gap);
+                    points.push((edge(v, w), p));
                 }
             }
         }
@@ -412,6 +425,31 @@ fn apex_cut(
         }
         _ => None,
     }
+}
+
+/// The point `APEX_FRACTION` (at an apex) or `SIDE_FRACTION` along `d` from `pv`, moved along
+/// the edge by tenths (an apex's point staying beyond the middle, a side's up to it) to the first
+/// place at least 1.5 `min_gap` from every point of `near` (the vertices of the tetrahedra around
+/// the edge and the points already placed): slivers' edges are nearly parallel, and a point
+/// closer than `min_gap` to a vertex of its tetrahedra fails the cut (`tunnels::crowded_points`).
+fn split_point(pv: [f64; 3], d: [f64; 3], far: bool, near: &[[f64; 3]], min_gap: f64) -> [f64; 3] {
+    let s0 = if far { APEX_FRACTION } else { SIDE_FRACTION };
+    let at = |s: f64| [0, 1, 2].map(|i| pv[i] + s * d[i]);
+    let gap = 1.5 * min_gap;
+    let clear = |s: f64| {
+        let p = at(s);
+        (near.iter()).all(|&q| {
+            let e = crate::sections::sub(p, q);
+            crate::sections::dot(e, e) >= gap * gap
+        })
+    };
+    let fits = |s: f64| s > 0.05 && s < 0.95 && if far { s > 0.5 } else { s <= 0.5 };
+    [0.0, 0.1, -0.1, 0.2, -0.2, 0.3, -0.3]
+        .iter()
+        .map(|ds| s0 + ds)
+        .filter(|&s| fits(s))
+        .find(|&s| clear(s))
+        .map_or(at(s0), at)
 }
 
 /// Whether `t` has a face through `core` in a section.
@@ -509,6 +547,7 @@ mod tests {
             growth_rounds: 1,
             growth_distance: 1e-3,
             min_gap: 1e-7,
+            near_coplanar: 1e-9,
         }
     }
 
@@ -556,7 +595,7 @@ mod tests {
         let mut k = owned.view();
         let sets = super::super::assembly::singular_sets(k.kept);
         assert_eq!(sets.0, vec![(0, 1)]);
-        let left = separate(&mut k, sets);
+        let left = separate(&mut k, sets, 1e-7);
         assert!(left.0.is_empty() && left.1.is_empty(), "{left:?}");
         assert_eq!(left, super::super::assembly::singular_sets(k.kept));
         // the first is whole, the second lost the part near the edge
@@ -566,6 +605,20 @@ mod tests {
             .iter()
             .any(|t| t != &on_section && t.contains(&0) && t.contains(&1)));
         assert!(k.kept.iter().any(|t| t.contains(&4) && t.contains(&5)));
+    }
+
+    #[test]
+    fn a_split_point_moves_off_a_crowding_neighbour() {
+        let (pv, d) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]);
+        // nothing near: the side fraction; a vertex beside it: the next tenth that is clear
+        assert_eq!(split_point(pv, d, false, &[], 0.01), [0.4, 0.0, 0.0]);
+        let near = [[0.4, 0.001, 0.0]];
+        let p = split_point(pv, d, false, &near, 0.01);
+        assert!((p[0] - 0.5).abs() < 1e-12, "{p:?}");
+        // an apex's point stays beyond the middle
+        let near = [[0.6, 0.0, 0.001], [0.7, 0.0, 0.0]];
+        let p = split_point(pv, d, true, &near, 0.01);
+        assert!(p[0] > 0.5 && (p[0] - 0.8).abs() < 1e-12, "{p:?}");
     }
 
     #[test]

@@ -197,6 +197,9 @@ pub struct Settle {
     /// A point growth adds closer than this to another vertex of its tetrahedra fails the batch
     /// (growth halves short edges: repeated, it would crowd points below what viewers weld).
     pub min_gap: f64,
+    /// Two triangles of ∂K near a cut closer than this to each other's planes and overlapping
+    /// there (a double sheet: the walls of a slit through slivers) fail the cut.
+    pub near_coplanar: f64,
 }
 
 /// Close K's unwitnessed tunnels (the module's steps): membranes move from `fillable` into
@@ -302,7 +305,7 @@ impl Move {
                 touched.dedup();
                 let sets =
                     super::assembly::singular_sets_after(k.kept, Default::default(), &touched);
-                super::cuts::separate(k, sets)
+                super::cuts::separate(k, sets, settle.min_gap)
             }
         }
     }
@@ -373,6 +376,10 @@ impl Batches<'_> {
         let mut left = self.how.apply(k, batch, settle);
         let crowded = crowded_points(k, points_before, settle.min_gap);
         left.1.extend(crowded);
+        if self.how == Move::Cut && left.0.is_empty() && left.1.is_empty() {
+            left.1
+                .extend(double_sheets(k, batch, points_before, settle.near_coplanar));
+        }
         let blamed = if !left.0.is_empty() || !left.1.is_empty() {
             blame(k, batch, &left)
         } else {
@@ -395,6 +402,36 @@ impl Batches<'_> {
         before.restore(k);
         Err(blamed)
     }
+}
+
+/// The vertices of ∂K's triangles near a cut (through a vertex of `batch` or a point from
+/// `first` on) that overlap another such triangle nearly in its plane (within `tol`).
+fn double_sheets(k: &Triangulation, batch: &[Vec<[u32; 4]>], first: usize, tol: f64) -> Vec<u32> {
+    use crate::eval::near_coplanar::{normal, overlapping_near_coplanar_with_normals};
+    let mut mark: FxHashSet<u32> = batch.iter().flatten().flatten().copied().collect();
+    mark.extend(first as u32..k.positions.len() as u32);
+    let near: Vec<[u32; 4]> = (k.kept.iter())
+        .filter(|t| t.iter().any(|v| mark.contains(v)))
+        .copied()
+        .collect();
+    let tris: Vec<([[f64; 3]; 3], [u32; 3])> = super::faces::boundary(&near)
+        .into_iter()
+        .filter(|f| f.iter().any(|v| mark.contains(v)))
+        .map(|f| (f.map(|v| k.positions[v as usize]), f))
+        .collect();
+    let normals: Vec<_> = tris.iter().map(|(p, _)| normal(*p)).collect();
+    let mut out = Vec::new();
+    for i in 0..tris.len() {
+        for j in i + 1..tris.len() {
+            let (a, b) = (tris[i], tris[j]);
+            if overlapping_near_coplanar_with_normals(a.0, normals[i], b.0, normals[j], tol) {
+                out.extend(a.1);
+            }
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
 }
 
 /// The points from `first` on with an edge of a kept tetrahedron shorter than `min_gap`.
@@ -748,6 +785,7 @@ mod tests {
             growth_rounds: 1,
             growth_distance: 1e-3,
             min_gap: 1e-7,
+            near_coplanar: 1e-9,
         };
         let stats = close(&mut k, &[false; 7], settle);
         assert_eq!(
