@@ -361,16 +361,44 @@ fn carve_core(t: &mut Triangulation, core: &[u32], cut: Cut, distance: f64) -> u
 /// tip face that lies on a plane has a kept tetrahedron on its other side; else 0.
 fn take_tips(t: &mut Triangulation, core: &[u32], tips: &[[u32; 4]]) -> u64 {
     let tip_keys: FxHashSet<[u32; 4]> = tips.iter().map(|&x| key4(x)).collect();
+    let through_core = |f: &[u32; 3]| f.iter().any(|v| core.contains(v));
+    let in_kept = t
+        .kept
+        .iter()
+        .filter(|x| tip_keys.contains(&key4(**x)))
+        .count();
+    if tips.is_empty()
+        || !sections_stay_covered(t, tips, &tip_keys, through_core)
+        || in_kept < tips.len()
+    {
+        return 0;
+    }
+    t.kept.retain(|x| !tip_keys.contains(&key4(*x)));
+    t.fillable.extend(tips.iter().copied());
+    tips.len() as u64
+}
+
+/// Whether every face of a tip (of `tips`, keyed `tip_keys`) that passes `through` and lies on a
+/// plane keeps a kept tetrahedron that is not a tip on it: taking the tips out leaves every
+/// section covered.
+pub(super) fn sections_stay_covered(
+    t: &Triangulation,
+    tips: &[[u32; 4]],
+    tip_keys: &FxHashSet<[u32; 4]>,
+    through: impl Fn(&[u32; 3]) -> bool,
+) -> bool {
     let mut on_plane: FxHashSet<[u32; 3]> = FxHashSet::default();
     for tip in tips {
         for i in 0..4 {
             let f = super::complex::outward_face(tip, i);
-            if f.iter().any(|v| core.contains(v)) && on_a_plane(t.planes, &f) {
+            if through(&f) && on_a_plane(t.planes, &f) {
                 on_plane.insert(key3(f));
             }
         }
     }
-    // every section face of a tip must stay covered by a kept tetrahedron that is not a tip
+    if on_plane.is_empty() {
+        return true;
+    }
     let mut covered: FxHashSet<[u32; 3]> = FxHashSet::default();
     for tet in t.kept.iter().filter(|x| !tip_keys.contains(&key4(**x))) {
         for i in 0..4 {
@@ -380,17 +408,7 @@ fn take_tips(t: &mut Triangulation, core: &[u32], tips: &[[u32; 4]]) -> u64 {
             }
         }
     }
-    let in_kept = t
-        .kept
-        .iter()
-        .filter(|x| tip_keys.contains(&key4(**x)))
-        .count();
-    if tips.is_empty() || covered.len() < on_plane.len() || in_kept < tips.len() {
-        return 0;
-    }
-    t.kept.retain(|x| !tip_keys.contains(&key4(*x)));
-    t.fillable.extend(tips.iter().copied());
-    tips.len() as u64
+    covered.len() == on_plane.len()
 }
 
 #[cfg(test)]

@@ -33,12 +33,10 @@ use std::collections::BinaryHeap;
 /// cuts, tunnels closed are handles cut). Nothing is tried when ∂K is not a manifold.
 pub fn cut(k: &mut Triangulation, settle: Settle) -> TunnelStats {
     let mut stats = TunnelStats::default();
-    let (edges, vertices) = super::assembly::singular_sets(k.kept);
-    if !edges.is_empty() || !vertices.is_empty() {
+    let Some(now) = Topology::of_manifold(k.kept) else {
         stats.skipped_singular = true;
         return stats;
-    }
-    let now = Topology::of(k.kept);
+    };
     if now.genus == 0 {
         return stats;
     }
@@ -493,31 +491,16 @@ fn apply_round(k: &mut Triangulation, plans: Vec<Plan>) -> Vec<u32> {
 }
 
 /// Move `tips` from K to `external` when each tip face on a plane keeps a kept tetrahedron
-/// that is not a tip on its other side (a section stays covered); else nothing moves.
-fn take_tips(k: &mut Triangulation, tips: &[[u32; 4]]) -> u64 {
+/// that is not a tip on its other side (a section stays covered); else nothing moves. Tips are
+/// children of kept tetrahedra split this round: all in K.
+fn take_tips(k: &mut Triangulation, tips: &[[u32; 4]]) {
     use super::refine::key4;
     let tip_keys: crate::fxhash::FxHashSet<[u32; 4]> = tips.iter().map(|&x| key4(x)).collect();
-    let on_plane: crate::fxhash::FxHashSet<[u32; 3]> = (tips.iter())
-        .flat_map(|tip| (0..4).map(move |i| key3(outward_face(tip, i))))
-        .filter(|f| super::refine::on_a_plane(k.planes, f))
-        .collect();
-    let mut covered: crate::fxhash::FxHashSet<[u32; 3]> = Default::default();
-    let uncovered = |tet: &&[u32; 4]| !on_plane.is_empty() && !tip_keys.contains(&key4(**tet));
-    for tet in k.kept.iter().filter(uncovered) {
-        for i in 0..4 {
-            let f = key3(outward_face(tet, i));
-            if on_plane.contains(&f) {
-                covered.insert(f);
-            }
-        }
-    }
-    // tips are children of kept tetrahedra split this round: all in K
-    if tips.is_empty() || covered.len() < on_plane.len() {
-        return 0;
+    if tips.is_empty() || !super::carve::sections_stay_covered(k, tips, &tip_keys, |_| true) {
+        return;
     }
     k.kept.retain(|x| !tip_keys.contains(&key4(*x)));
     k.external.extend(tips.iter().copied());
-    tips.len() as u64
 }
 
 #[cfg(test)]

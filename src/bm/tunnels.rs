@@ -536,6 +536,13 @@ impl Topology {
     pub fn of(tets: &[[u32; 4]]) -> Topology {
         Boundary::of(tets).topology()
     }
+
+    /// The topology of ∂K when it is a manifold (no singular edge or vertex), from one pass.
+    pub fn of_manifold(tets: &[[u32; 4]]) -> Option<Topology> {
+        let tris = super::faces::boundary(tets);
+        let (edges, vertices) = super::fill::singular_simplices(&tris);
+        (edges.is_empty() && vertices.is_empty()).then(|| Boundary::from_tris(tris).topology())
+    }
 }
 
 /// ∂K's triangles and their components (joined through shared edges).
@@ -546,7 +553,10 @@ struct Boundary {
 
 impl Boundary {
     fn of(tets: &[[u32; 4]]) -> Boundary {
-        let tris = super::faces::boundary(tets);
+        Boundary::from_tris(super::faces::boundary(tets))
+    }
+
+    fn from_tris(tris: Vec<[u32; 3]>) -> Boundary {
         let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
         let mut parts = UnionFind::new(n);
         for t in &tris {
