@@ -19,10 +19,10 @@
 //!    standing on a section lose their tips. A cut stays when ∂K is then a manifold with no more
 //!    components and at least one handle fewer (`tunnels::Batches`), else it is undone.
 use super::complex::{outward_face, TET_EDGES};
-use super::faces::FaceTable;
+use super::faces::{FaceTable, MANY_NEIGHBOURS, NO_NEIGHBOUR};
 use super::refine::{edge, key3, Triangulation};
 use super::tunnels::{
-    face_steps, vertex_groups, Batches, Move, Settle, Topology, TunnelStats, TESTS_BASE,
+    face_steps, vertex_groups, Batches, Move, Settle, Surface, TunnelStats, TESTS_BASE,
 };
 use crate::eval::topology::UnionFind;
 use crate::fxhash::FxHashMap;
@@ -33,18 +33,18 @@ use std::collections::BinaryHeap;
 /// cuts, tunnels closed are handles cut). Nothing is tried when ∂K is not a manifold.
 pub fn cut(k: &mut Triangulation, settle: Settle) -> TunnelStats {
     let mut stats = TunnelStats::default();
-    let Some(now) = Topology::of_manifold(k.kept) else {
+    let Some(now) = Surface::of_manifold(k.kept) else {
         stats.skipped_singular = true;
         return stats;
     };
-    if now.genus == 0 {
+    if now.topology.genus == 0 {
         return stats;
     }
     let mut cuts = grow(k, &mut stats);
     if cuts.is_empty() {
         return stats;
     }
-    stats.genus_before = now.genus;
+    stats.genus_before = now.topology.genus;
     let mut batches = Batches {
         how: Move::Cut,
         settle,
@@ -58,7 +58,7 @@ pub fn cut(k: &mut Triangulation, settle: Settle) -> TunnelStats {
     for c in &cuts {
         batches.take(k, std::slice::from_ref(c));
     }
-    stats.genus_after = batches.now.genus;
+    stats.genus_after = batches.now.topology.genus;
     stats
 }
 
@@ -70,6 +70,8 @@ struct Growing<'a> {
     tets: &'a [[u32; 4]],
     faces: &'a FaceTable,
     stars: &'a Stars<u32>,
+    /// [`FaceTable::neighbours`] of `tets`.
+    adj: Vec<[u32; 4]>,
     in_k: Vec<bool>,
     /// Per inner edge of K: its ring's tetrahedra, and how many of them are in K'.
     ring: FxHashMap<(u32, u32), (u32, u32)>,
@@ -79,9 +81,15 @@ struct Growing<'a> {
 impl Growing<'_> {
     /// The tetrahedron across face `i` of `t` (in K), if any.
     fn across(&self, t: usize, i: usize) -> Option<usize> {
-        let mut f = outward_face(&self.tets[t], i);
-        f.sort_unstable();
-        self.faces.owners(&f).map(|o| o as usize).find(|&o| o != t)
+        match self.adj[t][i] {
+            NO_NEIGHBOUR => None,
+            MANY_NEIGHBOURS => {
+                let mut f = outward_face(&self.tets[t], i);
+                f.sort_unstable();
+                self.faces.owners(&f).map(|o| o as usize).find(|&o| o != t)
+            }
+            o => Some(o as usize),
+        }
     }
 
     /// Whether adding `t` to K' closes no loop (the module's rule): with f faces on K', whose
@@ -177,6 +185,7 @@ fn grow(k: &Triangulation, stats: &mut TunnelStats) -> Vec<Vec<[u32; 4]>> {
     let faces = FaceTable::new(tets);
     let n = k.positions.len();
     let stars = Stars::<u32>::new(n, tets);
+    let adj = faces.neighbours(tets.len());
     // edges inside a section (two of its triangles on them): the fans around them join the
     // section's triangles, a cut through them cannot separate anything
     let mut section_edges: FxHashMap<(u32, u32), u32> = FxHashMap::default();
@@ -197,19 +206,14 @@ fn grow(k: &Triangulation, stats: &mut TunnelStats) -> Vec<Vec<[u32; 4]>> {
         })
         .collect();
     // per tetrahedron, a bit per face on ∂K
-    let open: Vec<u8> = (0..tets.len())
-        .map(|t| {
-            (0..4).fold(0u8, |m, i| {
-                let mut f = outward_face(&tets[t], i);
-                f.sort_unstable();
-                m | (u8::from(faces.owners(&f).len() == 1) << i)
-            })
-        })
+    let open: Vec<u8> = (adj.iter())
+        .map(|a| (0..4).fold(0u8, |m, i| m | (u8::from(a[i] == NO_NEIGHBOUR) << i)))
         .collect();
     let mut g = Growing {
         tets,
         faces: &faces,
         stars: &stars,
+        adj,
         in_k: vec![false; tets.len()],
         ring: inner_edges(tets, &grounded, &open),
         parts: UnionFind::new(tets.len()),
@@ -253,13 +257,15 @@ const SEPARATE_ROUNDS: usize = 6;
 /// simplex into those cones are split `SIDE_FRACTION` along (`APEX_FRACTION` at an apex; moved
 /// where that would crowd a neighbour, `split_point`) and the
 /// children at the simplex leave K for `external`. Simplices whose cones share an edge with
-/// another's wait for the next round, so one refinement serves a whole round.
+/// another's wait for the next round, so one refinement serves a whole round. Returns the
+/// singular simplices left and the vertices whose stars changed.
 pub fn separate(
     k: &mut Triangulation,
     sets: super::assembly::Sets,
     min_gap: f64,
-) -> super::assembly::Sets {
+) -> (super::assembly::Sets, Vec<u32>) {
     let mut sets = sets;
+    let mut all_touched = Vec::new();
     for _ in 0..SEPARATE_ROUNDS {
         let (edges, vertices) = &sets;
         if edges.is_empty() && vertices.is_empty() {
@@ -277,8 +283,9 @@ pub fn separate(
         let touched = apply_round(k, plans);
         // only the stars of the split tetrahedra's vertices changed
         sets = super::assembly::singular_sets_after(k.kept, sets, &touched);
+        all_touched.extend(touched);
     }
-    sets
+    (sets, all_touched)
 }
 
 /// One simplex's carving: its core, the tetrahedra of the cones that lose their tips, and the
@@ -539,11 +546,11 @@ mod tests {
         let mut owned = ring_with_floor(8, 0..1);
         let floor = owned.internal.clone();
         let mut k = owned.view();
-        let before = Topology::of(k.kept);
+        let before = Surface::of(k.kept).topology;
         assert_eq!((before.components, before.genus), (1, 1));
         let stats = cut(&mut k, settle());
         assert_eq!((stats.membranes, stats.tunnels_closed), (1, 1), "{stats:?}");
-        let after = Topology::of(k.kept);
+        let after = Surface::of(k.kept).topology;
         assert_eq!((after.components, after.genus), (1, 0));
         let (edges, vertices) = super::super::assembly::singular_sets(k.kept);
         assert!(edges.is_empty() && vertices.is_empty());
@@ -578,7 +585,7 @@ mod tests {
         let mut k = owned.view();
         let sets = super::super::assembly::singular_sets(k.kept);
         assert_eq!(sets.0, vec![(0, 1)]);
-        let left = separate(&mut k, sets, 1e-7);
+        let (left, _) = separate(&mut k, sets, 1e-7);
         assert!(left.0.is_empty() && left.1.is_empty(), "{left:?}");
         assert_eq!(left, super::super::assembly::singular_sets(k.kept));
         // the first is whole, the second lost the part near the edge
@@ -613,6 +620,6 @@ mod tests {
         let stats = cut(&mut k, settle());
         assert_eq!((stats.membranes, stats.tunnels_closed), (0, 0), "{stats:?}");
         assert_eq!(k.kept.len(), n);
-        assert_eq!(Topology::of(k.kept).genus, 1);
+        assert_eq!(Surface::of(k.kept).topology.genus, 1);
     }
 }

@@ -14,6 +14,11 @@ pub struct FaceTable {
     codes: Vec<u32>,
 }
 
+/// In [`FaceTable::neighbours`]: the face is on no other tetrahedron.
+pub const NO_NEIGHBOUR: u32 = u32::MAX;
+/// In [`FaceTable::neighbours`]: the face is on two or more other tetrahedra.
+pub const MANY_NEIGHBOURS: u32 = u32::MAX - 1;
+
 /// The four vertices in increasing order (a sorting network).
 #[inline]
 fn sorted4(mut t: [u32; 4]) -> [u32; 4] {
@@ -58,6 +63,27 @@ impl FaceTable {
     /// The tetrahedra that have face `f` (a sorted key), in increasing index.
     pub fn owners(&self, f: &[u32; 3]) -> impl ExactSizeIterator<Item = u32> + Clone + '_ {
         self.codes(f).iter().map(|c| c >> 2)
+    }
+
+    /// Per tetrahedron (of `n_tets`) and local face `i`: the other tetrahedron with that face,
+    /// [`NO_NEIGHBOUR`] when none, [`MANY_NEIGHBOURS`] when several (overlapping tetrahedra:
+    /// look them up with [`FaceTable::owners`]). Walks through K read this in O(1) instead of a
+    /// search per step.
+    pub fn neighbours(&self, n_tets: usize) -> Vec<[u32; 4]> {
+        let mut out = vec![[NO_NEIGHBOUR; 4]; n_tets];
+        self.for_each_face(|codes| match *codes {
+            [a, b] => {
+                out[(a >> 2) as usize][(a & 3) as usize] = b >> 2;
+                out[(b >> 2) as usize][(b & 3) as usize] = a >> 2;
+            }
+            [_] => {}
+            _ => {
+                for &c in codes {
+                    out[(c >> 2) as usize][(c & 3) as usize] = MANY_NEIGHBOURS;
+                }
+            }
+        });
+        out
     }
 
     /// Calls `f` with the entries (codes) of every face, in increasing key.
@@ -171,5 +197,35 @@ fn sort_small(rows: &mut [u128]) {
             j -= 1;
         }
         rows[j] = x;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn neighbours_match_the_owners_of_each_face() {
+        // two tetrahedra sharing face 1-2-3, a third sharing 0-1-2 with the first, and a copy
+        // of the second overlapping it (face 1-2-3 then has three owners)
+        let tets = [[0, 1, 2, 3], [4, 1, 2, 3], [5, 0, 1, 2], [4, 3, 2, 1]];
+        let table = FaceTable::new(&tets);
+        let n = table.neighbours(tets.len());
+        for (t, tet) in tets.iter().enumerate() {
+            for i in 0..4 {
+                let mut f = outward_face(tet, i);
+                f.sort_unstable();
+                let others: Vec<u32> = table.owners(&f).filter(|&o| o != t as u32).collect();
+                let want = match others[..] {
+                    [] => NO_NEIGHBOUR,
+                    [o] => o,
+                    _ => MANY_NEIGHBOURS,
+                };
+                assert_eq!(n[t][i], want, "tetrahedron {t} face {i}");
+            }
+        }
+        assert_eq!(n[0][0], MANY_NEIGHBOURS);
+        assert_eq!(n[0][3], 2);
+        assert_eq!(n[2][0], 0);
     }
 }

@@ -26,7 +26,7 @@
 //!    close nothing of K and are refused unseen; a budget of batches bounds the cost (each is a
 //!    few passes over K), what it leaves untried is counted and warned.
 use super::complex::{outward_face, TET_EDGES};
-use super::faces::FaceTable;
+use super::faces::{FaceTable, MANY_NEIGHBOURS, NO_NEIGHBOUR};
 use super::refine::{edge, key3, key4, Triangulation};
 use super::singular::{EdgeGaps, Snapshot};
 use crate::eval::topology::UnionFind;
@@ -61,6 +61,8 @@ struct Thinning<'a> {
     tets: &'a [[u32; 4]],
     faces: &'a FaceTable,
     stars: &'a Stars<u32>,
+    /// [`FaceTable::neighbours`] of `tets`.
+    adj: Vec<[u32; 4]>,
     in_s: Vec<bool>,
     vertex_count: Vec<u32>,
     edge_count: FxHashMap<(u32, u32), u32>,
@@ -87,6 +89,7 @@ impl<'a> Thinning<'a> {
             tets,
             faces,
             stars,
+            adj: faces.neighbours(tets.len()),
             in_s: vec![true; tets.len()],
             vertex_count,
             edge_count,
@@ -95,13 +98,15 @@ impl<'a> Thinning<'a> {
 
     /// The tetrahedron across face `i` of `t` that is in S.
     fn across(&self, t: usize, i: usize) -> Option<usize> {
-        let tet = &self.tets[t];
-        let mut f = outward_face(tet, i);
-        f.sort_unstable();
-        self.faces
-            .owners(&f)
-            .map(|o| o as usize)
-            .find(|&o| o != t && self.in_s[o])
+        match self.adj[t][i] {
+            NO_NEIGHBOUR => None,
+            MANY_NEIGHBOURS => {
+                let mut f = outward_face(&self.tets[t], i);
+                f.sort_unstable();
+                (self.faces.owners(&f).map(|o| o as usize)).find(|&o| o != t && self.in_s[o])
+            }
+            o => Some(o as usize).filter(|&o| self.in_s[o]),
+        }
     }
 
     /// Whether removing `t` leaves no new tunnel and no new cavity (the module's rule).
@@ -217,8 +222,8 @@ pub fn close(k: &mut Triangulation, on_hole: &[bool], settle: Settle) -> TunnelS
     if membranes.is_empty() {
         return stats;
     }
-    let now = Topology::of(k.kept);
-    stats.genus_before = now.genus;
+    let now = Surface::of(k.kept);
+    stats.genus_before = now.topology.genus;
     let mut batches = Batches {
         how: Move::Close,
         settle,
@@ -227,7 +232,7 @@ pub fn close(k: &mut Triangulation, on_hole: &[bool], settle: Settle) -> TunnelS
         stats: &mut stats,
     };
     batches.take(k, &membranes);
-    stats.genus_after = batches.now.genus;
+    stats.genus_after = batches.now.topology.genus;
     stats
 }
 
@@ -281,41 +286,53 @@ pub(super) enum Move {
 }
 
 impl Move {
-    /// Make the move with `batch` and settle ∂K: the singular simplices left.
+    /// Make the move with `batch` and settle ∂K: the singular simplices left, and the vertices
+    /// whose stars changed when the change stayed there (sorted; `None` when settling reached
+    /// further: the resolution's growth and fill).
     fn apply(
         self,
         k: &mut Triangulation,
         batch: &[Vec<[u32; 4]>],
         settle: Settle,
-    ) -> super::assembly::Sets {
+    ) -> (super::assembly::Sets, Option<Vec<u32>>) {
         let keys: FxHashSet<[u32; 4]> = batch.iter().flatten().map(|&t| key4(t)).collect();
+        let mut touched: Vec<u32> = batch.iter().flatten().flatten().copied().collect();
+        touched.sort_unstable();
+        touched.dedup();
         match self {
             Move::Close => {
                 k.fillable.retain(|t| !keys.contains(&key4(*t)));
                 k.kept.extend(batch.iter().flatten().copied());
-                settled(k, settle)
+                // ∂K was a manifold: it is one again unless singular next to the membranes
+                let sets =
+                    super::assembly::singular_sets_after(k.kept, Default::default(), &touched);
+                if sets.0.is_empty() && sets.1.is_empty() {
+                    return (sets, Some(touched));
+                }
+                (settled(k, settle), None)
             }
             Move::Cut => {
                 k.kept.retain(|t| !keys.contains(&key4(*t)));
                 k.external.extend(batch.iter().flatten().copied());
                 // only the stars of the cut's vertices changed; its sides are then separated
                 // (the resolution's fill would only close the cut again)
-                let mut touched: Vec<u32> = batch.iter().flatten().flatten().copied().collect();
-                touched.sort_unstable();
-                touched.dedup();
                 let sets =
                     super::assembly::singular_sets_after(k.kept, Default::default(), &touched);
-                super::cuts::separate(k, sets, settle.min_gap)
+                let (sets, split) = super::cuts::separate(k, sets, settle.min_gap);
+                touched.extend(split);
+                touched.sort_unstable();
+                touched.dedup();
+                (sets, Some(touched))
             }
         }
     }
 }
 
-/// Step 3's state: the move, how to settle, ∂K's topology now, the batches left.
+/// Step 3's state: the move, how to settle, ∂K now (a manifold), the batches left.
 pub(super) struct Batches<'a> {
     pub how: Move,
     pub settle: Settle,
-    pub now: Topology,
+    pub now: Surface,
     pub budget: usize,
     pub stats: &'a mut TunnelStats,
 }
@@ -370,28 +387,36 @@ impl Batches<'_> {
         k: &mut Triangulation,
         batch: &[Vec<[u32; 4]>],
     ) -> Result<u64, Vec<usize>> {
-        let (settle, now) = (self.settle, &mut self.now);
         let before = Snapshot::of(k);
         let (kept_before, points_before) = (k.kept.len(), k.positions.len());
-        let mut left = self.how.apply(k, batch, settle);
-        let crowded = crowded_points(k, points_before, settle.min_gap);
-        left.1.extend(crowded);
+        let (mut left, touched) = self.how.apply(k, batch, self.settle);
+        left.1
+            .extend(crowded_points(k, points_before, self.settle.min_gap));
         if self.how == Move::Cut && left.0.is_empty() && left.1.is_empty() {
-            left.1
-                .extend(double_sheets(k, batch, points_before, settle.near_coplanar));
+            let tol = self.settle.near_coplanar;
+            left.1.extend(double_sheets(k, batch, points_before, tol));
         }
         let blamed = if !left.0.is_empty() || !left.1.is_empty() {
             blame(k, batch, &left)
         } else {
-            let mut boundary = Boundary::of(k.kept);
-            let after = boundary.topology();
-            if after.components <= now.components && after.genus + batch.len() as i64 <= now.genus {
-                *now = after;
+            let mut after = match &touched {
+                Some(touched) => self.now.after(k.kept, touched),
+                None => Surface::of(k.kept),
+            };
+            let closed_over = |t: &Vec<u32>| after.may_hide_a_void(&mut self.now, t);
+            if self.how == Move::Close && touched.as_ref().is_some_and(closed_over) {
+                // a membrane can close a pocket into a cavity: filled when no section witnesses it
+                super::voids::fill(k);
+                after = Surface::of(k.kept);
+            }
+            let (now, then) = (self.now.topology, after.topology);
+            if then.components <= now.components && then.genus + batch.len() as i64 <= now.genus {
+                self.now = after;
                 return Ok(k.kept.len().abs_diff(kept_before) as u64);
             }
-            if after.components > now.components {
+            if then.components > now.components {
                 // a membrane closed a pocket into a cavity a section witnesses: on its boundary
-                let on_small = boundary.minor_vertices();
+                let on_small = after.minor_vertices();
                 (0..batch.len())
                     .filter(|&i| batch[i].iter().flatten().any(|v| on_small.contains(v)))
                     .collect()
@@ -532,61 +557,103 @@ pub(super) struct Topology {
     pub genus: i64,
 }
 
-impl Topology {
-    pub fn of(tets: &[[u32; 4]]) -> Topology {
-        Boundary::of(tets).topology()
+/// ∂K's triangles, its components (joined through shared vertices) and its topology, for a
+/// boundary whose every edge has two triangles (a manifold, or pinched only at vertices).
+pub(super) struct Surface {
+    tris: Vec<[u32; 3]>,
+    /// Over the vertices below the largest one of `tris`.
+    parts: UnionFind,
+    n_vertices: usize,
+    pub topology: Topology,
+}
+
+impl Surface {
+    pub fn of(tets: &[[u32; 4]]) -> Surface {
+        Surface::from_tris(super::faces::boundary(tets))
     }
 
-    /// The topology of ∂K when it is a manifold (no singular edge or vertex), from one pass.
-    pub fn of_manifold(tets: &[[u32; 4]]) -> Option<Topology> {
+    /// ∂K of `tets` when it is a manifold.
+    pub fn of_manifold(tets: &[[u32; 4]]) -> Option<Surface> {
         let tris = super::faces::boundary(tets);
         let (edges, vertices) = super::fill::singular_simplices(&tris);
-        (edges.is_empty() && vertices.is_empty()).then(|| Boundary::from_tris(tris).topology())
-    }
-}
-
-/// ∂K's triangles and their components (joined through shared edges).
-struct Boundary {
-    tris: Vec<[u32; 3]>,
-    parts: UnionFind,
-}
-
-impl Boundary {
-    fn of(tets: &[[u32; 4]]) -> Boundary {
-        Boundary::from_tris(super::faces::boundary(tets))
+        (edges.is_empty() && vertices.is_empty()).then(|| Surface::from_tris(tris))
     }
 
-    fn from_tris(tris: Vec<[u32; 3]>) -> Boundary {
+    fn from_tris(tris: Vec<[u32; 3]>) -> Surface {
         let n = tris.iter().flatten().max().map_or(0, |&v| v as usize + 1);
         let mut parts = UnionFind::new(n);
         for t in &tris {
-            for i in 0..3 {
-                parts.union(t[i] as usize, t[(i + 1) % 3] as usize);
+            parts.union(t[0] as usize, t[1] as usize);
+            parts.union(t[0] as usize, t[2] as usize);
+        }
+        // per component χ = V − E + F = V − F/2, every edge being on two triangles
+        let mut counts: FxHashMap<usize, (i64, i64)> = FxHashMap::default();
+        let mut seen = vec![false; n];
+        for t in &tris {
+            let c = counts.entry(parts.find(t[0] as usize)).or_default();
+            c.1 += 1;
+            for &v in t {
+                if !std::mem::replace(&mut seen[v as usize], true) {
+                    c.0 += 1;
+                }
             }
         }
-        Boundary { tris, parts }
+        let topology = Topology {
+            components: counts.len(),
+            genus: counts.values().map(|&(v, f)| (2 - (v - f / 2)) / 2).sum(),
+        };
+        Surface {
+            tris,
+            parts,
+            n_vertices: n,
+            topology,
+        }
     }
 
-    fn topology(&mut self) -> Topology {
-        // per component: vertices − edges + triangles
-        let mut chi: FxHashMap<usize, i64> = FxHashMap::default();
-        let mut seen = FxHashSet::default();
-        let mut edges = FxHashSet::default();
-        for t in &self.tris {
-            for i in 0..3 {
-                if seen.insert(t[i]) {
-                    *chi.entry(self.parts.find(t[i] as usize)).or_default() += 1;
-                }
-                if edges.insert(edge(t[i], t[(i + 1) % 3])) {
-                    *chi.entry(self.parts.find(t[i] as usize)).or_default() -= 1;
-                }
+    /// ∂K after a change of K inside the stars of the sorted vertices `touched` (every edge of it
+    /// still on two triangles: the caller checked): triangles through no touched vertex stay,
+    /// those through one are read from the tetrahedra through one.
+    pub fn after(&self, tets: &[[u32; 4]], touched: &[u32]) -> Surface {
+        let n = (tets.iter().flatten().chain(touched))
+            .max()
+            .map_or(0, |&v| v as usize + 1);
+        let mut mark = vec![false; n.max(self.n_vertices)];
+        for &v in touched {
+            mark[v as usize] = true;
+        }
+        let near: Vec<[u32; 4]> = (tets.iter())
+            .filter(|t| t.iter().any(|&v| mark[v as usize]))
+            .copied()
+            .collect();
+        let local = super::faces::boundary(&near)
+            .into_iter()
+            .filter(|f| f.iter().any(|&v| mark[v as usize]));
+        let kept = (self.tris.iter())
+            .filter(|f| !f.iter().any(|&v| mark[v as usize]))
+            .copied();
+        Surface::from_tris(kept.chain(local).collect())
+    }
+
+    /// Whether membranes through the `touched` vertices may have closed a pocket into a cavity
+    /// (its wall a new component of ∂K): ∂K has more components than `before`, or the membranes
+    /// joined two components of it (which could hide a new one in the count).
+    fn may_hide_a_void(&self, before: &mut Surface, touched: &[u32]) -> bool {
+        if self.topology.components != before.topology.components {
+            return true;
+        }
+        let mut on_surface = vec![false; before.n_vertices];
+        for t in &before.tris {
+            for &v in t {
+                on_surface[v as usize] = true;
             }
-            *chi.entry(self.parts.find(t[0] as usize)).or_default() += 1;
         }
-        Topology {
-            components: chi.len(),
-            genus: chi.values().map(|c| (2 - c) / 2).sum(),
-        }
+        let mut roots = (touched.iter())
+            .filter(|&&v| on_surface.get(v as usize).copied().unwrap_or(false))
+            .map(|&v| before.parts.find(v as usize))
+            .collect::<Vec<_>>();
+        roots.sort_unstable();
+        roots.dedup();
+        roots.len() > 1
     }
 
     /// The vertices outside the component with the most triangles.
@@ -767,10 +834,46 @@ mod tests {
     fn topology_of_a_ring() {
         let (_, kept, _) = ring(8);
         assert_eq!(
-            Topology::of(&kept),
+            Surface::of(&kept).topology,
             Topology {
                 components: 1,
                 genus: 1
+            }
+        );
+    }
+
+    #[test]
+    fn a_local_change_updates_the_surface_as_a_full_pass_would() {
+        // the ring cut through one prism (a handle fewer), then a second prism away (a second
+        // component): read from the touched stars only, as from all of K
+        let (_, kept, _) = ring(8);
+        let mut now = Surface::of(&kept);
+        let mut k = kept.clone();
+        for station in [0u32, 4] {
+            let prism: Vec<u32> = (3 * station..3 * station + 6).map(|v| v % 24).collect();
+            let cut: Vec<[u32; 4]> = (k.iter())
+                .filter(|t| t.iter().all(|v| prism.contains(v)))
+                .copied()
+                .collect();
+            assert_eq!(cut.len(), 3, "a prism of three tetrahedra");
+            k.retain(|t| !cut.contains(t));
+            let mut touched: Vec<u32> = cut.iter().flatten().copied().collect();
+            touched.sort_unstable();
+            touched.dedup();
+            let after = now.after(&k, &touched);
+            let full = Surface::of(&k);
+            assert_eq!(after.topology, full.topology);
+            let (mut a, mut b) = (after.tris.clone(), full.tris.clone());
+            a.sort_unstable();
+            b.sort_unstable();
+            assert_eq!(a, b);
+            now = after;
+        }
+        assert_eq!(
+            now.topology,
+            Topology {
+                components: 2,
+                genus: 0
             }
         );
     }
