@@ -399,8 +399,16 @@ pub(super) fn sections_stay_covered(
     if on_plane.is_empty() {
         return true;
     }
+    // only a tetrahedron with three vertices on such faces can cover one (no hashing of the rest)
+    let mut on = vec![false; t.positions.len()];
+    for f in &on_plane {
+        for &v in f {
+            on[v as usize] = true;
+        }
+    }
+    let near = |x: &[u32; 4]| x.iter().filter(|&&v| on[v as usize]).count() >= 3;
     let mut covered: FxHashSet<[u32; 3]> = FxHashSet::default();
-    for tet in t.kept.iter().filter(|x| !tip_keys.contains(&key4(**x))) {
+    for tet in (t.kept.iter()).filter(|x| near(x) && !tip_keys.contains(&key4(**x))) {
         for i in 0..4 {
             let f = key3(super::complex::outward_face(tet, i));
             if on_plane.contains(&f) {

@@ -37,6 +37,8 @@ pub struct Filled {
     pub found: super::assembly::Sets,
     /// Those after filling.
     pub left: super::assembly::Sets,
+    /// The vertices of the tetrahedra added (sorted).
+    pub touched: Vec<u32>,
 }
 
 /// [`fill_singularities`], then drop from `fillable` the tetrahedra K has (by vertex set).
@@ -50,7 +52,7 @@ pub fn fill_and_drop(
     for j in 0..fillable.len() {
         ix.candidate[j] = !ix.in_k(j);
     }
-    let mut added = 0u64;
+    let (mut added, mut all_touched) = (0u64, Vec::new());
     let mut now = singular_simplices(&ix.boundary());
     let found = now.clone();
     for _ in 0..max_rounds {
@@ -85,16 +87,100 @@ pub fn fill_and_drop(
         touched.sort_unstable();
         touched.dedup();
         now = super::assembly::singular_sets_after(kept, now, &touched);
+        all_touched.extend(touched);
     }
     let mut j = 0;
     fillable.retain(|_| {
         j += 1;
         ix.candidate[j - 1]
     });
+    all_touched.sort_unstable();
+    all_touched.dedup();
     Filled {
         added,
         found,
         left: now,
+        touched: all_touched,
+    }
+}
+
+/// [`fill_and_drop`] when ∂K's singular simplices `known` are known and few: each round indexes
+/// only the tetrahedra through a vertex of its singular simplices (every gap around one lies in
+/// that star, and so does every tetrahedron with the same vertices as one of them), not all of
+/// K and the fillable ones. The same tetrahedra are added, in the same order; `fillable` loses
+/// those and their copies.
+pub fn fill_near(
+    kept: &mut Vec<[u32; 4]>,
+    fillable: &mut Vec<[u32; 4]>,
+    known: super::assembly::Sets,
+    max_rounds: usize,
+) -> Filled {
+    let mut gone = vec![false; fillable.len()];
+    let (mut added, mut all_touched) = (0u64, Vec::new());
+    let found = known.clone();
+    let mut now = known;
+    for _ in 0..max_rounds {
+        if now.0.is_empty() && now.1.is_empty() {
+            break;
+        }
+        let n = kept.iter().chain(fillable.iter()).flatten().max();
+        let mut near = vec![false; n.map_or(0, |&v| v as usize + 1)];
+        for &v in now.1.iter().chain(now.0.iter().flat_map(|e| [&e.0, &e.1])) {
+            if let Some(m) = near.get_mut(v as usize) {
+                *m = true;
+            }
+        }
+        let touches = |t: &[u32; 4]| t.iter().any(|&v| near[v as usize]);
+        let local_kept: Vec<[u32; 4]> = kept.iter().filter(|t| touches(t)).copied().collect();
+        let global: Vec<usize> = (0..fillable.len())
+            .filter(|&j| !gone[j] && touches(&fillable[j]))
+            .collect();
+        let local_fillable: Vec<[u32; 4]> = global.iter().map(|&j| fillable[j]).collect();
+        let mut ix = Index::new(&local_kept, &local_fillable);
+        for j in 0..local_fillable.len() {
+            ix.candidate[j] = !ix.in_k(j);
+            gone[global[j]] |= !ix.candidate[j];
+        }
+        let (edges, vertices) = &now;
+        let mut to_add: FxHashSet<[u32; 4]> = FxHashSet::default();
+        for gap in edge_gaps(&ix, edges)
+            .into_iter()
+            .chain(vertex_gaps(&ix, vertices))
+        {
+            to_add.extend(gap.iter().map(|&t| key4(t)));
+        }
+        if to_add.is_empty() {
+            break;
+        }
+        let mut touched = Vec::new();
+        for (j, &t) in local_fillable.iter().enumerate() {
+            if ix.candidate[j] && to_add.contains(&key4(t)) && !ix.in_k(j) {
+                kept.push(t);
+                touched.extend(t);
+                ix.add(j);
+                added += 1;
+            }
+        }
+        for (j, &g) in global.iter().enumerate() {
+            gone[g] |= !ix.candidate[j];
+        }
+        touched.sort_unstable();
+        touched.dedup();
+        now = super::assembly::singular_sets_after(kept, now, &touched);
+        all_touched.extend(touched);
+    }
+    let mut j = 0;
+    fillable.retain(|_| {
+        j += 1;
+        !gone[j - 1]
+    });
+    all_touched.sort_unstable();
+    all_touched.dedup();
+    Filled {
+        added,
+        found,
+        left: now,
+        touched: all_touched,
     }
 }
 
@@ -433,5 +519,34 @@ mod tests {
             2
         );
         assert_eq!(singularities(&boundary_of(&kept)), (0, 0));
+    }
+
+    #[test]
+    fn filling_near_the_known_singularities_equals_the_whole_pass() {
+        // a singular edge (0,1) with its gap, a pinched vertex 10 with its strip, a copy of a
+        // kept tetrahedron next to the edge, and fillable tetrahedra far from both
+        let r = ring();
+        let kept = vec![r[0], r[2], [10, 11, 12, 13], [10, 14, 15, 16]];
+        let fillable = vec![
+            [30, 31, 32, 33],
+            r[1],
+            [10, 12, 13, 14],
+            [1, 0, 2, 3],
+            r[3],
+            [10, 13, 14, 15],
+            [31, 32, 33, 34],
+        ];
+        let known = crate::bm::assembly::singular_sets(&kept);
+        assert_eq!((known.0.len(), known.1.len()), (1, 1));
+        let (mut k1, mut f1) = (kept.clone(), fillable.clone());
+        let whole = fill_and_drop(&mut k1, &mut f1, 4);
+        let (mut k2, mut f2) = (kept, fillable);
+        let near = fill_near(&mut k2, &mut f2, known, 4);
+        assert_eq!((whole.added, near.added), (3, 3));
+        assert_eq!(k1, k2, "the same tetrahedra, in the same order");
+        assert_eq!(f1, f2, "the same left fillable, the copy dropped");
+        assert_eq!(whole.left, near.left);
+        assert_eq!(whole.touched, near.touched);
+        assert_eq!(singularities(&boundary_of(&k2)), (0, 0));
     }
 }

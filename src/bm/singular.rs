@@ -23,6 +23,9 @@ pub struct SingularStats {
     pub points: u64,
     /// Singular edges and pinched vertices at the start of each round.
     pub per_round: Vec<(u64, u64)>,
+    /// The vertices whose stars in K some round changed (sorted; the state kept may be an
+    /// earlier one: a superset).
+    pub touched: Vec<u32>,
 }
 
 /// How a gap at a singular edge is grown into.
@@ -95,7 +98,10 @@ pub fn resolve(
             break;
         }
         match grow_round(t, &edges, &vertices, distance, edge_gaps, &mut stats) {
-            Some(touched) => previous = Some(((edges, vertices), touched)),
+            Some(touched) => {
+                stats.touched.extend(&touched);
+                previous = Some(((edges, vertices), touched))
+            }
             None => {
                 best_is_current = false;
                 break;
@@ -108,10 +114,13 @@ pub fn resolve(
             snapshot.restore(t);
             stats = SingularStats {
                 per_round: stats.per_round,
+                touched: stats.touched,
                 ..at_best
             };
         }
     }
+    stats.touched.sort_unstable();
+    stats.touched.dedup();
     (stats, known)
 }
 

@@ -287,14 +287,13 @@ pub(super) enum Move {
 
 impl Move {
     /// Make the move with `batch` and settle ∂K: the singular simplices left, and the vertices
-    /// whose stars changed when the change stayed there (sorted; `None` when settling reached
-    /// further: the resolution's growth and fill).
+    /// whose stars in K changed (sorted).
     fn apply(
         self,
         k: &mut Triangulation,
         batch: &[Vec<[u32; 4]>],
         settle: Settle,
-    ) -> (super::assembly::Sets, Option<Vec<u32>>) {
+    ) -> (super::assembly::Sets, Vec<u32>) {
         let keys: FxHashSet<[u32; 4]> = batch.iter().flatten().map(|&t| key4(t)).collect();
         let mut touched: Vec<u32> = batch.iter().flatten().flatten().copied().collect();
         touched.sort_unstable();
@@ -306,10 +305,14 @@ impl Move {
                 // ∂K was a manifold: it is one again unless singular next to the membranes
                 let sets =
                     super::assembly::singular_sets_after(k.kept, Default::default(), &touched);
-                if sets.0.is_empty() && sets.1.is_empty() {
-                    return (sets, Some(touched));
+                if !sets.0.is_empty() || !sets.1.is_empty() {
+                    let (left, more) = settled(k, settle, sets);
+                    touched.extend(more);
+                    touched.sort_unstable();
+                    touched.dedup();
+                    return (left, touched);
                 }
-                (settled(k, settle), None)
+                (sets, touched)
             }
             Move::Cut => {
                 k.kept.retain(|t| !keys.contains(&key4(*t)));
@@ -322,7 +325,7 @@ impl Move {
                 touched.extend(split);
                 touched.sort_unstable();
                 touched.dedup();
-                (sets, Some(touched))
+                (sets, touched)
             }
         }
     }
@@ -399,13 +402,9 @@ impl Batches<'_> {
         let blamed = if !left.0.is_empty() || !left.1.is_empty() {
             blame(k, batch, &left)
         } else {
-            let mut after = match &touched {
-                Some(touched) => self.now.after(k.kept, touched),
-                None => Surface::of(k.kept),
-            };
-            let closed_over = |t: &Vec<u32>| after.may_hide_a_void(&mut self.now, t);
-            if self.how == Move::Close && touched.as_ref().is_some_and(closed_over) {
-                // a membrane can close a pocket into a cavity: filled when no section witnesses it
+            let mut after = self.now.after(k.kept, &touched);
+            if self.how == Move::Close && after.may_hide_a_void(&mut self.now, &touched) {
+                // membranes can close a pocket into a cavity: filled when no section witnesses it
                 super::voids::fill(k);
                 after = Surface::of(k.kept);
             }
@@ -520,27 +519,31 @@ fn blame(k: &Triangulation, batch: &[Vec<[u32; 4]>], left: &super::assembly::Set
     blamed
 }
 
-/// The resolution's fill and growth after membranes were added; the singular simplices of ∂K
-/// left (a manifold when there are none).
-fn settled(k: &mut Triangulation, settle: Settle) -> super::assembly::Sets {
-    let filled = super::fill::fill_and_drop(k.kept, k.fillable, FILL_ROUNDS);
-    let mut left = filled.left;
+/// The resolution's fill and growth after membranes were added next to the `singular` simplices
+/// of ∂K: those left (a manifold when there are none), and the vertices whose stars in K changed
+/// (sorted). A membrane can also close a pocket into a cavity: `Batches::try_batch` looks.
+fn settled(
+    k: &mut Triangulation,
+    settle: Settle,
+    singular: super::assembly::Sets,
+) -> (super::assembly::Sets, Vec<u32>) {
+    let filled = super::fill::fill_near(k.kept, k.fillable, singular, FILL_ROUNDS);
+    let (mut left, mut touched) = (filled.left, filled.touched);
     for how in [EdgeGaps::NearEdge, EdgeGaps::Whole] {
         if left.0.is_empty() && left.1.is_empty() {
             break;
         }
-        let (_, now) = super::singular::resolve(
+        let (stats, now) = super::singular::resolve(
             k,
             settle.growth_rounds,
             settle.growth_distance,
             how,
             Some(left),
         );
+        touched.extend(stats.touched);
         left = now.unwrap_or_else(|| super::assembly::singular_sets(k.kept));
     }
-    // a membrane can close a pocket into a cavity: filled when no section witnesses it
-    super::voids::fill(k);
-    left
+    (left, touched)
 }
 
 /// Most batches tried (each costs a few passes over K): this many, plus one per eight membranes;
