@@ -19,6 +19,7 @@
 //!    standing on a section lose their tips. A cut stays when ∂K is then a manifold with no more
 //!    components and at least one handle fewer (`tunnels::Batches`), else it is undone.
 use super::complex::{outward_face, TET_EDGES};
+use super::edges::EdgeTable;
 use super::faces::{FaceTable, MANY_NEIGHBOURS, NO_NEIGHBOUR};
 use super::refine::{edge, key3, Triangulation};
 use super::tunnels::{
@@ -73,8 +74,11 @@ struct Growing<'a> {
     /// [`FaceTable::neighbours`] of `tets`.
     adj: Vec<[u32; 4]>,
     in_k: Vec<bool>,
-    /// Per inner edge of K: its ring's tetrahedra, and how many of them are in K'.
-    ring: FxHashMap<(u32, u32), (u32, u32)>,
+    /// The numbers of `tets`' edges.
+    edges: EdgeTable,
+    /// Per inner edge of K (by number): its ring's tetrahedra, and how many of them are in K'
+    /// ((0, 0) for the others).
+    ring: Vec<(u32, u32)>,
     parts: UnionFind,
 }
 
@@ -109,13 +113,10 @@ impl Growing<'_> {
         }
         roots.sort_unstable();
         roots.dedup();
-        let tet = self.tets[t];
-        let e = TET_EDGES
-            .iter()
-            .filter(|&&(a, b)| {
-                self.ring
-                    .get(&edge(tet[a], tet[b]))
-                    .is_some_and(|&(total, inside)| inside + 1 == total)
+        let e = (self.edges.of_tet[t].iter())
+            .filter(|&&id| {
+                let (total, inside) = self.ring[id as usize];
+                total > 0 && inside + 1 == total
             })
             .count() as i64;
         f - roots.len() as i64 - e <= 0
@@ -133,9 +134,10 @@ impl Growing<'_> {
                 push(o);
             }
         }
-        for (a, b) in TET_EDGES {
+        for (e, (a, b)) in TET_EDGES.into_iter().enumerate() {
             let key = edge(tet[a], tet[b]);
-            if let Some(r) = self.ring.get_mut(&key) {
+            let r = &mut self.ring[self.edges.of_tet[t][e] as usize];
+            if r.0 > 0 {
                 r.1 += 1;
                 if r.1 + 1 == r.0 {
                     for &o in &self.stars[key.0 as usize] {
@@ -149,33 +151,31 @@ impl Growing<'_> {
     }
 }
 
-/// Per inner edge of a tetrahedron that is not `grounded` (on no face of ∂K: `open` has a bit
-/// per face on it): how many tetrahedra hold it (and 0 in K' so far).
-fn inner_edges(
-    tets: &[[u32; 4]],
-    grounded: &[bool],
-    open: &[u8],
-) -> FxHashMap<(u32, u32), (u32, u32)> {
-    let mut ring: FxHashMap<(u32, u32), (u32, u32)> = FxHashMap::default();
-    for t in (0..tets.len()).filter(|&t| !grounded[t]) {
-        for (a, b) in TET_EDGES {
-            ring.insert(edge(tets[t][a], tets[t][b]), (0, 0));
+/// Per edge number (`edges`): for an inner edge of a tetrahedron that is not `grounded` (on no
+/// face of ∂K: `open` has a bit per face on it), how many tetrahedra hold it (and 0 in K' so
+/// far); (0, 0) for the others.
+fn inner_edges(edges: &EdgeTable, grounded: &[bool], open: &[u8]) -> Vec<(u32, u32)> {
+    let mut tracked = vec![false; edges.count];
+    let mut total = vec![0u32; edges.count];
+    for (t, ids) in edges.of_tet.iter().enumerate() {
+        for &e in ids {
+            tracked[e as usize] |= !grounded[t];
+            total[e as usize] += 1;
         }
     }
-    for (t, tet) in tets.iter().enumerate() {
-        for (a, b) in TET_EDGES {
-            if let Some(r) = ring.get_mut(&edge(tet[a], tet[b])) {
-                r.0 += 1;
-            }
-        }
+    for (t, ids) in edges.of_tet.iter().enumerate() {
         for i in (0..4).filter(|i| open[t] >> i & 1 == 1) {
-            let f = outward_face(tet, i);
-            for j in 0..3 {
-                ring.remove(&edge(f[j], f[(j + 1) % 3]));
+            // the face opposite vertex i: the edges not through it
+            for (e, &(a, b)) in TET_EDGES.iter().enumerate() {
+                if a != i && b != i {
+                    tracked[ids[e] as usize] = false;
+                }
             }
         }
     }
-    ring
+    (0..edges.count)
+        .map(|e| if tracked[e] { (total[e], 0) } else { (0, 0) })
+        .collect()
 }
 
 /// Step 1: the cuts (groups of K's tetrahedra joined through shared vertices) that growth from
@@ -209,13 +209,15 @@ fn grow(k: &Triangulation, stats: &mut TunnelStats) -> Vec<Vec<[u32; 4]>> {
     let open: Vec<u8> = (adj.iter())
         .map(|a| (0..4).fold(0u8, |m, i| m | (u8::from(a[i] == NO_NEIGHBOUR) << i)))
         .collect();
+    let edges = EdgeTable::new(tets);
     let mut g = Growing {
         tets,
         faces: &faces,
         stars: &stars,
         adj,
         in_k: vec![false; tets.len()],
-        ring: inner_edges(tets, &grounded, &open),
+        ring: inner_edges(&edges, &grounded, &open),
+        edges,
         parts: UnionFind::new(tets.len()),
     };
     for t in (0..tets.len()).filter(|&t| grounded[t]) {

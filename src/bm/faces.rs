@@ -146,7 +146,11 @@ const RANGE: usize = 1 << 13;
 
 /// Calls `f` on consecutive ranges of buckets in parallel: with the range's `start` entries (one
 /// more than its buckets), its rows, and the index of its first row.
-fn for_ranges(start: &[u32], rows: &mut [u128], f: impl Fn(&[u32], &mut [u128], u32) + Sync) {
+pub(super) fn for_ranges<T: Send>(
+    start: &[u32],
+    rows: &mut [T],
+    f: impl Fn(&[u32], &mut [T], u32) + Sync,
+) {
     let n = start.len().saturating_sub(1);
     let mut parts = Vec::with_capacity(n / RANGE + 1);
     let mut rest = rows;
@@ -184,7 +188,7 @@ pub fn boundary(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
 }
 
 /// Insertion sort for the small buckets (a dozen rows on average), the library sort otherwise.
-fn sort_small(rows: &mut [u128]) {
+pub(super) fn sort_small<T: Ord + Copy>(rows: &mut [T]) {
     if rows.len() > 32 {
         rows.sort_unstable();
         return;

@@ -42,6 +42,7 @@ pub mod complex;
 pub mod conform;
 pub mod cuts;
 pub mod cutting;
+pub mod edges;
 pub(crate) mod faces;
 pub mod fill;
 pub mod manifold;

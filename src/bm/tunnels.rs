@@ -26,6 +26,7 @@
 //!    close nothing of K and are refused unseen; a budget of batches bounds the cost (each is a
 //!    few passes over K), what it leaves untried is counted and warned.
 use super::complex::{outward_face, TET_EDGES};
+use super::edges::EdgeTable;
 use super::faces::{FaceTable, MANY_NEIGHBOURS, NO_NEIGHBOUR};
 use super::refine::{edge, key3, key4, Triangulation};
 use super::singular::{EdgeGaps, Snapshot};
@@ -65,7 +66,9 @@ struct Thinning<'a> {
     adj: Vec<[u32; 4]>,
     in_s: Vec<bool>,
     vertex_count: Vec<u32>,
-    edge_count: FxHashMap<(u32, u32), u32>,
+    /// Per edge number (`edges`), how many tetrahedra of S hold it.
+    edges: EdgeTable,
+    edge_count: Vec<u32>,
 }
 
 impl<'a> Thinning<'a> {
@@ -76,13 +79,14 @@ impl<'a> Thinning<'a> {
         n_vertices: usize,
     ) -> Self {
         let mut vertex_count = vec![0u32; n_vertices];
-        let mut edge_count: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-        for tet in tets {
+        let edges = EdgeTable::new(tets);
+        let mut edge_count = vec![0u32; edges.count];
+        for (tet, ids) in tets.iter().zip(&edges.of_tet) {
             for &v in tet {
                 vertex_count[v as usize] += 1;
             }
-            for (a, b) in TET_EDGES {
-                *edge_count.entry(edge(tet[a], tet[b])).or_default() += 1;
+            for &e in ids {
+                edge_count[e as usize] += 1;
             }
         }
         Thinning {
@@ -92,6 +96,7 @@ impl<'a> Thinning<'a> {
             adj: faces.neighbours(tets.len()),
             in_s: vec![true; tets.len()],
             vertex_count,
+            edges,
             edge_count,
         }
     }
@@ -117,10 +122,8 @@ impl<'a> Thinning<'a> {
             return false;
         }
         let vert_in: [bool; 4] = std::array::from_fn(|i| self.vertex_count[tet[i] as usize] > 1);
-        let edge_in: [bool; 6] = std::array::from_fn(|e| {
-            let (a, b) = TET_EDGES[e];
-            self.edge_count[&edge(tet[a], tet[b])] > 1
-        });
+        let ids = &self.edges.of_tet[t];
+        let edge_in: [bool; 6] = std::array::from_fn(|e| self.edge_count[ids[e] as usize] > 1);
         // components of X over its vertices, joined by its edges
         let mut comp = [0usize, 1, 2, 3];
         fn find(c: &mut [usize; 4], mut x: usize) -> usize {
@@ -173,9 +176,9 @@ impl<'a> Thinning<'a> {
                 .map(|&o| o as usize)
                 .find(|&o| this.in_s[o] && need.iter().all(|v| this.tets[o].contains(v)))
         };
-        for (a, b) in TET_EDGES {
+        for (e, (a, b)) in TET_EDGES.into_iter().enumerate() {
             let key = edge(tet[a], tet[b]);
-            let c = self.edge_count.get_mut(&key).expect("edge of S");
+            let c = &mut self.edge_count[self.edges.of_tet[t][e] as usize];
             *c -= 1;
             if *c == 1 {
                 if let Some(o) = last_holder(self, &[key.0, key.1]) {
