@@ -178,6 +178,34 @@ fn inner_edges(edges: &EdgeTable, grounded: &[bool], open: &[u8]) -> Vec<(u32, u
         .collect()
 }
 
+/// Per tetrahedron of K (`tets`, with their `faces` and `edges`), whether it is in the section
+/// layer: a face in a section, or an edge inside one (two of its triangles on it: the fans around
+/// such an edge join the section's triangles, a cut through them cannot separate anything).
+/// Read from the sections' triangles into K's tables, not from K's faces into a hash of them.
+fn section_layer(
+    k: &Triangulation,
+    tets: &[[u32; 4]],
+    faces: &FaceTable,
+    edges: &EdgeTable,
+) -> Vec<bool> {
+    let mut grounded = vec![false; tets.len()];
+    let mut on_section = vec![0u8; edges.count];
+    for f in k.internal.iter() {
+        for c in faces.codes(&key3(*f)) {
+            grounded[(c >> 2) as usize] = true;
+        }
+        for i in 0..3 {
+            if let Some(e) = edges.id(f[i], f[(i + 1) % 3]) {
+                on_section[e as usize] = on_section[e as usize].saturating_add(1);
+            }
+        }
+    }
+    for (g, ids) in grounded.iter_mut().zip(&edges.of_tet) {
+        *g |= ids.iter().any(|&e| on_section[e as usize] >= 2);
+    }
+    grounded
+}
+
 /// Step 1: the cuts (groups of K's tetrahedra joined through shared vertices) that growth from
 /// the grounded core leaves out.
 fn grow(k: &Triangulation, stats: &mut TunnelStats) -> Vec<Vec<[u32; 4]>> {
@@ -186,30 +214,12 @@ fn grow(k: &Triangulation, stats: &mut TunnelStats) -> Vec<Vec<[u32; 4]>> {
     let n = k.positions.len();
     let stars = Stars::<u32>::new(n, tets);
     let adj = faces.neighbours(tets.len());
-    // edges inside a section (two of its triangles on them): the fans around them join the
-    // section's triangles, a cut through them cannot separate anything
-    let mut section_edges: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-    for f in k.internal.iter() {
-        for i in 0..3 {
-            *section_edges.entry(edge(f[i], f[(i + 1) % 3])).or_default() += 1;
-        }
-    }
-    let grounded: Vec<bool> = tets
-        .iter()
-        .map(|t| {
-            (0..4).any(|i| k.internal.contains(&key3(outward_face(t, i))))
-                || (TET_EDGES.iter()).any(|&(a, b)| {
-                    section_edges
-                        .get(&edge(t[a], t[b]))
-                        .is_some_and(|&n| n >= 2)
-                })
-        })
-        .collect();
+    let edges = EdgeTable::new(tets);
+    let grounded = section_layer(k, tets, &faces, &edges);
     // per tetrahedron, a bit per face on ∂K
     let open: Vec<u8> = (adj.iter())
         .map(|a| (0..4).fold(0u8, |m, i| m | (u8::from(a[i] == NO_NEIGHBOUR) << i)))
         .collect();
-    let edges = EdgeTable::new(tets);
     let mut g = Growing {
         tets,
         faces: &faces,

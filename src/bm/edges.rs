@@ -10,6 +10,10 @@ use super::faces::{for_ranges, sort_small};
 pub struct EdgeTable {
     pub of_tet: Vec<[u32; 6]>,
     pub count: usize,
+    /// The numbers of the edges whose smaller vertex is `v`: `start[v]..start[v + 1]`, in
+    /// increasing larger vertex (`larger`, per number).
+    start: Vec<u32>,
+    larger: Vec<u32>,
 }
 
 impl EdgeTable {
@@ -40,17 +44,34 @@ impl EdgeTable {
             }
         });
         let mut of_tet = vec![[0u32; 6]; tets.len()];
-        let mut count = 0usize;
+        let (mut count, mut first, mut larger) = (0usize, Vec::with_capacity(n + 1), Vec::new());
         for b in start.windows(2) {
+            first.push(count as u32);
             for run in rows[b[0] as usize..b[1] as usize].chunk_by(|x, y| x >> 32 == y >> 32) {
                 for &r in run {
                     let code = r as u32 as usize;
                     of_tet[code / 6][code % 6] = count as u32;
                 }
+                larger.push((run[0] >> 32) as u32);
                 count += 1;
             }
         }
-        EdgeTable { of_tet, count }
+        first.push(count as u32);
+        EdgeTable {
+            of_tet,
+            count,
+            start: first,
+            larger,
+        }
+    }
+
+    /// The number of edge ab, if a tetrahedron has it.
+    pub fn id(&self, a: u32, b: u32) -> Option<u32> {
+        let (lo, hi) = (a.min(b) as usize, a.max(b));
+        let range = self.start.get(lo..lo + 2)?;
+        let bucket = &self.larger[range[0] as usize..range[1] as usize];
+        let i = bucket.binary_search(&hi).ok()?;
+        Some(range[0] + i as u32)
     }
 }
 
@@ -64,6 +85,12 @@ mod tests {
         let table = EdgeTable::new(&tets);
         // 6 + 3 new for the second (4 with 1, 2, 3) + 3 for the third (5 with 1, 2, 3)
         assert_eq!(table.count, 12);
+        assert_eq!(table.id(3, 0), Some(table.of_tet[0][2]));
+        assert_eq!(table.id(5, 2), table.id(2, 5));
+        assert!(table.id(5, 2).is_some());
+        assert_eq!(table.id(4, 5), None);
+        assert_eq!(table.id(0, 9), None);
+        assert_eq!(table.id(9, 10), None);
         for (s, a) in tets.iter().enumerate() {
             for (t, b) in tets.iter().enumerate() {
                 for (i, &(p, q)) in TET_EDGES.iter().enumerate() {
