@@ -56,18 +56,10 @@ pub fn fill_and_drop(
     let mut now = singular_simplices(&ix.boundary());
     let found = now.clone();
     for _ in 0..max_rounds {
-        let (edges, vertices) = &now;
-        let stop = edges.is_empty() && vertices.is_empty();
-        if stop {
+        if now.0.is_empty() && now.1.is_empty() {
             break;
         }
-        let mut to_add: FxHashSet<[u32; 4]> = FxHashSet::default();
-        for gap in edge_gaps(&ix, edges)
-            .into_iter()
-            .chain(vertex_gaps(&ix, vertices))
-        {
-            to_add.extend(gap.iter().map(|&t| key4(t)));
-        }
+        let to_add = gaps_to_fill(&ix, &now);
         if to_add.is_empty() {
             break;
         }
@@ -89,19 +81,8 @@ pub fn fill_and_drop(
         now = super::assembly::singular_sets_after(kept, now, &touched);
         all_touched.extend(touched);
     }
-    let mut j = 0;
-    fillable.retain(|_| {
-        j += 1;
-        ix.candidate[j - 1]
-    });
-    all_touched.sort_unstable();
-    all_touched.dedup();
-    Filled {
-        added,
-        found,
-        left: now,
-        touched: all_touched,
-    }
+    let keep: Vec<bool> = ix.candidate;
+    finish(fillable, &keep, added, found, now, all_touched)
 }
 
 /// [`fill_and_drop`] when ∂K's singular simplices `known` are known and few: each round indexes
@@ -141,14 +122,7 @@ pub fn fill_near(
             ix.candidate[j] = !ix.in_k(j);
             gone[global[j]] |= !ix.candidate[j];
         }
-        let (edges, vertices) = &now;
-        let mut to_add: FxHashSet<[u32; 4]> = FxHashSet::default();
-        for gap in edge_gaps(&ix, edges)
-            .into_iter()
-            .chain(vertex_gaps(&ix, vertices))
-        {
-            to_add.extend(gap.iter().map(|&t| key4(t)));
-        }
+        let to_add = gaps_to_fill(&ix, &now);
         if to_add.is_empty() {
             break;
         }
@@ -169,18 +143,43 @@ pub fn fill_near(
         now = super::assembly::singular_sets_after(kept, now, &touched);
         all_touched.extend(touched);
     }
+    let keep: Vec<bool> = gone.iter().map(|&g| !g).collect();
+    finish(fillable, &keep, added, found, now, all_touched)
+}
+
+/// The fillable tetrahedra (keys) of the smallest gap at each of the singular simplices `now`.
+fn gaps_to_fill(ix: &Index, now: &super::assembly::Sets) -> FxHashSet<[u32; 4]> {
+    let mut to_add: FxHashSet<[u32; 4]> = FxHashSet::default();
+    for gap in edge_gaps(ix, &now.0)
+        .into_iter()
+        .chain(vertex_gaps(ix, &now.1))
+    {
+        to_add.extend(gap.iter().map(|&t| key4(t)));
+    }
+    to_add
+}
+
+/// A fill's result, `fillable` reduced to the tetrahedra `keep` marks.
+fn finish(
+    fillable: &mut Vec<[u32; 4]>,
+    keep: &[bool],
+    added: u64,
+    found: super::assembly::Sets,
+    left: super::assembly::Sets,
+    mut touched: Vec<u32>,
+) -> Filled {
     let mut j = 0;
     fillable.retain(|_| {
         j += 1;
-        !gone[j - 1]
+        keep[j - 1]
     });
-    all_touched.sort_unstable();
-    all_touched.dedup();
+    touched.sort_unstable();
+    touched.dedup();
     Filled {
         added,
         found,
-        left: now,
-        touched: all_touched,
+        left,
+        touched,
     }
 }
 
