@@ -7,6 +7,9 @@
 //!   each cell triangulates first: points on the cell's faces, massively coplanar and cocircular), and
 //!   on uniform random sets of the same sizes, so the cost of the sections' degeneracy is one ratio.
 //!
+//! * `acquisitions/<case>`: the shared Elephant reference cut as users' probes cut it (a freehand
+//!   sweep of 100 frames, a rotational fan of 40 planes; seed 1): the handle stages and the fans'
+//!   cells, which the shipped files barely exercise (issues 14, 18).
 //! * `read_sections/<file>`: reading and validating the same files.
 //! * `partition_20_boxes/*`: every label at once against all labels as one material (issue 16).
 //!
@@ -109,6 +112,36 @@ fn cell_kernel(c: &mut Criterion) {
     g.finish();
 }
 
+/// The shared Elephant reference cut by a sweep of 100 frames and a fan of 40 planes (seed 1).
+fn acquisitions(c: &mut Criterion) {
+    use slice2solid::slice::{make_planes, slice_mesh, SliceMode};
+    let Some(dir) = shared_csl() else {
+        eprintln!("acquisitions: no shared data beside the checkout, skipped");
+        return;
+    };
+    let reference = dir.join("../reference/Elephant.stl");
+    let mesh =
+        slice2solid::io::mesh::read_trimesh(&reference).expect("read the Elephant reference");
+    let mut g = c.benchmark_group("acquisitions");
+    g.sample_size(10);
+    for (name, mode, n) in [
+        ("Elephant_sweep_100", SliceMode::Sweep, 100),
+        ("Elephant_fan_40", SliceMode::Fan, 40),
+    ] {
+        let sections = slice_mesh(&mesh, &make_planes(&mesh, n, 1, mode)).expect("slice");
+        g.bench_with_input(BenchmarkId::from_parameter(name), &sections, |b, s| {
+            b.iter(|| {
+                slice2solid::reconstruct(s, &Options::default())
+                    .expect("reconstruct")
+                    .surface
+                    .triangles
+                    .len()
+            })
+        });
+    }
+    g.finish();
+}
+
 /// Every label at once against all labels as one material, on the same planes: twenty touching
 /// boxes (`box_grid(5, 4)`, 16 random planes, seed 3). Issue 16 asks the partition to cost at most
 /// 3× the one-material run.
@@ -132,5 +165,12 @@ fn partition(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, read, reconstruct, cell_kernel, partition);
+criterion_group!(
+    benches,
+    read,
+    reconstruct,
+    acquisitions,
+    cell_kernel,
+    partition
+);
 criterion::criterion_main!(benches);
