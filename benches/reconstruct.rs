@@ -45,20 +45,28 @@ fn inputs() -> Vec<(String, PathBuf)> {
     v
 }
 
+/// `slice2solid::reconstruct` of `sections` with the default options, as benchmark `name` of `g`.
+fn bench_reconstruct(
+    g: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    name: &str,
+    sections: &slice2solid::Sections,
+) {
+    g.bench_with_input(BenchmarkId::from_parameter(name), sections, |b, s| {
+        b.iter(|| {
+            slice2solid::reconstruct(s, &Options::default())
+                .expect("reconstruct")
+                .surface
+                .triangles
+                .len()
+        })
+    });
+}
+
 fn reconstruct(c: &mut Criterion) {
     let mut g = c.benchmark_group("reconstruct");
     g.sample_size(10);
     for (name, path) in inputs() {
-        let sections = read_sections(&path).expect("read sections");
-        g.bench_with_input(BenchmarkId::from_parameter(&name), &sections, |b, s| {
-            b.iter(|| {
-                slice2solid::reconstruct(s, &Options::default())
-                    .expect("reconstruct")
-                    .surface
-                    .triangles
-                    .len()
-            })
-        });
+        bench_reconstruct(&mut g, &name, &read_sections(&path).expect("read sections"));
     }
     g.finish();
 }
@@ -129,15 +137,7 @@ fn acquisitions(c: &mut Criterion) {
         ("Elephant_fan_40", SliceMode::Fan, 40),
     ] {
         let sections = slice_mesh(&mesh, &make_planes(&mesh, n, 1, mode)).expect("slice");
-        g.bench_with_input(BenchmarkId::from_parameter(name), &sections, |b, s| {
-            b.iter(|| {
-                slice2solid::reconstruct(s, &Options::default())
-                    .expect("reconstruct")
-                    .surface
-                    .triangles
-                    .len()
-            })
-        });
+        bench_reconstruct(&mut g, name, &sections);
     }
     g.finish();
 }

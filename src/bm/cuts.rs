@@ -20,7 +20,7 @@
 //!    components and at least one handle fewer (`tunnels::Batches`), else it is undone.
 use super::complex::{outward_face, TET_EDGES};
 use super::edges::EdgeTable;
-use super::faces::{FaceTable, MANY_NEIGHBOURS, NO_NEIGHBOUR};
+use super::faces::{FaceTable, NO_NEIGHBOUR};
 use super::refine::{edge, key3, Triangulation};
 use super::tunnels::{
     face_steps, vertex_groups, Batches, Move, Settle, Surface, TunnelStats, TESTS_BASE,
@@ -85,15 +85,7 @@ struct Growing<'a> {
 impl Growing<'_> {
     /// The tetrahedron across face `i` of `t` (in K), if any.
     fn across(&self, t: usize, i: usize) -> Option<usize> {
-        match self.adj[t][i] {
-            NO_NEIGHBOUR => None,
-            MANY_NEIGHBOURS => {
-                let mut f = outward_face(&self.tets[t], i);
-                f.sort_unstable();
-                self.faces.owners(&f).map(|o| o as usize).find(|&o| o != t)
-            }
-            o => Some(o as usize),
-        }
+        (self.faces).across(self.tets, &self.adj, t, i, |_| true)
     }
 
     /// Whether adding `t` to K' closes no loop (the module's rule): with f faces on K', whose

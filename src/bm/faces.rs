@@ -86,6 +86,28 @@ impl FaceTable {
         out
     }
 
+    /// The tetrahedron across face `i` of `tets[t]` that passes `ok`, read from `neighbours`
+    /// (this table's [`FaceTable::neighbours`] of `tets`); where several overlap there, the first
+    /// by index.
+    pub fn across(
+        &self,
+        tets: &[[u32; 4]],
+        neighbours: &[[u32; 4]],
+        t: usize,
+        i: usize,
+        ok: impl Fn(usize) -> bool,
+    ) -> Option<usize> {
+        match neighbours[t][i] {
+            NO_NEIGHBOUR => None,
+            MANY_NEIGHBOURS => {
+                let mut f = outward_face(&tets[t], i);
+                f.sort_unstable();
+                (self.owners(&f).map(|o| o as usize)).find(|&o| o != t && ok(o))
+            }
+            o => Some(o as usize).filter(|&o| ok(o)),
+        }
+    }
+
     /// Calls `f` with the entries (codes) of every face, in increasing key.
     pub fn for_each_face(&self, mut f: impl FnMut(&[u32])) {
         for v in 0..self.start.len().saturating_sub(1) {
@@ -215,8 +237,8 @@ mod tests {
         let tets = [[0, 1, 2, 3], [4, 1, 2, 3], [5, 0, 1, 2], [4, 3, 2, 1]];
         let table = FaceTable::new(&tets);
         let n = table.neighbours(tets.len());
-        for (t, tet) in tets.iter().enumerate() {
-            for i in 0..4 {
+        for (t, (tet, got)) in tets.iter().zip(&n).enumerate() {
+            for (i, &got) in got.iter().enumerate() {
                 let mut f = outward_face(tet, i);
                 f.sort_unstable();
                 let others: Vec<u32> = table.owners(&f).filter(|&o| o != t as u32).collect();
@@ -225,7 +247,10 @@ mod tests {
                     [o] => o,
                     _ => MANY_NEIGHBOURS,
                 };
-                assert_eq!(n[t][i], want, "tetrahedron {t} face {i}");
+                assert_eq!(got, want, "tetrahedron {t} face {i}");
+                // `across` reads the same: the first other owner, where several overlap
+                let first = others.first().map(|&o| o as usize);
+                assert_eq!(table.across(&tets, &n, t, i, |_| true), first);
             }
         }
         assert_eq!(n[0][0], MANY_NEIGHBOURS);

@@ -104,14 +104,13 @@ pub fn fill_near(
         if now.0.is_empty() && now.1.is_empty() {
             break;
         }
-        let n = kept.iter().chain(fillable.iter()).flatten().max();
-        let mut near = vec![false; n.map_or(0, |&v| v as usize + 1)];
-        for &v in now.1.iter().chain(now.0.iter().flat_map(|e| [&e.0, &e.1])) {
-            if let Some(m) = near.get_mut(v as usize) {
-                *m = true;
-            }
+        let at = || now.1.iter().chain(now.0.iter().flat_map(|e| [&e.0, &e.1]));
+        // sized by the singular simplices' vertices (no pass over K for it)
+        let mut near = vec![false; at().max().map_or(0, |&v| v as usize + 1)];
+        for &v in at() {
+            near[v as usize] = true;
         }
-        let touches = |t: &[u32; 4]| t.iter().any(|&v| near[v as usize]);
+        let touches = |t: &[u32; 4]| t.iter().any(|&v| near.get(v as usize) == Some(&true));
         let local_kept: Vec<[u32; 4]> = kept.iter().filter(|t| touches(t)).copied().collect();
         let global: Vec<usize> = (0..fillable.len())
             .filter(|&j| !gone[j] && touches(&fillable[j]))

@@ -27,7 +27,7 @@
 //!    few passes over K), what it leaves untried is counted and warned.
 use super::complex::{outward_face, TET_EDGES};
 use super::edges::EdgeTable;
-use super::faces::{FaceTable, MANY_NEIGHBOURS, NO_NEIGHBOUR};
+use super::faces::FaceTable;
 use super::refine::{edge, key3, key4, Triangulation};
 use super::singular::{EdgeGaps, Snapshot};
 use crate::eval::topology::UnionFind;
@@ -103,15 +103,7 @@ impl<'a> Thinning<'a> {
 
     /// The tetrahedron across face `i` of `t` that is in S.
     fn across(&self, t: usize, i: usize) -> Option<usize> {
-        match self.adj[t][i] {
-            NO_NEIGHBOUR => None,
-            MANY_NEIGHBOURS => {
-                let mut f = outward_face(&self.tets[t], i);
-                f.sort_unstable();
-                (self.faces.owners(&f).map(|o| o as usize)).find(|&o| o != t && self.in_s[o])
-            }
-            o => Some(o as usize).filter(|&o| self.in_s[o]),
-        }
+        (self.faces).across(self.tets, &self.adj, t, i, |o| self.in_s[o])
     }
 
     /// Whether removing `t` leaves no new tunnel and no new cavity (the module's rule).
@@ -620,22 +612,21 @@ impl Surface {
     /// still on two triangles: the caller checked): triangles through no touched vertex stay,
     /// those through one are read from the tetrahedra through one.
     pub fn after(&self, tets: &[[u32; 4]], touched: &[u32]) -> Surface {
-        let n = (tets.iter().flatten().chain(touched))
-            .max()
-            .map_or(0, |&v| v as usize + 1);
-        let mut mark = vec![false; n.max(self.n_vertices)];
+        // touched is sorted: its last vertex sizes the marks (no pass over K for it)
+        let mut mark = vec![false; touched.last().map_or(0, |&v| v as usize + 1)];
         for &v in touched {
             mark[v as usize] = true;
         }
+        let marked = |v: &u32| mark.get(*v as usize).copied().unwrap_or(false);
         let near: Vec<[u32; 4]> = (tets.iter())
-            .filter(|t| t.iter().any(|&v| mark[v as usize]))
+            .filter(|t| t.iter().any(marked))
             .copied()
             .collect();
         let local = super::faces::boundary(&near)
             .into_iter()
-            .filter(|f| f.iter().any(|&v| mark[v as usize]));
+            .filter(|f| f.iter().any(marked));
         let kept = (self.tris.iter())
-            .filter(|f| !f.iter().any(|&v| mark[v as usize]))
+            .filter(|f| !f.iter().any(marked))
             .copied();
         Surface::from_tris(kept.chain(local).collect())
     }
