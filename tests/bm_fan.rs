@@ -137,6 +137,24 @@ fn fans_reconstruct_clean() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
+/// A contour edge that a cell's diagram samples take away is split and both cells of its face run
+/// again; the pieces are guarded (`bm::guard`), so the next run keeps them. Before, the halves were
+/// taken away again round after round: Elephant cut by 40 fan planes ran 7 rounds of conformity
+/// (160 cell runs, 84 Steiner points, 2.3 s); now 3 rounds, 124 runs, 52 points.
+#[test]
+fn split_contour_edges_are_kept_by_the_next_run() {
+    let s = fan("Elephant", 40);
+    let solid = slice2solid::reconstruct(&s, &Options::default()).unwrap();
+    let n = |k: &str| solid.report.counts[k];
+    assert_eq!(
+        (n("conformity_rounds"), n("cell_runs"), n("steiner_points")),
+        (3, 124, 52)
+    );
+    let c = check_mesh(&solid.surface, Some(&s));
+    assert!(c.closed && c.manifold && c.oriented);
+    assert_eq!((c.self_intersections, c.overlapping_coplanar_pairs), (0, 0));
+}
+
 /// The middle layer of `slice::synthetic::stacked_cylinder` (a 24-gon prism) cut by `planes` fan
 /// planes whose axis crosses its wall on a vertical edge: every section has a vertex on the axis,
 /// each rounded 1e-16 to one side of it by the slicer.

@@ -24,7 +24,7 @@ const PINS: [(&str, u64, u64, u64, usize, i64); 12] = [
     ("balloondog_box", 0, 13, 0, 2, 0),
     ("eight_15", 0, 8, 0, 1, 2),
     ("eight_20", 0, 96, 0, 1, 2),
-    ("hand", 0, 17, 0, 1, 6),
+    ("hand", 0, 17, 0, 1, 7),
 ];
 
 fn options(shared_samples: bool) -> Options {

@@ -83,15 +83,15 @@ fn run(case: &Case, keep_topology: bool) -> (usize, i64, u64) {
 #[test]
 fn unwitnessed_handles_are_closed_and_witnessed_ones_kept() {
     let cases = [
-        shared("hand", 5, (1, 6), (3, 26)),
-        shared("Elephant", 0, (1, 11), (2, 28)),
+        shared("hand", 5, (1, 7), (3, 22)),
+        shared("Elephant", 0, (1, 11), (2, 31)),
         shared("eight_15", 2, (1, 2), (1, 2)),
         Case {
             name: "balloondog sweep 60",
             sections: common::sliced("balloondog", 60, 5, SliceMode::Sweep),
             reference_genus: 0,
             default: (1, 2),
-            raw: (1, 27),
+            raw: (1, 29),
         },
         Case {
             name: "hand random 30",

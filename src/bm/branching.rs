@@ -177,7 +177,8 @@ fn grid_samples(input: &CellInput, cl: &mut Classifier, s: usize, n: [f64; 3], h
         index: &diagram.index,
     };
     let minimiser = grid_minimisers(input, s, &grid, &search);
-    let mut thin = Thinning::new(0.5 * h);
+    let guard = super::guard::ContourGuard::of_slot(input, s, 0.5 * h);
+    let mut thin = Thinning::guarded(0.5 * h, guard);
     for &v in &on_face {
         thin.occupy(slot.uv[v as usize]);
     }

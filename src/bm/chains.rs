@@ -13,6 +13,7 @@
 use super::branching::{into_cell_normal, moebius_sites, Site, SiteIndex};
 use super::cell_input::{CellInput, IdMap, Mask, Where};
 use super::cutting::{diagram_point_across, Thinning};
+use super::guard::ContourGuard;
 use crate::delaunay::Delaunay;
 use crate::sections::{dot, sub};
 
@@ -344,6 +345,7 @@ pub fn conform_pairs(
         .min()
         .unwrap_or(0);
     let mut diagrams: IdMap<usize, SlotDiagram> = IdMap::default();
+    let mut guards: IdMap<usize, ContourGuard> = IdMap::default();
     // whether each pair is an edge, for the current triangulation and pairs
     let mut edge = grounded_pair_edges(dt, &input.mask, &pairs, min_id);
     for _ in 0..max_rounds {
@@ -370,6 +372,14 @@ pub fn conform_pairs(
             ) else {
                 continue;
             };
+            // a Steiner point must not take a contour edge away either (the pair stays no edge)
+            let guard = guards.entry(p.slot).or_insert_with(|| {
+                let h = super::branching::contour_spacing(input, p.slot);
+                ContourGuard::of_slot(input, p.slot, 0.5 * h)
+            });
+            if guard.encroaches(x) {
+                continue;
+            }
             let p3 = input.slots[p.slot].geom().to_3d(x);
             if !p3.iter().all(|c| c.is_finite()) {
                 return Err(crate::Error::input(

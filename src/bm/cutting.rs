@@ -38,6 +38,7 @@ use super::cell_input::{edge_key, CellInput, IdMap, IdSet, Where};
 use super::chains::{thin_chains, Chains, DiagramSample, Kind, SlotDiagram};
 use super::classify::{tet_type, Classifier, TetType};
 use super::complex::{Complex, NONE};
+use super::guard::{bucket, ContourGuard};
 use crate::sections::{dot, sub};
 
 /// Cutting-diagram samples of every slot of the cell. `taken` are samples already placed this round
@@ -416,10 +417,12 @@ fn not_dominated(
     ra <= best * (1.0 + 1e-9)
 }
 
-/// Points in a plane bucketed by cells of size `r`: is a new point closer than `r` to one of them?
+/// Points in a plane bucketed by cells of size `r`: is a new point closer than `r` to one of them,
+/// or does it encroach a guarded contour edge ([`ContourGuard`])?
 pub(super) struct Thinning {
     r: f64,
     cells: IdMap<(i64, i64), Vec<[f64; 2]>>,
+    guard: Option<ContourGuard>,
 }
 
 impl Thinning {
@@ -427,25 +430,27 @@ impl Thinning {
         Thinning {
             r,
             cells: IdMap::default(),
+            guard: None,
         }
     }
 
-    fn key(&self, q: [f64; 2]) -> (i64, i64) {
-        (
-            (q[0] / self.r).floor() as i64,
-            (q[1] / self.r).floor() as i64,
-        )
+    /// As [`Thinning::new`], and a point that encroaches a contour edge `guard` holds is near.
+    pub(super) fn guarded(r: f64, guard: ContourGuard) -> Thinning {
+        Thinning {
+            guard: Some(guard),
+            ..Thinning::new(r)
+        }
     }
 
     pub(super) fn occupy(&mut self, q: [f64; 2]) {
         if q.iter().all(|c| c.is_finite()) {
-            let k = self.key(q);
+            let k = bucket(q, self.r);
             self.cells.entry(k).or_default().push(q);
         }
     }
 
     pub(super) fn near(&self, q: [f64; 2]) -> bool {
-        let (kx, ky) = self.key(q);
+        let (kx, ky) = bucket(q, self.r);
         (kx - 1..=kx + 1).any(|x| {
             (ky - 1..=ky + 1).any(|y| {
                 self.cells.get(&(x, y)).is_some_and(|l| {
@@ -453,7 +458,7 @@ impl Thinning {
                         .any(|p| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) < self.r * self.r)
                 })
             })
-        })
+        }) || self.guard.as_ref().is_some_and(|g| g.encroaches(q))
     }
 }
 

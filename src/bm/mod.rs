@@ -45,6 +45,7 @@ pub mod cutting;
 pub mod edges;
 pub(crate) mod faces;
 pub mod fill;
+pub mod guard;
 pub mod manifold;
 pub mod partition;
 pub mod prune;
