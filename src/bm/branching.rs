@@ -291,9 +291,10 @@ fn grid_minimisers(
     let w = grid.width();
     let mut minimiser: Vec<Option<usize>> = vec![None; w * (grid.ny + 1)];
     for j in 0..=grid.ny {
+        let row = slot.locator().row(grid.at(0.0, j as f64)[1]);
         for i in 0..=grid.nx {
             let q = grid.at(i as f64, j as f64);
-            if slot.locator().locate(q) == super::cell_input::Where::Inside {
+            if row.locate(q[0]) == super::cell_input::Where::Inside {
                 minimiser[j * w + i] = Some(search.argmin(q));
             }
         }

@@ -101,6 +101,63 @@ impl SectionLocator {
         })
     }
 
+    /// [`SectionLocator::locate`] for the points of the row `y = y`, answered from where the
+    /// boundary crosses the row; a point that rounding could put on the other side of a crossing
+    /// (or on the boundary) is located exactly. For a grid of points, one pass over a bin per row
+    /// instead of one per point.
+    pub fn row(&self, y: f64) -> RowLocator<'_> {
+        let mut row = RowLocator {
+            locator: self,
+            y,
+            crossings: Vec::new(),
+            critical: Vec::new(),
+            outside: self.edges.is_empty() || y < self.y0 || y > self.y1,
+            exact: false,
+        };
+        if row.outside {
+            return row;
+        }
+        let nb = self.bins.len();
+        let b = (((y - self.y0) * self.inv_dy) as usize).min(nb - 1);
+        for &i in &self.bins[b] {
+            let (a, c) = self.edges[i as usize];
+            if y < a[1].min(c[1]) || y > a[1].max(c[1]) {
+                continue;
+            }
+            let (lo, hi) = (a[0].min(c[0]), a[0].max(c[0]));
+            let slack = 1e-10 * (a[0].abs() + c[0].abs()) + f64::MIN_POSITIVE;
+            if (a[1] > y) != (c[1] > y) {
+                // toggles the parity of every point left of the crossing; the crossing's rounding
+                // error is far below `eps` (ulps of the coordinates, scaled by the slope)
+                let x = a[0] + (y - a[1]) * (c[0] - a[0]) / (c[1] - a[1]);
+                let steep = (y.abs() + a[1].abs() + c[1].abs()) / (c[1] - a[1]).abs();
+                let eps = slack + 1e-10 * (c[0] - a[0]).abs() * (1.0 + steep);
+                if !(x.is_finite() && eps.is_finite()) {
+                    row.exact = true;
+                    return row;
+                }
+                row.crossings.push(x);
+                row.critical
+                    .push(((x - eps).max(lo - slack), (x + eps).min(hi + slack)));
+            } else {
+                // touches the row (an end on it, or along it): on it means on the boundary
+                row.critical.push((lo - slack, hi + slack));
+            }
+        }
+        row.crossings.sort_by(f64::total_cmp);
+        row.critical.sort_by(|p, q| p.0.total_cmp(&q.0));
+        // merged, so that a point is in one of them iff it is in the one starting before it
+        let mut merged: Vec<(f64, f64)> = Vec::with_capacity(row.critical.len());
+        for (lo, hi) in row.critical.drain(..) {
+            match merged.last_mut() {
+                Some(last) if lo <= last.1 => last.1 = last.1.max(hi),
+                _ => merged.push((lo, hi)),
+            }
+        }
+        row.critical = merged;
+        row
+    }
+
     pub fn locate(&self, q: [f64; 2]) -> Where {
         if self.edges.is_empty() || q[1] < self.y0 || q[1] > self.y1 {
             return Where::Outside;
@@ -127,6 +184,40 @@ impl SectionLocator {
             }
         }
         if inside {
+            Where::Inside
+        } else {
+            Where::Outside
+        }
+    }
+}
+
+/// A [`SectionLocator`] along one row (`SectionLocator::row`).
+pub struct RowLocator<'a> {
+    locator: &'a SectionLocator,
+    y: f64,
+    /// Where the boundary crosses the row, ascending.
+    crossings: Vec<f64>,
+    /// Disjoint x-intervals, ascending, where a point is located exactly.
+    critical: Vec<(f64, f64)>,
+    /// The row misses the section's bins: every point is outside.
+    outside: bool,
+    /// Every point is located exactly (a crossing that cannot be bounded).
+    exact: bool,
+}
+
+impl RowLocator<'_> {
+    /// Where the point (x, the row's y) is: the same answer as `SectionLocator::locate`.
+    pub fn locate(&self, x: f64) -> Where {
+        if self.outside {
+            return Where::Outside;
+        }
+        let k = self.critical.partition_point(|c| c.0 <= x);
+        if self.exact || !x.is_finite() || (k > 0 && x <= self.critical[k - 1].1) {
+            return self.locator.locate([x, self.y]);
+        }
+        // even-odd: the crossings right of the point
+        let right = self.crossings.len() - self.crossings.partition_point(|&c| c <= x);
+        if right % 2 == 1 {
             Where::Inside
         } else {
             Where::Outside
@@ -463,6 +554,39 @@ impl CellInput {
 #[cfg(test)]
 mod tests {
     use super::*;
+    #[test]
+    fn a_row_locates_as_the_locator_does() {
+        // a star with a hole, vertices on grid rows and columns, a horizontal edge, a near-flat one
+        let outer = vec![
+            [0.0, 0.0],
+            [2.0, 0.5],
+            [4.0, 0.0],
+            [3.5, 2.0],
+            [4.0, 4.0],
+            [2.0, 3.0],
+            [1.0, 3.0],
+            [0.0, 4.0],
+            [0.5, 2.0 + 1e-13],
+        ];
+        let hole = vec![[1.5, 1.5], [1.5, 2.5], [2.5, 2.5], [2.5, 1.5]];
+        let loc = SectionLocator::new(&[outer, hole]);
+        let mut seen = [0usize; 3];
+        for j in -2..=82 {
+            let y = 0.05 * j as f64;
+            let row = loc.row(y);
+            for i in -2..=82 {
+                let x = 0.05 * i as f64;
+                let w = loc.locate([x, y]);
+                assert_eq!(row.locate(x), w, "({x}, {y})");
+                seen[w as usize] += 1;
+            }
+            for x in [0.5, 1.0, 1.5, 2.0, 2.5, 3.5] {
+                assert_eq!(row.locate(x), loc.locate([x, y]), "({x}, {y})");
+            }
+        }
+        assert!(seen.iter().all(|&n| n > 0), "{seen:?}");
+    }
+
     #[test]
     fn locator_inside_outside_boundary() {
         let sq = vec![[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]];
