@@ -80,12 +80,24 @@ fn run(seed: u64) -> Result<Outcome, String> {
 }
 
 fn is_clean(c: &slice2solid::eval::check::CheckReport, worst: f64, close: usize) -> bool {
-    close == 0
+    is_clean_but(c, worst, close, 0, 0)
+}
+
+/// [`is_clean`], allowing up to `double_sheets` overlapping near-coplanar pairs and
+/// `near_duplicates` close vertex pairs.
+fn is_clean_but(
+    c: &slice2solid::eval::check::CheckReport,
+    worst: f64,
+    close: usize,
+    double_sheets: usize,
+    near_duplicates: usize,
+) -> bool {
+    close <= near_duplicates
         && c.closed
         && c.manifold
         && c.oriented
         && c.self_intersections == 0
-        && c.overlapping_coplanar_pairs == 0
+        && c.overlapping_coplanar_pairs <= double_sheets
         && worst <= SECTION_BOUND
 }
 
@@ -145,15 +157,8 @@ fn the_fixed_seeds_stay_clean() {
     for (seed, double_sheets, near_duplicates) in FIXED {
         match run(seed) {
             Ok(Outcome::Checked(c, worst, close)) => {
-                let fixed = close <= near_duplicates
-                    && c.closed
-                    && c.manifold
-                    && c.oriented
-                    && c.self_intersections == 0
-                    && c.overlapping_coplanar_pairs <= double_sheets
-                    && worst <= SECTION_BOUND;
                 assert!(
-                    fixed,
+                    is_clean_but(&c, worst, close, double_sheets, near_duplicates),
                     "odd seed {seed}: {c:?} worst {worst} close pairs {close}"
                 )
             }

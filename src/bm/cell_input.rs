@@ -91,9 +91,7 @@ impl SectionLocator {
         if self.edges.is_empty() {
             return false;
         }
-        let nb = self.bins.len();
-        let bin = |y: f64| (((y - self.y0) * self.inv_dy).max(0.0) as usize).min(nb - 1);
-        (bin(q[1] - d)..=bin(q[1] + d)).any(|b| {
+        (self.bin(q[1] - d)..=self.bin(q[1] + d)).any(|b| {
             self.bins[b].iter().any(|&i| {
                 let (a, c) = self.edges[i as usize];
                 crate::geom::segment_distance_2d(q, a, c) < d
@@ -117,9 +115,7 @@ impl SectionLocator {
         if row.outside {
             return row;
         }
-        let nb = self.bins.len();
-        let b = (((y - self.y0) * self.inv_dy) as usize).min(nb - 1);
-        for &i in &self.bins[b] {
+        for &i in &self.bins[self.bin(y)] {
             let (a, c) = self.edges[i as usize];
             if y < a[1].min(c[1]) || y > a[1].max(c[1]) {
                 continue;
@@ -158,14 +154,18 @@ impl SectionLocator {
         row
     }
 
+    /// The bin of a height (below the section's: the first, above: the last; the float-to-index
+    /// cast saturates).
+    fn bin(&self, y: f64) -> usize {
+        (((y - self.y0) * self.inv_dy) as usize).min(self.bins.len() - 1)
+    }
+
     pub fn locate(&self, q: [f64; 2]) -> Where {
         if self.edges.is_empty() || q[1] < self.y0 || q[1] > self.y1 {
             return Where::Outside;
         }
-        let nb = self.bins.len();
-        let b = (((q[1] - self.y0) * self.inv_dy) as usize).min(nb - 1);
         let mut inside = false;
-        for &i in &self.bins[b] {
+        for &i in &self.bins[self.bin(q[1])] {
             let (a, c) = self.edges[i as usize];
             let straddles = (a[1] > q[1]) != (c[1] > q[1]);
             let in_box = q[0] >= a[0].min(c[0])

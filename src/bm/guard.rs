@@ -22,9 +22,9 @@ pub(super) fn bucket(q: [f64; 2], r: f64) -> (i64, i64) {
 }
 
 /// The contour edges of a face, each with one circle a new point may not go inside. Per edge `ab`
-/// the guard is one circle through `a` and `b` that no point of the face is inside: the diametral circle, or where a point of the
-/// face is inside that, the circle through it nearer to the diametral one (every circle through
-/// `a`, `b` with its centre between the two is then empty too). While no point goes inside that
+/// the guard is one circle through `a` and `b` that no point of the face is inside: the diametral
+/// circle, or where a point of the face is inside that, the circle through it nearer to the
+/// diametral one (every circle through `a`, `b` with its centre between the two is then empty). While no point goes inside that
 /// circle, `ab` stays an edge; a refused point costs the diagram a sample near the contour.
 pub(crate) struct ContourGuard {
     /// Bucket size.
@@ -84,18 +84,15 @@ impl ContourGuard {
         let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let len = (dx * dx + dy * dy).sqrt();
-        let half2 = 0.25 * len * len;
-        let rr = 0.5 * len;
         if !(len > 0.0 && len.is_finite()) {
             return;
         }
-        let lo = bucket([m[0] - rr, m[1] - rr], self.r);
-        let hi = bucket([m[0] + rr, m[1] + rr], self.r);
+        let (half2, rr) = (0.25 * len * len, 0.5 * len);
         // an edge far longer than the buckets (a face clipped along a long line) stays unguarded:
         // refusing every point of its circle would leave much of the face unsampled
-        if (hi.0 - lo.0 + 1).saturating_mul(hi.1 - lo.1 + 1) > 256 {
+        let Some((lo, hi)) = self.span(m, rr, 256) else {
             return;
-        }
+        };
         // circle(t): centre m + t n, through a and b; a point (x, y) in the frame (m; u, n) is
         // inside iff 2 y t > x² + y² − |ab|²/4, so points of either side inside the diametral
         // circle (t = 0) bound the empty circles' t from that side
@@ -130,17 +127,22 @@ impl ContourGuard {
         // a hair widened: on the circle is a tie of four cocircular points, which the kernel's
         // perturbation decides either way
         let r2 = (half2 + t * t) * (1.0 + 1e-9);
-        let rc = r2.sqrt();
-        let lo = bucket([c[0] - rc, c[1] - rc], self.r);
-        let hi = bucket([c[0] + rc, c[1] + rc], self.r);
-        if (hi.0 - lo.0 + 1).saturating_mul(hi.1 - lo.1 + 1) > 1024 {
+        let Some((lo, hi)) = self.span(c, r2.sqrt(), 1024) else {
             return;
-        }
+        };
         for x in lo.0..=hi.0 {
             for y in lo.1..=hi.1 {
                 self.discs.entry((x, y)).or_default().push((c, r2));
             }
         }
+    }
+
+    /// The first and last bucket of the square around the circle (centre `c`, radius `rad`), if it
+    /// spans at most `most` buckets.
+    fn span(&self, c: [f64; 2], rad: f64, most: i64) -> Option<((i64, i64), (i64, i64))> {
+        let lo = bucket([c[0] - rad, c[1] - rad], self.r);
+        let hi = bucket([c[0] + rad, c[1] + rad], self.r);
+        ((hi.0 - lo.0 + 1).saturating_mul(hi.1 - lo.1 + 1) <= most).then_some((lo, hi))
     }
 
     /// Whether no edge is guarded (every one too long for the buckets, or no Delaunay edge).
