@@ -649,6 +649,8 @@ fn assemble_cells(
     report.count("flat_zone_triangles_thickened", k.slabs.thickened);
     report.count("flat_zone_triangles_left", k.slabs.left);
     report.count("slab_tets", k.slabs.tets);
+    report.count("slab_gaps_closed", k.slabs.gaps_closed);
+    report.count("slab_gaps_open", k.slabs.gaps_open);
     report.count("slab_points", k.slabs.points);
     report
         .values

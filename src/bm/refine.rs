@@ -40,6 +40,9 @@ pub struct Triangulation<'a> {
 pub struct Growth {
     pub tet: [u32; 4],
     pub core: SmallVec<[u32; 3]>,
+    /// Keep the children even where one is a sliver (the parts of a sliver near its core are
+    /// slivers too; refusing them leaves a crack where the growth must close a gap).
+    pub keep_slivers: bool,
 }
 
 /// What one refinement did.
@@ -220,7 +223,8 @@ fn insert_points(
 }
 
 /// The children of `g.tet` without a vertex outside the core, or `None` if none of them contains
-/// the core or one of them has a face on a plane outside the section.
+/// the core, one of them has a face on a plane outside the section, or (unless the growth keeps
+/// slivers) one of them is a sliver.
 fn kept_children(
     g: &Growth,
     ids: &FxHashMap<(u32, u32), u32>,
@@ -240,7 +244,7 @@ fn kept_children(
         .collect();
     let on_core = near.iter().any(|c| g.core.iter().all(|v| c.contains(v)));
     let in_sections = near.iter().all(|c| faces_in_sections(c, planes, internal));
-    let solid = near.iter().all(|c| !sliver(positions, c));
+    let solid = g.keep_slivers || near.iter().all(|c| !sliver(positions, c));
     (on_core && in_sections && solid).then_some(near)
 }
 
@@ -689,6 +693,7 @@ mod tests {
         let growth = Growth {
             tet: b,
             core: [0, 1].into_iter().collect(),
+            keep_slivers: false,
         };
         let g = grow(&mut t, &[vec![growth]], points);
         (o, g)

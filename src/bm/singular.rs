@@ -433,6 +433,7 @@ fn all_but_largest(
                     } else {
                         core.clone()
                     },
+                    keep_slivers: false,
                 })
                 .collect()
         })
@@ -464,6 +465,7 @@ fn vertex_gaps(t: &Triangulation, vertices: &[u32]) -> Vec<Vec<Growth>> {
                         .map(|tet| Growth {
                             tet,
                             core: core.clone(),
+                            keep_slivers: false,
                         })
                         .collect(),
                 );
@@ -701,10 +703,12 @@ mod tests {
             vec![Growth {
                 tet: [0, 1, 2, 4],
                 core: core.clone(),
+                keep_slivers: false,
             }],
             vec![Growth {
                 tet: [0, 1, 3, 4],
                 core,
+                keep_slivers: false,
             }],
         ];
         let distance = 1e-3;

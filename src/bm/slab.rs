@@ -13,6 +13,14 @@
 //! where a neighbour of Z is kept on the same side the slab shares faces with it and is joined to
 //! the solid.
 //!
+//! Neighbouring zone triangles may stand on different apexes. Their prisms then meet only at the
+//! zone's edges and vertices, and the tetrahedra between the parents (around an inner edge or
+//! above an inner vertex of the zone) are *gaps*: each keeps its part below the split points of
+//! its edges from the zone (at the same thickness), so a zone's slab is one solid whose inner
+//! edges and vertices are inside it. Without them an inner edge had four surface triangles (the
+//! two zone triangles and a wall of each prism, lying nearly on each other above it). A gap that
+//! is a sliver keeps its sliver part: refusing it would leave a crack between the prisms.
+//!
 //! An edge whose two ends share a plane lies on that plane (on the cell's boundary, in a section
 //! or outside it) and is not split at first: then no split point lies on a plane, every slab face
 //! other than Z has a split point, and no slab face lies on a plane: every section keeps R ∩ P = A.
@@ -23,6 +31,9 @@
 use super::refine::{edge, grow, key3, key4, Growth, Planes, Triangulation};
 use super::spacing::{Rule, Spaced, MIN_GAP};
 use crate::fxhash::{FxHashMap, FxHashSet};
+use gaps::gaps;
+
+mod gaps;
 /// A section triangle as one cell has it: global ids, outward from the cell, whether a kept
 /// tetrahedron of the cell stands on it, and that cell's tetrahedron's fourth vertex (`u32::MAX`
 /// in a cell without volume).
@@ -49,6 +60,10 @@ pub struct SlabStats {
     /// Tetrahedra of the slabs, and the split points they added.
     pub tets: u64,
     pub points: u64,
+    /// Tetrahedra between the prisms of one zone (standing on an inner vertex or edge of it) that
+    /// kept their part below the split points, and those refused.
+    pub gaps_closed: u64,
+    pub gaps_open: u64,
     /// Thinnest slab (height of a split point above its zone's plane).
     pub min_thickness: f64,
 }
@@ -138,10 +153,18 @@ fn grow_slabs(
     if parents.is_empty() {
         return Vec::new();
     }
+    // the first round (edges on planes not split) closes the gaps between the prisms too
+    let (gaps, gap_lifts) = if on_planes {
+        Default::default()
+    } else {
+        gaps(t, parents)
+    };
+    let mut lifts = parent_lifts(t.positions, parents);
+    lifts.extend(gap_lifts);
     let points = split_points(
         t.positions,
         t.planes,
-        parents,
+        &lifts,
         thickness,
         on_planes,
         first_new,
@@ -153,15 +176,20 @@ fn grow_slabs(
             vec![Growth {
                 tet: p.tet,
                 core: p.zone.into_iter().collect(),
+                keep_slivers: false,
             }]
         })
+        .chain(gaps.into_iter().map(|g| vec![g]))
         .collect();
     let g = grow(
         t,
         &groups,
         points.into_iter().map(|(e, p)| (e, p.0)).collect(),
     );
-    stats.thickened += g.tets_per_group.iter().filter(|&&n| n > 0).count() as u64;
+    let (of_parents, of_gaps) = g.tets_per_group.split_at(parents.len());
+    stats.thickened += of_parents.iter().filter(|&&n| n > 0).count() as u64;
+    stats.gaps_closed += of_gaps.iter().filter(|&&n| n > 0).count() as u64;
+    stats.gaps_open += of_gaps.iter().filter(|&&n| n == 0).count() as u64;
     stats.tets += g.tets_per_group.iter().sum::<u64>();
     stats.points += g.points;
     if g.points > 0 {
@@ -177,6 +205,9 @@ fn grow_slabs(
 struct Parent {
     zone: [u32; 3],
     tet: [u32; 4],
+    /// The flat zone (numbered over all faces) and the side of its face the tetrahedron is on.
+    zone_id: u32,
+    side: u32,
 }
 
 /// Per flat zone (a component of flat triangles of one face, adjacent by edges), the side whose
@@ -187,6 +218,7 @@ fn parents_of_zones(faces: &[Vec<Side>]) -> (Vec<Vec<Parent>>, u64) {
     let mut parents = Vec::new();
     let mut claimed: FxHashSet<[u32; 4]> = FxHashSet::default();
     let mut unsided = 0;
+    let mut zones = 0u32;
     for sides in faces {
         let sides = &considered(sides)[..];
         let attached: FxHashSet<[u32; 3]> = sides
@@ -204,6 +236,8 @@ fn parents_of_zones(faces: &[Vec<Side>]) -> (Vec<Vec<Parent>>, u64) {
         flat.sort_unstable();
         flat.dedup();
         for zone in edge_components(&flat) {
+            let zone_id = zones;
+            zones += 1;
             let border = border_edges(&zone);
             // sides by preference: most attached edges on the zone's border, then a side with
             // volume, then the first side
@@ -228,12 +262,13 @@ fn parents_of_zones(faces: &[Vec<Side>]) -> (Vec<Vec<Parent>>, u64) {
                 .map(|&s| sides[s].tris.iter().map(|t| (key3(t.tri), t)).collect())
                 .collect();
             for z in &zone {
-                let candidates: Vec<Parent> = by_key
-                    .iter()
-                    .filter_map(|m| m.get(z).filter(|t| t.apex != u32::MAX))
-                    .map(|t| Parent {
+                let candidates: Vec<Parent> = (by_key.iter().zip(&ranked))
+                    .filter_map(|(m, &s)| m.get(z).filter(|t| t.apex != u32::MAX).map(|t| (t, s)))
+                    .map(|(t, s)| Parent {
                         zone: t.tri,
                         tet: [t.tri[0], t.tri[1], t.tri[2], t.apex],
+                        zone_id,
+                        side: s as u32,
                     })
                     .filter(|p| !claimed.contains(&key4(p.tet)))
                     .collect();
@@ -317,21 +352,82 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-/// Per edge (zone vertex, apex) of the parents whose ends share no plane: the split point and its
-/// height above the zone. An edge shared by several parents is split once, where its first parent
-/// puts it. A point that would come near another slab point (from `first_new` on, or of this
-/// call) moves farther along its edge (`spacing`): zone vertices whose parents' apexes are nearly
-/// in line, or a cluster, would otherwise get near-duplicate split points and nearly coplanar
-/// walls between them.
+/// An edge from a zone vertex to a vertex above the zone, and that vertex's height over the zone's
+/// plane: where a slab's split point goes.
+#[derive(Clone, Copy, Debug)]
+struct Lift {
+    zone_vertex: u32,
+    far: u32,
+    height: f64,
+}
+
+/// The edges (zone vertex, apex) of the parents.
+fn parent_lifts(positions: &[[f64; 3]], parents: &[&Parent]) -> Vec<Lift> {
+    let mut out = Vec::new();
+    for p in parents {
+        let Some(height) = Height::of(positions, p.zone) else {
+            continue;
+        };
+        let h = height.above(positions[p.tet[3] as usize]).abs();
+        if h > 0.0 {
+            out.extend(p.zone.map(|v| Lift {
+                zone_vertex: v,
+                far: p.tet[3],
+                height: h,
+            }));
+        }
+    }
+    out
+}
+
+/// Signed height over the plane of a zone triangle (positive on the side its normal points to).
+struct Height {
+    origin: [f64; 3],
+    /// The triangle's normal (not unit: the height is its dot product over its length, as the
+    /// slabs have always measured it) and its length.
+    normal: [f64; 3],
+    len: f64,
+}
+
+impl Height {
+    fn of(positions: &[[f64; 3]], tri: [u32; 3]) -> Option<Height> {
+        use crate::sections::{cross, dot};
+        let z = tri.map(|v| positions[v as usize]);
+        let n = cross(sub(z[1], z[0]), sub(z[2], z[0]));
+        let len = dot(n, n).sqrt();
+        (len > 0.0).then_some(Height {
+            origin: z[0],
+            normal: n,
+            len,
+        })
+    }
+
+    fn above(&self, x: [f64; 3]) -> f64 {
+        crate::sections::dot(self.normal, sub(x, self.origin)) / self.len
+    }
+
+    /// The same height, positive on the other side.
+    fn flipped(self) -> Height {
+        Height {
+            normal: self.normal.map(|c| -c),
+            ..self
+        }
+    }
+}
+
+/// Per edge of `lifts` whose ends share no plane: the split point and its height above the zone.
+/// An edge asked for several times is split once, where its first request puts it. A point that
+/// would come near another slab point (from `first_new` on, or of this call) moves farther along
+/// its edge (`spacing`): zone vertices whose parents' apexes are nearly in line, or a cluster,
+/// would otherwise get near-duplicate split points and nearly coplanar walls between them.
 fn split_points(
     positions: &[[f64; 3]],
     planes: &[Planes],
-    parents: &[&Parent],
+    lifts: &[Lift],
     thickness: f64,
     on_planes: bool,
     first_new: usize,
 ) -> FxHashMap<(u32, u32), ([f64; 3], f64)> {
-    use crate::sections::{cross, dot};
     let on_a_plane = |a: u32, b: u32| {
         planes[a as usize]
             .iter()
@@ -343,24 +439,15 @@ fn split_points(
         .collect();
     let mut spaced = Spaced::new(MIN_GAP * thickness, &earlier);
     let mut out: FxHashMap<(u32, u32), ([f64; 3], f64)> = FxHashMap::default();
-    for p in parents {
-        let z = p.zone.map(|v| positions[v as usize]);
-        let n = cross(sub(z[1], z[0]), sub(z[2], z[0]));
-        let len = dot(n, n).sqrt();
-        let apex = positions[p.tet[3] as usize];
-        let h = dot(n, sub(apex, z[0])).abs() / len;
-        if !(h > 0.0 && len > 0.0) {
+    for l in lifts {
+        let (v, far, h) = (l.zone_vertex, l.far, l.height);
+        if h.is_nan() || h <= 0.0 || (!on_planes && on_a_plane(v, far)) {
             continue;
         }
-        let s = |k: f64| k * (thickness / h);
-        for (&v, &pv) in p.zone.iter().zip(&z) {
-            if !on_planes && on_a_plane(v, p.tet[3]) {
-                continue;
-            }
-            if let std::collections::hash_map::Entry::Vacant(e) = out.entry(edge(v, p.tet[3])) {
-                let (x, at) = spaced.place([pv, apex], s, Rule::Slab, v);
-                e.insert((x, at * h));
-            }
+        if let std::collections::hash_map::Entry::Vacant(e) = out.entry(edge(v, far)) {
+            let ends = [positions[v as usize], positions[far as usize]];
+            let (x, at) = spaced.place(ends, |k| k * (thickness / h), Rule::Slab, v);
+            e.insert((x, at * h));
         }
     }
     out
@@ -377,7 +464,7 @@ mod tests {
         f.iter().all(|&v| planes[v as usize].contains(&g))
     }
 
-    fn planes(list: &[&[u32]]) -> Vec<Planes> {
+    pub(super) fn planes(list: &[&[u32]]) -> Vec<Planes> {
         list.iter().map(|p| p.iter().copied().collect()).collect()
     }
 
@@ -441,15 +528,13 @@ mod tests {
         assert!(positions[4..].iter().all(|p| (p[2] - 0.01).abs() < 1e-12));
     }
 
-    /// Known limitation, pinned: two zone triangles sharing an edge, standing on different apexes,
-    /// get one prism each inside their own parents; the tetrahedron between the parents around the
-    /// common edge keeps no part, so that edge has four surface triangles (the two zone triangles
-    /// and a wall of each prism), left to the later repairs (voids, singular simplices). This is the
-    /// mechanism behind the singular edges and the double sheets beside slabs on the generated odd
-    /// inputs (docs/design/conforming-complex.md, session 31: a layer over the whole star fixes
-    /// this case, branch wip/slab-layers); when slabs join by construction, this test changes.
+    /// Two zone triangles sharing an edge, standing on different apexes, get one prism each inside
+    /// their own parents; the tetrahedron between the parents around the common edge is a gap of
+    /// the zone and keeps its wedge below the same split points, so the slab is one solid and the
+    /// common edge is inside it (before the gaps were closed it had four surface triangles: the
+    /// two zone triangles and a wall of each prism, nearly on each other above the edge).
     #[test]
-    fn two_zone_triangles_with_different_apexes_leave_their_common_edge_singular() {
+    fn two_zone_triangles_with_different_apexes_make_one_slab() {
         // the square (0,1,3,2) on z = 0, two zone triangles standing on apexes 4 and 5, and the
         // tetrahedron (1,2,4,5) between them around their common edge (1,2)
         use crate::bm::refine::test_support::positive;
@@ -480,16 +565,19 @@ mod tests {
             ..Default::default()
         };
         let s = thicken(&mut o.view(), &[vec![side]], 0.01);
-        assert_eq!((s.thickened, s.left, s.tets, s.points), (2, 0, 6, 6));
+        assert_eq!((s.thickened, s.left, s.tets, s.points), (2, 0, 9, 6));
+        assert_eq!((s.gaps_closed, s.gaps_open), (1, 0));
         let b = boundary_of(&o.kept);
-        assert_eq!(singularities(&b), (1, 0));
+        assert_eq!(singularities(&b), (0, 0));
+        // no surface triangle has the common edge but the two zone triangles
         let at_common_edge = b
             .iter()
             .filter(|t| t.contains(&1) && t.contains(&2))
             .count();
-        assert_eq!(at_common_edge, 4);
-        // the wedge of (1,2,4,5) below the split points stays unkept
-        assert!(o.fillable.iter().any(|t| t.contains(&1) && t.contains(&2)));
+        assert_eq!(at_common_edge, 2);
+        assert!(b.iter().any(|t| key3(*t) == [0, 1, 2]));
+        // the wedge of (1,2,4,5) below the split points is kept, its rest stays fillable
+        assert!(!o.fillable.iter().any(|t| t.contains(&1) && t.contains(&2)));
     }
 
     #[test]
@@ -556,17 +644,21 @@ mod tests {
             Parent {
                 zone: [0, 1, 2],
                 tet: [0, 1, 2, 4],
+                zone_id: 0,
+                side: 0,
             },
             Parent {
                 zone: [1, 3, 2],
                 tet: [1, 3, 2, 5],
+                zone_id: 0,
+                side: 0,
             },
         ];
         let thickness = 0.01;
         let points = split_points(
             &positions,
             &pl,
-            &[&parents[0], &parents[1]],
+            &parent_lifts(&positions, &[&parents[0], &parents[1]]),
             thickness,
             false,
             6,
