@@ -153,7 +153,8 @@ fn grow_slabs(
     if parents.is_empty() {
         return Vec::new();
     }
-    // the first round (edges on planes not split) closes the gaps between the prisms too
+    // the rounds that leave edges on planes unsplit close the gaps between their prisms too; the
+    // last try, which splits those edges as well, grows prisms only
     let (gaps, gap_lifts) = if on_planes {
         Default::default()
     } else {
