@@ -20,7 +20,7 @@
 //! A cell whose image fails the checks (a rounded tetrahedron flipped, a point on the wrong side of
 //! one of its planes) keeps K as it was, and is counted.
 use super::complex::outward_face;
-use super::refine::{key3, Planes, Triangulation};
+use super::refine::{common_plane, key3, Planes, Triangulation};
 use crate::arrangement::ArrPlane;
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::geom::predicates::orient3d;
@@ -59,12 +59,6 @@ pub struct CollarStats {
     pub max_shift: f64,
     /// Time taken.
     pub seconds: f64,
-}
-
-/// The plane shared by the three vertices of `f`, if any.
-fn common_plane(planes: &[Planes], f: [u32; 3]) -> Option<u32> {
-    let [a, b, c] = f.map(|v| &planes[v as usize]);
-    a.iter().copied().find(|p| b.contains(p) && c.contains(p))
 }
 
 /// The cell class of every tetrahedron of `tets` (the roots of a union-find): tetrahedra meet

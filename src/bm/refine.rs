@@ -377,8 +377,13 @@ pub fn flat_height(p: [[f64; 3]; 4]) -> f64 {
 
 /// The face `f` lies on a plane: its three vertices share that plane's tag.
 pub fn on_a_plane(planes: &[Planes], f: &[u32; 3]) -> bool {
+    common_plane(planes, *f).is_some()
+}
+
+/// The plane shared by the three vertices of `f`, if any.
+pub fn common_plane(planes: &[Planes], f: [u32; 3]) -> Option<u32> {
     let [a, b, c] = f.map(|v| &planes[v as usize]);
-    a.iter().any(|p| b.contains(p) && c.contains(p))
+    a.iter().copied().find(|p| b.contains(p) && c.contains(p))
 }
 
 /// Each face of `tet` that lies on a plane (its three vertices share it) is a section triangle.

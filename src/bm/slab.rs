@@ -31,6 +31,7 @@
 use super::refine::{edge, grow, key3, key4, Growth, Planes, Triangulation};
 use super::spacing::{Rule, Spaced, MIN_GAP};
 use crate::fxhash::{FxHashMap, FxHashSet};
+use crate::sections::{cross, dot, sub};
 use gaps::gaps;
 
 mod gaps;
@@ -336,6 +337,15 @@ fn edge_components(tris: &[[u32; 3]]) -> Vec<Vec<[u32; 3]>> {
 
 /// Edges used by exactly one triangle of `tris`.
 fn border_edges(tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    edge_counts(tris)
+        .into_iter()
+        .filter(|&(_, n)| n == 1)
+        .map(|(e, _)| e)
+        .collect()
+}
+
+/// How many triangles of `tris` use each of their edges.
+fn edge_counts(tris: &[[u32; 3]]) -> FxHashMap<(u32, u32), u32> {
     let mut count: FxHashMap<(u32, u32), u32> = FxHashMap::default();
     for t in tris {
         for j in 0..3 {
@@ -343,18 +353,10 @@ fn border_edges(tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
         }
     }
     count
-        .into_iter()
-        .filter(|&(_, n)| n == 1)
-        .map(|(e, _)| e)
-        .collect()
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
 /// An edge from a zone vertex to a vertex above the zone, and that vertex's height over the zone's
-/// plane: where a slab's split point goes.
+/// plane (positive; both makers leave out the others): where a slab's split point goes.
 #[derive(Clone, Copy, Debug)]
 struct Lift {
     zone_vertex: u32,
@@ -392,7 +394,6 @@ struct Height {
 
 impl Height {
     fn of(positions: &[[f64; 3]], tri: [u32; 3]) -> Option<Height> {
-        use crate::sections::{cross, dot};
         let z = tri.map(|v| positions[v as usize]);
         let n = cross(sub(z[1], z[0]), sub(z[2], z[0]));
         let len = dot(n, n).sqrt();
@@ -404,7 +405,7 @@ impl Height {
     }
 
     fn above(&self, x: [f64; 3]) -> f64 {
-        crate::sections::dot(self.normal, sub(x, self.origin)) / self.len
+        dot(self.normal, sub(x, self.origin)) / self.len
     }
 
     /// The same height, positive on the other side.
@@ -442,7 +443,7 @@ fn split_points(
     let mut out: FxHashMap<(u32, u32), ([f64; 3], f64)> = FxHashMap::default();
     for l in lifts {
         let (v, far, h) = (l.zone_vertex, l.far, l.height);
-        if h.is_nan() || h <= 0.0 || (!on_planes && on_a_plane(v, far)) {
+        if !on_planes && on_a_plane(v, far) {
             continue;
         }
         if let std::collections::hash_map::Entry::Vacant(e) = out.entry(edge(v, far)) {

@@ -1,7 +1,8 @@
 //! The gaps between the prisms of one flat zone (see the parent module): where neighbouring zone
 //! triangles stand on different apexes, the tetrahedra between their parents around an inner
 //! edge or above an inner vertex of the zone keep their parts below the split points too.
-use super::{edge, key4, Growth, Height, Lift, Parent, Planes, Triangulation};
+use super::{edge_counts, key4, Growth, Height, Lift, Parent, Triangulation};
+use crate::bm::refine::{common_plane, edge};
 use crate::fxhash::{FxHashMap, FxHashSet};
 use smallvec::SmallVec;
 
@@ -90,16 +91,9 @@ impl Inner {
         };
         let g = self.groups.len() as u32;
         self.groups.push((plane, height));
-        let mut count: FxHashMap<(u32, u32), u32> = FxHashMap::default();
-        for p in group {
-            for j in 0..3 {
-                *count
-                    .entry(edge(p.zone[j], p.zone[(j + 1) % 3]))
-                    .or_default() += 1;
-            }
-        }
+        let zone: Vec<[u32; 3]> = group.iter().map(|p| p.zone).collect();
         let mut border: FxHashSet<u32> = FxHashSet::default();
-        for (&e, &n) in &count {
+        for (e, n) in edge_counts(&zone) {
             if n == 2 {
                 self.edge.insert(e, g);
                 self.marked[e.0 as usize] = true;
@@ -139,14 +133,6 @@ impl Inner {
             .collect();
         (inner && far.iter().all(|&(_, h)| h > 0.0)).then_some((core, far))
     }
-}
-
-/// The plane all three vertices of a zone triangle lie on.
-fn common_plane(planes: &[Planes], z: [u32; 3]) -> Option<u32> {
-    planes[z[0] as usize]
-        .iter()
-        .copied()
-        .find(|g| z[1..].iter().all(|&v| planes[v as usize].contains(g)))
 }
 
 #[cfg(test)]
