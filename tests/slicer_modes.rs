@@ -167,3 +167,18 @@ fn the_boxed_balloon_dog_on_an_axis_grid() {
     let (problems, _) = problems_and_solid_seeded("balloondog_box", SliceMode::Axes, 40, 1);
     assert!(problems.is_empty(), "{problems:?}");
 }
+
+/// The figure eight cut by a freehand sweep of 100 frames (seed 3): adjacent frames cross near
+/// the object, and a contour vertex was left pinched between a wide gap below its plane and a
+/// gap above it whose growth made a sliver child (near-duplicate split points of earlier
+/// rounds). Growth kept the wide gap open and was refused in the other; now a simplex whose
+/// every growth is refused is tried again with another gap left open (`singular::grow_round`).
+#[test]
+fn the_figure_eight_on_a_sweep_of_100_frames() {
+    let (problems, solid) = problems_and_solid_seeded("eight_15", SliceMode::Sweep, 100, 3);
+    assert!(problems.is_empty(), "{problems:?}");
+    assert_eq!(
+        solid.report.counts.get("singular_vertices").copied(),
+        Some(0)
+    );
+}

@@ -125,7 +125,9 @@ pub fn resolve(
 }
 
 /// One round of growth at the given singular edges and vertices: the vertices whose stars in K
-/// it changed (`Grown::touched`), or `None` when nothing grew.
+/// it changed (`Grown::touched`), or `None` when nothing grew. Where every growth of a simplex
+/// was refused (a sliver child, a split that would flip a neighbour), the simplex is tried again
+/// with another of its gaps left open (`all_but_one`'s `stay`), up to `ALTERNATIVES` times.
 fn grow_round(
     t: &mut Triangulation,
     edges: &[(u32, u32)],
@@ -134,35 +136,73 @@ fn grow_round(
     how: EdgeGaps,
     stats: &mut SingularStats,
 ) -> Option<Vec<u32>> {
-    let edge_groups = edge_gaps(t, edges, how);
-    let vertex_groups = vertex_gaps(t, vertices);
-    let n_edge = edge_groups.len();
-    let groups: Vec<Vec<Growth>> = edge_groups.into_iter().chain(vertex_groups).collect();
-    let on_plane_edges = how != EdgeGaps::OffPlane;
-    let near = points_near_cores(t, &groups);
-    let points = split_points(
-        t.positions,
-        t.planes,
-        &groups,
-        distance,
-        on_plane_edges,
-        &near,
-    );
-    let g = grow(t, &groups, points);
-    let added: u64 = g.tets_per_group.iter().sum();
-    for (i, &n) in g.tets_per_group.iter().enumerate() {
-        if n > 0 {
-            if i < n_edge {
-                stats.edge_gaps += 1;
-            } else {
-                stats.vertex_gaps += 1;
+    let (mut edges, mut vertices) = (edges.to_vec(), vertices.to_vec());
+    let (mut touched, mut grown_any) = (Vec::new(), false);
+    for stay in 0..ALTERNATIVES {
+        let edge_groups = edge_gaps(t, &edges, how, stay);
+        let vertex_groups = vertex_gaps(t, &vertices, stay);
+        let n_edge = edges.len();
+        let owners: Vec<usize> = (edge_groups.iter().chain(&vertex_groups))
+            .enumerate()
+            .flat_map(|(i, gs)| std::iter::repeat_n(i, gs.len()))
+            .collect();
+        let groups: Vec<Vec<Growth>> = edge_groups
+            .into_iter()
+            .chain(vertex_groups)
+            .flatten()
+            .collect();
+        if groups.is_empty() {
+            break;
+        }
+        let on_plane_edges = how != EdgeGaps::OffPlane;
+        let near = points_near_cores(t, &groups);
+        let points = split_points(
+            t.positions,
+            t.planes,
+            &groups,
+            distance,
+            on_plane_edges,
+            &near,
+        );
+        let g = grow(t, &groups, points);
+        let mut grew = vec![false; n_edge + vertices.len()];
+        for (&owner, &n) in owners.iter().zip(&g.tets_per_group) {
+            if n > 0 {
+                if owner < n_edge {
+                    stats.edge_gaps += 1;
+                } else {
+                    stats.vertex_gaps += 1;
+                }
+                grew[owner] = true;
             }
         }
+        let added: u64 = g.tets_per_group.iter().sum();
+        grown_any |= added > 0;
+        stats.tets += added;
+        stats.points += g.points;
+        touched.extend(g.touched);
+        // the simplices that had gaps to grow into and grew into none: another gap stays open
+        let tried: FxHashSet<usize> = owners.iter().copied().collect();
+        let refused = |i: usize| tried.contains(&i) && !grew[i];
+        edges = (0..n_edge)
+            .filter(|&i| refused(i))
+            .map(|i| edges[i])
+            .collect();
+        vertices = (0..vertices.len())
+            .filter(|&i| refused(n_edge + i))
+            .map(|i| vertices[i])
+            .collect();
+        if edges.is_empty() && vertices.is_empty() {
+            break;
+        }
     }
-    stats.tets += added;
-    stats.points += g.points;
-    (added > 0).then_some(g.touched)
+    touched.sort_unstable();
+    touched.dedup();
+    grown_any.then_some(touched)
 }
+
+/// Choices of the gap left open tried per singular simplex in a round (`grow_round`).
+const ALTERNATIVES: usize = 3;
 
 /// A copy of what growth changes in a triangulation.
 #[derive(Default)]
@@ -348,9 +388,14 @@ fn components_through(items: &[[u32; 4]]) -> Vec<Vec<usize>> {
     out
 }
 
-/// The gaps to grow into, per singular edge: all but the largest of those that may grow (all of
-/// them if the largest may not).
-fn edge_gaps(t: &Triangulation, edges: &[(u32, u32)], how: EdgeGaps) -> Vec<Vec<Growth>> {
+/// The gaps to grow into, per singular edge (one list per edge): all but one of those that may
+/// grow (all of them if one may not), the one left open the `stay`-th largest.
+fn edge_gaps(
+    t: &Triangulation,
+    edges: &[(u32, u32)],
+    how: EdgeGaps,
+    stay: usize,
+) -> Vec<Vec<Vec<Growth>>> {
     let wanted: FxHashSet<(u32, u32)> = edges.iter().copied().collect();
     let ring = around(
         t,
@@ -365,10 +410,14 @@ fn edge_gaps(t: &Triangulation, edges: &[(u32, u32)], how: EdgeGaps) -> Vec<Vec<
     );
     let mut out = Vec::new();
     for e in edges {
-        let Some(ring) = ring.get(e) else { continue };
+        let Some(ring) = ring.get(e) else {
+            out.push(Vec::new());
+            continue;
+        };
         let core: SmallVec<[u32; 3]> = [e.0, e.1].into_iter().collect();
         let gaps: Vec<[u32; 4]> = ring.iter().filter(|r| !r.1).map(|r| r.0).collect();
-        out.extend(all_but_largest(t, &gaps, &core, is_open(ring, &core), how));
+        let open = is_open(ring, &core);
+        out.push(all_but_one(t, &gaps, &core, open, how, stay));
     }
     out
 }
@@ -389,14 +438,16 @@ fn is_open(around: &[([u32; 4], bool)], core: &[u32]) -> bool {
     count.values().any(|&n| n == 1)
 }
 
-/// Every gap component but the largest (every one if the space around is `open`: the space
-/// beyond stays), of those whose tetrahedra may all grow at `core`.
-fn all_but_largest(
+/// Every gap component but one, of those whose tetrahedra may all grow at `core`. The one left
+/// open is a gap that may not grow, else the `stay`-th largest (none if the space around is
+/// `open`: the space beyond stays). Empty where there is no `stay`-th choice.
+fn all_but_one(
     t: &Triangulation,
     gaps: &[[u32; 4]],
     core: &SmallVec<[u32; 3]>,
     open: bool,
     how: EdgeGaps,
+    stay: usize,
 ) -> Vec<Vec<Growth>> {
     let mut comps: Vec<(bool, Vec<[u32; 4]>)> = components_through(gaps)
         .into_iter()
@@ -412,10 +463,14 @@ fn all_but_largest(
     }
     // the largest gap that may not grow stays; else the largest (none if open)
     comps.sort_by_key(|(ok, c)| (!*ok, std::cmp::Reverse(c.len())));
+    let forced = open || comps.iter().any(|(ok, _)| !ok);
+    if stay > 0 && (forced || stay >= comps.len()) {
+        return Vec::new();
+    }
     let stay = comps
         .iter()
         .position(|(ok, _)| !ok)
-        .unwrap_or(if open { usize::MAX } else { 0 });
+        .unwrap_or(if open { usize::MAX } else { stay });
     comps
         .into_iter()
         .enumerate()
@@ -440,9 +495,9 @@ fn all_but_largest(
         .collect()
 }
 
-/// The gaps to grow into, per pinched vertex: a strip joining two kept components, or all holes
-/// of one kept component but the largest.
-fn vertex_gaps(t: &Triangulation, vertices: &[u32]) -> Vec<Vec<Growth>> {
+/// The gaps to grow into, per pinched vertex (one list per vertex): a strip joining two kept
+/// components, or all holes of one kept component but the `stay`-th largest (`all_but_one`).
+fn vertex_gaps(t: &Triangulation, vertices: &[u32], stay: usize) -> Vec<Vec<Vec<Growth>>> {
     let wanted: FxHashSet<u32> = vertices.iter().copied().collect();
     let star = around(
         t,
@@ -452,32 +507,32 @@ fn vertex_gaps(t: &Triangulation, vertices: &[u32]) -> Vec<Vec<Growth>> {
     );
     let mut out = Vec::new();
     for v in vertices {
-        let Some(star) = star.get(v) else { continue };
+        let Some(star) = star.get(v) else {
+            out.push(Vec::new());
+            continue;
+        };
         let core: SmallVec<[u32; 3]> = [*v].into_iter().collect();
         let kept: Vec<[u32; 4]> = star.iter().filter(|r| r.1).map(|r| r.0).collect();
         let gaps: Vec<[u32; 4]> = star.iter().filter(|r| !r.1).map(|r| r.0).collect();
         let kept_comps = components_through(&kept);
         if kept_comps.len() >= 2 {
-            if let Some(strip) = shortest_strip(t, &kept, &kept_comps, &gaps, *v) {
-                out.push(
-                    strip
-                        .into_iter()
-                        .map(|tet| Growth {
-                            tet,
-                            core: core.clone(),
-                            keep_slivers: false,
-                        })
-                        .collect(),
-                );
-            }
+            // one strip, no other choice
+            let strip = (stay == 0)
+                .then(|| shortest_strip(t, &kept, &kept_comps, &gaps, *v))
+                .flatten();
+            out.push(Vec::from_iter(strip.map(|strip| {
+                strip
+                    .into_iter()
+                    .map(|tet| Growth {
+                        tet,
+                        core: core.clone(),
+                        keep_slivers: false,
+                    })
+                    .collect()
+            })));
         } else {
-            out.extend(all_but_largest(
-                t,
-                &gaps,
-                &core,
-                is_open(star, &core),
-                EdgeGaps::NearEdge,
-            ));
+            let open = is_open(star, &core);
+            out.push(all_but_one(t, &gaps, &core, open, EdgeGaps::NearEdge, stay));
         }
     }
     out
@@ -674,6 +729,38 @@ mod tests {
         // the gap may be kept whole: no new points
         assert_eq!((s.tets, s.points), (1, 0));
         assert_eq!(singularities(&boundary_of(&o.kept)), (0, 0));
+    }
+
+    /// A singular edge (0, 1) whose ring has two gaps: a wedge of two tetrahedra and a sliver
+    /// 1e-7 rad wide. The smaller one is grown into first, but its children near the edge are
+    /// slivers and refused; then the larger gap is grown into instead and the edge is resolved
+    /// in the same round (before, nothing grew and the edge stayed singular).
+    #[test]
+    fn a_refused_gap_leaves_the_other_gap_to_grow_into() {
+        let angles = [
+            0.0f64,
+            72.0,
+            144.0,
+            216.0,
+            288.0,
+            360.0 - 1e-7f64.to_degrees(),
+        ];
+        let mut positions = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+        positions.extend((angles.iter().map(|a| a.to_radians())).map(|a| [0.5, a.cos(), a.sin()]));
+        let ring: Vec<[u32; 4]> = (0..6)
+            .map(|i| positive(&positions, [0, 1, 2 + i, 2 + (i + 1) % 6]))
+            .collect();
+        let (kept, fillable) = ([ring[0], ring[3], ring[4]], [ring[1], ring[2], ring[5]]);
+        assert_eq!(singularities(&boundary_of(&kept)), (1, 0));
+        let mut o = Owned {
+            kept: kept.to_vec(),
+            fillable: fillable.to_vec(),
+            ..Owned::at(positions)
+        };
+        let (s, _) = resolve(&mut o.view(), 1, 0.1, EdgeGaps::NearEdge, None);
+        assert_eq!(s.edge_gaps, 1, "{s:?}");
+        assert_eq!(singularities(&boundary_of(&o.kept)), (0, 0));
+        assert!(o.kept.iter().all(|&k| orient(&o.positions, k) > 0.0));
     }
 
     #[test]
