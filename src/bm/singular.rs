@@ -138,10 +138,15 @@ fn grow_round(
 ) -> Option<Vec<u32>> {
     let (mut edges, mut vertices) = (edges.to_vec(), vertices.to_vec());
     let (mut touched, mut grown_any) = (Vec::new(), false);
+    let on_plane_edges = how != EdgeGaps::OffPlane;
     for stay in 0..ALTERNATIVES {
         let edge_groups = edge_gaps(t, &edges, how, stay);
         let vertex_groups = vertex_gaps(t, &vertices, stay);
         let n_edge = edges.len();
+        // per simplex (edges first) whether it has gaps to grow into; per group its simplex
+        let tried: Vec<bool> = (edge_groups.iter().chain(&vertex_groups))
+            .map(|gs| !gs.is_empty())
+            .collect();
         let owners: Vec<usize> = (edge_groups.iter().chain(&vertex_groups))
             .enumerate()
             .flat_map(|(i, gs)| std::iter::repeat_n(i, gs.len()))
@@ -154,7 +159,6 @@ fn grow_round(
         if groups.is_empty() {
             break;
         }
-        let on_plane_edges = how != EdgeGaps::OffPlane;
         let near = points_near_cores(t, &groups);
         let points = split_points(
             t.positions,
@@ -165,7 +169,7 @@ fn grow_round(
             &near,
         );
         let g = grow(t, &groups, points);
-        let mut grew = vec![false; n_edge + vertices.len()];
+        let mut grew = vec![false; tried.len()];
         for (&owner, &n) in owners.iter().zip(&g.tets_per_group) {
             if n > 0 {
                 if owner < n_edge {
@@ -182,8 +186,7 @@ fn grow_round(
         stats.points += g.points;
         touched.extend(g.touched);
         // the simplices that had gaps to grow into and grew into none: another gap stays open
-        let tried: FxHashSet<usize> = owners.iter().copied().collect();
-        let refused = |i: usize| tried.contains(&i) && !grew[i];
+        let refused = |i: usize| tried[i] && !grew[i];
         edges = (0..n_edge)
             .filter(|&i| refused(i))
             .map(|i| edges[i])
@@ -461,16 +464,18 @@ fn all_but_one(
     if comps.len() + usize::from(open) < 2 {
         return Vec::new();
     }
-    // the largest gap that may not grow stays; else the largest (none if open)
+    // the largest gap that may not grow stays, or the space beyond if open (no other choice);
+    // else the `stay`-th largest
     comps.sort_by_key(|(ok, c)| (!*ok, std::cmp::Reverse(c.len())));
-    let forced = open || comps.iter().any(|(ok, _)| !ok);
-    if stay > 0 && (forced || stay >= comps.len()) {
-        return Vec::new();
-    }
-    let stay = comps
-        .iter()
-        .position(|(ok, _)| !ok)
-        .unwrap_or(if open { usize::MAX } else { stay });
+    let forced = match comps.iter().position(|(ok, _)| !ok) {
+        Some(i) => Some(i),
+        None => open.then_some(usize::MAX),
+    };
+    let stay = match forced {
+        Some(i) if stay == 0 => i,
+        None if stay < comps.len() => stay,
+        _ => return Vec::new(),
+    };
     comps
         .into_iter()
         .enumerate()
@@ -517,10 +522,12 @@ fn vertex_gaps(t: &Triangulation, vertices: &[u32], stay: usize) -> Vec<Vec<Vec<
         let kept_comps = components_through(&kept);
         if kept_comps.len() >= 2 {
             // one strip, no other choice
-            let strip = (stay == 0)
-                .then(|| shortest_strip(t, &kept, &kept_comps, &gaps, *v))
-                .flatten();
-            out.push(Vec::from_iter(strip.map(|strip| {
+            let strip = if stay == 0 {
+                shortest_strip(t, &kept, &kept_comps, &gaps, *v)
+            } else {
+                None
+            };
+            let growths = strip.into_iter().map(|strip| {
                 strip
                     .into_iter()
                     .map(|tet| Growth {
@@ -529,7 +536,8 @@ fn vertex_gaps(t: &Triangulation, vertices: &[u32], stay: usize) -> Vec<Vec<Vec<
                         keep_slivers: false,
                     })
                     .collect()
-            })));
+            });
+            out.push(growths.collect());
         } else {
             let open = is_open(star, &core);
             out.push(all_but_one(t, &gaps, &core, open, EdgeGaps::NearEdge, stay));
