@@ -29,7 +29,7 @@
 //! axis-aligned planes) is tried once more with those edges split too; `refine::grow` then keeps
 //! a slab only where its faces on a plane lie inside that plane's section.
 use super::refine::{edge, grow, key3, key4, Growth, Planes, Triangulation};
-use super::spacing::{Rule, Spaced, MIN_GAP};
+use super::spacing::{Rule, Spaced, SLAB_GAP};
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::sections::{cross, dot, sub};
 use gaps::gaps;
@@ -439,7 +439,7 @@ fn split_points(
         .iter()
         .map(|&p| (p, u32::MAX))
         .collect();
-    let mut spaced = Spaced::new(MIN_GAP * thickness, &earlier);
+    let mut spaced = Spaced::new(SLAB_GAP * thickness, &earlier);
     let mut out: FxHashMap<(u32, u32), ([f64; 3], f64)> = FxHashMap::default();
     for l in lifts {
         let (v, far, h) = (l.zone_vertex, l.far, l.height);
@@ -675,7 +675,7 @@ mod tests {
                     .map(|k| (a.0[k] - b.0[k]).powi(2))
                     .sum::<f64>()
                     .sqrt();
-                assert!(d >= MIN_GAP * thickness, "{a:?} {b:?}: {d:e}");
+                assert!(d >= SLAB_GAP * thickness, "{a:?} {b:?}: {d:e}");
             }
         }
     }

@@ -12,6 +12,13 @@ use crate::fxhash::FxHashMap;
 /// or a slab's thickness, 1e-3 of the diagonal: 1e-8 of the diagonal) from each other.
 pub const MIN_GAP: f64 = 1e-5;
 
+/// Slab points keep at least this fraction of the slab's thickness (1e-7 of the diagonal at the
+/// usual 1e-3) from each other: a hundred times the distance at which `check` calls two triangles
+/// one double sheet (1e-9 of the diagonal). At `MIN_GAP`, two slab points of odd076 on edges from
+/// one zone vertex to two apexes nearly in line were 4e-8 of the diagonal apart, and the needle
+/// triangles from them to the far end of their zone lay on each other within that distance.
+pub const SLAB_GAP: f64 = 1e-4;
+
 /// On an edge shorter than the gap over this, the gap is this fraction of the edge: near-duplicate
 /// points come from long edges converging at a core, not from a contour drawn at a far smaller
 /// scale than the diagonal, whose own vertices are that close.
