@@ -79,7 +79,7 @@ pub fn carve_pinches(
                     let (_, now) = super::singular::resolve(
                         t,
                         LOOKAHEAD_ROUNDS,
-                        d,
+                        super::singular::Reach::near(d),
                         super::singular::EdgeGaps::NearEdge,
                         Some((e, w)),
                     );

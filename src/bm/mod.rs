@@ -662,6 +662,7 @@ fn assemble_cells(
     report.count("singular_edge_gaps_grown", k.grown.edge_gaps);
     report.count("singular_vertex_gaps_grown", k.grown.vertex_gaps);
     report.count("singular_growth_tets", k.grown.tets);
+    report.count("singular_growth_by_fraction", k.growth_by_fraction as u64);
     for (round, &(e, v)) in k.grown.per_round.iter().enumerate() {
         report.count(&format!("singular_round.{round}.edges"), e);
         report.count(&format!("singular_round.{round}.vertices"), v);

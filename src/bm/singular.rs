@@ -42,6 +42,33 @@ pub enum EdgeGaps {
     OffPlane,
 }
 
+/// Where a growth splits the edges from its core: at `distance` from the core vertex, or at
+/// `fraction` of the edge where that is farther, at most halfway. A growth near its simplex only
+/// has `fraction` 0; a fraction keeps the points on edges to near-coincident far vertices (a
+/// cluster, an earlier round's split points) apart in proportion to those vertices, where a fixed
+/// distance along long edges puts them a fraction `distance / length` of that apart: needle
+/// triangles whose faces lie on each other (double sheets).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reach {
+    pub distance: f64,
+    pub fraction: f64,
+}
+
+impl Reach {
+    /// At `distance` from the core only.
+    pub fn near(distance: f64) -> Reach {
+        Reach {
+            distance,
+            fraction: 0.0,
+        }
+    }
+
+    /// The fraction of an edge of length `len` at which it is split.
+    fn along(&self, len: f64) -> f64 {
+        (self.distance / len).max(self.fraction)
+    }
+}
+
 impl SingularStats {
     /// The counts of a later pass added in; its rounds follow this one's.
     pub fn add(&mut self, later: &SingularStats) {
@@ -54,7 +81,7 @@ impl SingularStats {
 }
 
 /// Grow K at its singular edges and vertices, up to `rounds` rounds, with split points at
-/// `distance` from the singular simplex (or halfway along shorter edges). A round can expose more
+/// `reach` from the singular simplex (or halfway along shorter edges). A round can expose more
 /// singularities than it resolves (at the split points, where a growth was refused); the state
 /// with the fewest is kept, so growing never leaves ∂K worse than it found it.
 ///
@@ -62,7 +89,7 @@ impl SingularStats {
 pub fn resolve(
     t: &mut Triangulation,
     rounds: usize,
-    distance: f64,
+    reach: Reach,
     edge_gaps: EdgeGaps,
     mut known: Option<super::assembly::Sets>,
 ) -> (SingularStats, Option<super::assembly::Sets>) {
@@ -97,7 +124,7 @@ pub fn resolve(
             known = Some((edges, vertices));
             break;
         }
-        match grow_round(t, &edges, &vertices, distance, edge_gaps, &mut stats) {
+        match grow_round(t, &edges, &vertices, reach, edge_gaps, &mut stats) {
             Some(touched) => {
                 stats.touched.extend(&touched);
                 previous = Some(((edges, vertices), touched))
@@ -132,7 +159,7 @@ fn grow_round(
     t: &mut Triangulation,
     edges: &[(u32, u32)],
     vertices: &[u32],
-    distance: f64,
+    reach: Reach,
     how: EdgeGaps,
     stats: &mut SingularStats,
 ) -> Option<Vec<u32>> {
@@ -160,14 +187,7 @@ fn grow_round(
             break;
         }
         let near = points_near_cores(t, &groups);
-        let points = split_points(
-            t.positions,
-            t.planes,
-            &groups,
-            distance,
-            on_plane_edges,
-            &near,
-        );
+        let points = split_points(t.positions, t.planes, &groups, reach, on_plane_edges, &near);
         let g = grow(t, &groups, points);
         let mut grew = vec![false; tried.len()];
         for (&owner, &n) in owners.iter().zip(&g.tets_per_group) {
@@ -267,20 +287,20 @@ fn points_near_cores(t: &Triangulation, groups: &[Vec<Growth>]) -> Vec<([f64; 3]
         .collect()
 }
 
-/// Per growth, the edges from its core to its other vertices, split at `distance` from the core
+/// Per growth, the edges from its core to its other vertices, split at `reach` from the core
 /// vertex (at most halfway); an edge asked for twice keeps its first point. A point that would
-/// lie within `MIN_GAP` (or `SHORT_EDGE` of its edge) of another split point of its core or of a
+/// lie within `MIN_GAP` of the distance (or `SHORT_EDGE` of its edge) of another split point of its core or of a
 /// vertex around its core (`near`) moves along its edge where that clears it (`spacing`).
 fn split_points(
     positions: &[[f64; 3]],
     planes: &[Planes],
     groups: &[Vec<Growth>],
-    distance: f64,
+    reach: Reach,
     on_plane_edges: bool,
     near: &[([f64; 3], u32)],
 ) -> FxHashMap<(u32, u32), [f64; 3]> {
     let mut out = FxHashMap::default();
-    let mut spaced = Spaced::new(MIN_GAP * distance, near);
+    let mut spaced = Spaced::new(MIN_GAP * reach.distance, near);
     let on_a_plane_edge = |a: u32, b: u32| {
         planes[a as usize]
             .iter()
@@ -296,7 +316,7 @@ fn split_points(
                 if p != q && !out.contains_key(&edge(c, x)) {
                     let d = crate::sections::sub(q, p);
                     let len = crate::sections::dot(d, d).sqrt();
-                    let fraction = |k: f64| k * distance / len;
+                    let fraction = |k: f64| k * reach.along(len);
                     let (point, _) = spaced.place([p, q], fraction, Rule::Growth, c);
                     out.insert(edge(c, x), point);
                 }
@@ -667,7 +687,7 @@ mod tests {
 
     fn resolve_octants(kept_octants: &[usize]) -> (SingularStats, Vec<[u32; 4]>, Vec<[f64; 3]>) {
         let mut o = octants_owned(kept_octants);
-        let (s, _) = resolve(&mut o.view(), 4, 0.1, EdgeGaps::Whole, None);
+        let (s, _) = resolve(&mut o.view(), 4, Reach::near(0.1), EdgeGaps::Whole, None);
         (s, o.kept, o.positions)
     }
 
@@ -683,7 +703,7 @@ mod tests {
                 p.push(0);
             }
             o.internal = [key3([0, 1, 3]), key3([0, 2, 4])].into_iter().collect();
-            resolve(&mut o.view(), 4, 0.1, how, None);
+            resolve(&mut o.view(), 4, Reach::near(0.1), how, None);
             let in_sections = o
                 .kept
                 .iter()
@@ -732,7 +752,7 @@ mod tests {
             fillable: vec![b],
             ..Owned::at(positions)
         };
-        let (s, _) = resolve(&mut o.view(), 4, 0.1, EdgeGaps::Whole, None);
+        let (s, _) = resolve(&mut o.view(), 4, Reach::near(0.1), EdgeGaps::Whole, None);
         assert_eq!(s.edge_gaps, 1, "{s:?}");
         // the gap may be kept whole: no new points
         assert_eq!((s.tets, s.points), (1, 0));
@@ -765,7 +785,7 @@ mod tests {
             fillable: fillable.to_vec(),
             ..Owned::at(positions)
         };
-        let (s, _) = resolve(&mut o.view(), 1, 0.1, EdgeGaps::NearEdge, None);
+        let (s, _) = resolve(&mut o.view(), 1, Reach::near(0.1), EdgeGaps::NearEdge, None);
         assert_eq!(s.edge_gaps, 1, "{s:?}");
         assert_eq!(singularities(&boundary_of(&o.kept)), (0, 0));
         assert!(o.kept.iter().all(|&k| orient(&o.positions, k) > 0.0));
@@ -808,7 +828,14 @@ mod tests {
         ];
         let distance = 1e-3;
         let near = [(positions[4], 0)];
-        let points = split_points(&positions, &planes, &groups, distance, true, &near);
+        let points = split_points(
+            &positions,
+            &planes,
+            &groups,
+            Reach::near(distance),
+            true,
+            &near,
+        );
         assert_eq!(points.len(), 4);
         let ps: Vec<[f64; 3]> = points.values().copied().collect();
         for (i, a) in ps.iter().enumerate() {
@@ -830,5 +857,32 @@ mod tests {
             ];
             assert!(cross.iter().all(|c| c.abs() < 1e-15 * len), "{cross:?}");
         }
+    }
+
+    /// Two edges from a core to far vertices 1e-6 apart: at a growth distance of 1e-3 along edges
+    /// of length 1 their split points are 1e-9 apart (needles whose faces lie on each other); at a
+    /// fifth of each edge, 2e-7 apart. A short edge is split at the distance still.
+    #[test]
+    fn a_reach_by_fraction_keeps_the_points_of_converging_edges_apart() {
+        let core = [0.0; 3];
+        let far = [[1.0, 0.0, 0.0], [1.0, 1e-6, 0.0]];
+        let split = |reach: Reach, q: [f64; 3]| {
+            let s = reach.along(1.0).min(0.5);
+            q.map(|c| s * c)
+        };
+        let gap = |reach: Reach| {
+            let (a, b) = (split(reach, far[0]), split(reach, far[1]));
+            (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+        };
+        let near = Reach::near(1e-3);
+        let spread = Reach {
+            fraction: 0.2,
+            ..near
+        };
+        assert!((gap(near) - 1e-9).abs() < 1e-15, "{}", gap(near));
+        assert!((gap(spread) - 2e-7).abs() < 1e-15, "{}", gap(spread));
+        assert_eq!(split(spread, core), core);
+        // an edge of 2e-3: the distance (half of it) is farther than the fraction
+        assert_eq!(spread.along(2e-3), 0.5);
     }
 }

@@ -531,7 +531,7 @@ fn settled(
         let (stats, now) = super::singular::resolve(
             k,
             settle.growth_rounds,
-            settle.growth_distance,
+            super::singular::Reach::near(settle.growth_distance),
             how,
             Some(left),
         );
