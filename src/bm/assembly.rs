@@ -217,16 +217,8 @@ pub fn assemble(
     }
     laps.lap("voids");
     let nonconforming = nonconforming_vertices(&faces);
-    resolve_singularities(&mut k, &nonconforming, diag, &mut out);
+    resolve_singularities(&mut k, &nonconforming, diag, fill_voids, &mut out);
     laps.lap("singularities");
-    if fill_voids {
-        let again = super::voids::fill(&mut k);
-        out.voids.voids_filled += again.voids_filled;
-        out.voids.tets_filled += again.tets_filled;
-    }
-    laps.lap("voids_again");
-    out.folds_closed = super::manifold::close_flat_folds(&mut k, &nonconforming, FLAT_FOLD * diag);
-    laps.lap("flat_folds");
     if fill_voids {
         let on_hole = hole_vertices(results, &maps, k.positions.len());
         let settle = super::tunnels::Settle {
@@ -310,11 +302,12 @@ fn hole_vertices(results: &[Option<CellResult>], maps: &[Vec<u32>], n: usize) ->
 
 /// Singular edges and pinched vertices of ∂K: filled with whole step-1 survivors where a gap of
 /// them closes one (`fill`), then grown into near them (`singular`), then the pinches left carved
-/// (`carve`).
+/// (`carve`), the voids that opened filled and the flat folds closed (`settle`).
 fn resolve_singularities(
     k: &mut Triangulation,
     nonconforming: &FxHashSet<u32>,
     diag: f64,
+    fill_voids: bool,
     out: &mut Assembled,
 ) {
     let filled = super::fill::fill_and_drop(k.kept, k.fillable, FILL_ROUNDS);
@@ -328,12 +321,17 @@ fn resolve_singularities(
     let start = Snapshot::of(k);
     let first_grown = k.positions.len();
     let near = Reach::near(SINGULAR_GROWTH * diag);
-    let limits = (max_toggles, CARVE_DISTANCE * diag);
-    let (mut kept, mut carved) = grow_and_carve(k, sets.clone(), nonconforming, near, limits);
+    let limits = Limits {
+        max_toggles,
+        carve_distance: CARVE_DISTANCE * diag,
+        flat_fold: FLAT_FOLD * diag,
+        fill_voids,
+    };
+    let mut kept = settle(k, sets.clone(), nonconforming, near, limits);
     // growth near the simplices only, repeated round after round along long edges, can leave
     // needles whose faces lie on each other; grown again from the same K with the edges split
-    // at a fraction of their length, the one that leaves fewer singular simplices after carving,
-    // then fewer double sheets, stays
+    // at a fraction of their length, the one that leaves fewer singular simplices after carving
+    // and the flat folds' toggles, then fewer double sheets, stays
     let sheets = double_sheets(k, first_grown);
     if sheets > 0 {
         let left = singular_count(k);
@@ -343,31 +341,68 @@ fn resolve_singularities(
             fraction: NEEDLE_FRACTION,
             ..near
         };
-        let (by_fraction, carved_f) = grow_and_carve(k, sets, nonconforming, spread, limits);
+        let by_fraction = settle(k, sets, nonconforming, spread, limits);
         if (singular_count(k), double_sheets(k, first_grown)) < (left, sheets) {
-            (kept, carved) = (by_fraction, carved_f);
+            kept = by_fraction;
             out.growth_by_fraction = true;
         } else {
             after_near.restore(k);
         }
     }
-    out.grown = kept.grown;
-    out.toggled.add(&kept.toggled);
-    out.carved = carved;
+    out.grown = kept.resolved.grown;
+    out.toggled.add(&kept.resolved.toggled);
+    out.carved = kept.carved;
+    out.voids.voids_filled += kept.voids.voids_filled;
+    out.voids.tets_filled += kept.voids.tets_filled;
+    out.folds_closed = kept.folds;
 }
 
-/// [`grow_all_ways`] (at most `max_toggles` toggles), then the pinches left carved (`carve`).
-fn grow_and_carve(
+/// How far `settle` may go: toggles of the singular simplices, how far carving reaches, how flat a
+/// fold's tetrahedra are, and whether enclosed voids are filled.
+#[derive(Clone, Copy)]
+struct Limits {
+    max_toggles: usize,
+    carve_distance: f64,
+    flat_fold: f64,
+    fill_voids: bool,
+}
+
+/// What `settle` did.
+struct Settled {
+    resolved: Resolved,
+    carved: super::carve::CarveStats,
+    voids: super::voids::VoidStats,
+    folds: super::manifold::ToggleStats,
+}
+
+/// [`grow_all_ways`], then the pinches left carved (`carve`), the voids that opened filled, and
+/// the flat folds closed (`manifold::close_flat_folds`).
+fn settle(
     k: &mut Triangulation,
     sets: Sets,
     nonconforming: &FxHashSet<u32>,
     reach: Reach,
-    (max_toggles, carve_distance): (usize, f64),
-) -> (Resolved, super::carve::CarveStats) {
-    let resolved = grow_all_ways(k, sets, nonconforming, reach, max_toggles);
-    let carved =
-        super::carve::carve_pinches(k, resolved.left.clone(), nonconforming, carve_distance);
-    (resolved, carved)
+    limits: Limits,
+) -> Settled {
+    let resolved = grow_all_ways(k, sets, nonconforming, reach, limits.max_toggles);
+    let carved = super::carve::carve_pinches(
+        k,
+        resolved.left.clone(),
+        nonconforming,
+        limits.carve_distance,
+    );
+    let voids = if limits.fill_voids {
+        super::voids::fill(k)
+    } else {
+        Default::default()
+    };
+    let folds = super::manifold::close_flat_folds(k, nonconforming, limits.flat_fold);
+    Settled {
+        resolved,
+        carved,
+        voids,
+        folds,
+    }
 }
 
 /// Singular edges and pinched vertices of ∂K.
