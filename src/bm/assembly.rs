@@ -327,7 +327,7 @@ fn resolve_singularities(
         flat_fold: FLAT_FOLD * diag,
         fill_voids,
     };
-    let mut kept = settle(k, sets.clone(), nonconforming, near, limits);
+    let mut kept = settle(k, &start, sets.clone(), nonconforming, near, limits);
     // growth near the simplices only, repeated round after round along long edges, can leave
     // needles whose faces lie on each other; grown again from the same K with the edges split
     // at a fraction of their length, the one that leaves fewer singular simplices after carving
@@ -336,12 +336,12 @@ fn resolve_singularities(
     if sheets > 0 {
         let left = singular_count(k);
         let after_near = Snapshot::of(k);
-        start.restore(k);
+        start.clone().restore(k);
         let spread = Reach {
             fraction: NEEDLE_FRACTION,
             ..near
         };
-        let by_fraction = settle(k, sets, nonconforming, spread, limits);
+        let by_fraction = settle(k, &start, sets, nonconforming, spread, limits);
         if (singular_count(k), double_sheets(k, first_grown)) < (left, sheets) {
             kept = by_fraction;
             out.growth_by_fraction = true;
@@ -375,16 +375,17 @@ struct Settled {
     folds: super::manifold::ToggleStats,
 }
 
-/// [`grow_all_ways`], then the pinches left carved (`carve`), the voids that opened filled, and
-/// the flat folds closed (`manifold::close_flat_folds`).
+/// [`grow_all_ways`] from `start` (the state K is in), then the pinches left carved (`carve`),
+/// the voids that opened filled, and the flat folds closed (`manifold::close_flat_folds`).
 fn settle(
     k: &mut Triangulation,
+    start: &Snapshot,
     sets: Sets,
     nonconforming: &FxHashSet<u32>,
     reach: Reach,
     limits: Limits,
 ) -> Settled {
-    let resolved = grow_all_ways(k, sets, nonconforming, reach, limits.max_toggles);
+    let resolved = grow_all_ways(k, start, sets, nonconforming, reach, limits.max_toggles);
     let carved = super::carve::carve_pinches(
         k,
         resolved.left.clone(),
@@ -439,9 +440,11 @@ fn double_sheets(k: &Triangulation, first: usize) -> usize {
 
 /// Growth at the singular simplices `sets`, split at `reach`, then the toggles: near the edges
 /// first and by whole tetrahedra first, the better of the two, then where some are left the
-/// saddle bridges.
+/// saddle bridges. `start` is the state K is in (the caller's copy: K is copied once, not once
+/// per level).
 fn grow_all_ways(
     k: &mut Triangulation,
+    start: &Snapshot,
     sets: Sets,
     nonconforming: &FxHashSet<u32>,
     reach: Reach,
@@ -451,7 +454,6 @@ fn grow_all_ways(
     // where a whole gap would fit) or by whole gap tetrahedra (which can pinch K far from the
     // edge): neither is better on every input, so both orders run from the same K, each followed
     // by the toggles, and the one leaving fewer singular simplices (ties: fewer points) stays.
-    let start = Snapshot::of(k);
     let near_first = grow_then_toggle(
         k,
         [EdgeGaps::NearEdge, EdgeGaps::Whole],
@@ -464,7 +466,7 @@ fn grow_all_ways(
         near_first
     } else {
         let after_near = Snapshot::of(k);
-        start.restore(k);
+        start.clone().restore(k);
         let whole_first = grow_then_toggle(
             k,
             [EdgeGaps::Whole, EdgeGaps::NearEdge],

@@ -228,7 +228,7 @@ fn grow_round(
 const ALTERNATIVES: usize = 3;
 
 /// A copy of what growth changes in a triangulation.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub(crate) struct Snapshot {
     positions: Vec<[f64; 3]>,
     planes: Vec<Planes>,
