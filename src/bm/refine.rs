@@ -352,7 +352,7 @@ fn flat_sides(p: [[f64; 3]; 4]) -> [bool; 4] {
 /// rounding, whose faces on ∂K would lie on each other.
 const SLIVER: f64 = 1e-6;
 
-fn sliver(positions: &[[f64; 3]], t: &[u32; 4]) -> bool {
+pub(super) fn sliver(positions: &[[f64; 3]], t: &[u32; 4]) -> bool {
     let p = t.map(|v| positions[v as usize]);
     flat_height(p) < SLIVER * longest_edge(p)
 }

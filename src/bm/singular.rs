@@ -592,8 +592,26 @@ fn shortest_strip(
     let usable: Vec<usize> = (0..gaps.len())
         .filter(|&i| may_grow(&gaps[i], &[v], t.planes, t.internal))
         .collect();
+    // a strip through a sliver is refused as a whole (its child near v is a sliver too): the
+    // shortest strip of tetrahedra that are not, where there is one
+    let solid: Vec<usize> = (usable.iter().copied())
+        .filter(|&i| !super::refine::sliver(t.positions, &gaps[i]))
+        .collect();
+    strip_through(gaps, &solid, &comp_of_face, &faces_through)
+        .or_else(|| strip_through(gaps, &usable, &comp_of_face, &faces_through))
+}
+
+/// The shortest chain of the `usable` gap tetrahedra, adjacent through faces through the vertex
+/// (`faces_through`), from one touching the first kept component (`comp_of_face`) to one
+/// touching another.
+fn strip_through(
+    gaps: &[[u32; 4]],
+    usable: &[usize],
+    comp_of_face: &FxHashMap<[u32; 3], usize>,
+    faces_through: &impl Fn(&[u32; 4]) -> SmallVec<[[u32; 3]; 3]>,
+) -> Option<Vec<[u32; 4]>> {
     let mut gap_of_face: FxHashMap<[u32; 3], Vec<usize>> = FxHashMap::default();
-    for &i in &usable {
+    for &i in usable {
         for f in faces_through(&gaps[i]) {
             gap_of_face.entry(f).or_default().push(i);
         }
@@ -607,7 +625,7 @@ fn shortest_strip(
     // breadth-first from the gap tets touching the first kept component, to one touching another
     let mut from: FxHashMap<usize, usize> = FxHashMap::default();
     let mut queue = std::collections::VecDeque::new();
-    for &i in &usable {
+    for &i in usable {
         if touches(i).contains(&0) {
             from.insert(i, i);
             queue.push_back(i);
@@ -787,6 +805,48 @@ mod tests {
         };
         let (s, _) = resolve(&mut o.view(), 1, Reach::near(0.1), EdgeGaps::NearEdge, None);
         assert_eq!(s.edge_gaps, 1, "{s:?}");
+        assert_eq!(singularities(&boundary_of(&o.kept)), (0, 0));
+        assert!(o.kept.iter().all(|&k| orient(&o.positions, k) > 0.0));
+    }
+
+    /// Two cones touching at the vertex 0 of a double cone over a hexagon on z = 0 (apexes ±z),
+    /// one above the edge p0p1, one below p2p3, where p1 and p2 are 1e-7 rad apart: both
+    /// shortest strips between the cones pass a sliver (the tetrahedra over p1p2), whose child
+    /// near 0 is refused, so the strip goes the long way round (odd072: a needle cone to a tiny
+    /// section touching the solid at a contour vertex).
+    #[test]
+    fn a_strip_between_two_cones_goes_round_a_sliver() {
+        let degrees = [
+            0.0f64,
+            90.0,
+            90.0 + 1e-7f64.to_degrees(),
+            180.0,
+            240.0,
+            300.0,
+        ];
+        let mut positions = vec![[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+        positions.extend(degrees.map(|a| [a.to_radians().cos(), a.to_radians().sin(), 0.0]));
+        let p = |i: usize| (3 + i % 6) as u32;
+        let upper: Vec<[u32; 4]> = (0..6)
+            .map(|i| positive(&positions, [0, p(i), p(i + 1), 1]))
+            .collect();
+        let lower: Vec<[u32; 4]> = (0..6)
+            .map(|i| positive(&positions, [0, p(i), p(i + 1), 2]))
+            .collect();
+        assert!(crate::bm::refine::sliver(&positions, &upper[1]));
+        let kept = vec![upper[0], lower[2]];
+        assert_eq!(singularities(&boundary_of(&kept)), (0, 1));
+        let fillable = (upper.iter().chain(&lower))
+            .filter(|t| !kept.contains(t))
+            .copied()
+            .collect();
+        let mut o = Owned {
+            kept,
+            fillable,
+            ..Owned::at(positions)
+        };
+        let (s, _) = resolve(&mut o.view(), 4, Reach::near(0.1), EdgeGaps::NearEdge, None);
+        assert_eq!(s.vertex_gaps, 1, "{s:?}");
         assert_eq!(singularities(&boundary_of(&o.kept)), (0, 0));
         assert!(o.kept.iter().all(|&k| orient(&o.positions, k) > 0.0));
     }
