@@ -420,7 +420,9 @@ const NEEDLE_FRACTION: f64 = 0.2;
 
 /// Overlapping near-coplanar pairs and crossings among the triangles of ∂K at a point from
 /// `first` on (growth's points: where its needles are), as `check` counts them on those
-/// triangles alone (its tolerance relative to their box, not the model's: stricter).
+/// triangles alone (its tolerance relative to their box, not the model's: stricter; the handle
+/// stage asks the same search for its pairs at the model's tolerance,
+/// `eval::check::overlapping_near_coplanar_pairs`).
 fn double_sheets(k: &Triangulation, first: usize) -> usize {
     let near: Vec<[u32; 4]> = (k.kept.iter())
         .filter(|t| t.iter().any(|&v| v as usize >= first))

@@ -424,30 +424,20 @@ impl Batches<'_> {
 }
 
 /// The vertices of ∂K's triangles near a cut (through a vertex of `batch` or a point from
-/// `first` on) that overlap another such triangle nearly in its plane (within `tol`).
+/// `first` on) that overlap a later such triangle nearly in its plane (within `tol`).
 fn double_sheets(k: &Triangulation, batch: &[Vec<[u32; 4]>], first: usize, tol: f64) -> Vec<u32> {
-    use crate::eval::near_coplanar::{normal, overlapping_near_coplanar_with_normals};
     let mut mark: FxHashSet<u32> = batch.iter().flatten().flatten().copied().collect();
     mark.extend(first as u32..k.positions.len() as u32);
     let near: Vec<[u32; 4]> = (k.kept.iter())
         .filter(|t| t.iter().any(|v| mark.contains(v)))
         .copied()
         .collect();
-    let tris: Vec<([[f64; 3]; 3], [u32; 3])> = super::faces::boundary(&near)
+    let tris: Vec<[u32; 3]> = super::faces::boundary(&near)
         .into_iter()
         .filter(|f| f.iter().any(|v| mark.contains(v)))
-        .map(|f| (f.map(|v| k.positions[v as usize]), f))
         .collect();
-    let normals: Vec<_> = tris.iter().map(|(p, _)| normal(*p)).collect();
-    let mut out = Vec::new();
-    for i in 0..tris.len() {
-        for j in i + 1..tris.len() {
-            let (a, b) = (tris[i], tris[j]);
-            if overlapping_near_coplanar_with_normals(a.0, normals[i], b.0, normals[j], tol) {
-                out.extend(a.1);
-            }
-        }
-    }
+    let pairs = crate::eval::check::overlapping_near_coplanar_pairs(k.positions, &tris, tol);
+    let mut out: Vec<u32> = pairs.into_iter().flat_map(|[i, _]| tris[i]).collect();
     out.sort_unstable();
     out.dedup();
     out

@@ -256,6 +256,45 @@ pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
     out
 }
 
+/// The pairs (i < j) of `triangles` that overlap nearly in one plane within `tolerance`
+/// (absolute), whether or not they also cross: the BVH search of [`self_intersections`] with the
+/// tolerance given rather than taken from the triangles' box (for callers that judge a part of a
+/// model by the model's tolerance), in order.
+pub fn overlapping_near_coplanar_pairs(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    tolerance: f64,
+) -> Vec<[usize; 2]> {
+    let pts = |tr: [u32; 3]| tr.map(|k| vertices[k as usize]);
+    let normals: Vec<_> = triangles.iter().map(|&tr| normal(pts(tr))).collect();
+    let bvh = Bvh::build(triangle_boxes(vertices, triangles));
+    let mut out = Vec::new();
+    for (i, &a) in triangles.iter().enumerate() {
+        // as in `self_intersections`: a point within the tolerance of the other's plane is within
+        // twice it of its box
+        let bb = grown(bvh.item_box(i as u32), 2.0 * tolerance);
+        let mut found: Vec<usize> = Vec::new();
+        bvh.for_each_overlap(&bb, |j| {
+            let j = j as usize;
+            let b = triangles[j];
+            if j > i
+                && overlapping_near_coplanar_with_normals(
+                    pts(a),
+                    normals[i],
+                    pts(b),
+                    normals[j],
+                    tolerance,
+                )
+            {
+                found.push(j);
+            }
+        });
+        found.sort_unstable();
+        out.extend(found.into_iter().map(|j| [i, j]));
+    }
+    out
+}
+
 /// Used vertices at exactly the position of another used vertex (beyond the first at each position).
 pub fn coincident_vertices(mesh: &TriMesh) -> usize {
     let mut used = vec![false; mesh.vertices.len()];
@@ -283,5 +322,53 @@ fn grown(b: &Aabb, d: f64) -> Aabb {
     Aabb {
         lo: b.lo.map(|x| x - d),
         hi: b.hi.map(|x| x + d),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        /// The BVH search finds exactly the pairs a test of every pair finds: triangles on a small
+        /// grid, each lifted off z = 0 by less or more than the tolerance (so sheets stack within
+        /// it, miss it, or are far apart), some tilted by one raised corner.
+        #[test]
+        fn overlapping_pairs_are_those_of_every_pair(
+            tris in proptest::collection::vec(
+                (
+                    proptest::array::uniform3((0i32..4, 0i32..4)),
+                    prop_oneof![Just(0.0), Just(4e-10), Just(3e-9), Just(0.5)],
+                    prop_oneof![Just(0.0), Just(0.0), Just(2e-10), Just(1.0)],
+                ),
+                1..16,
+            ),
+        ) {
+            let mut vertices: Vec<[f64; 3]> = Vec::new();
+            let mut triangles: Vec<[u32; 3]> = Vec::new();
+            for (corners, lift, tilt) in &tris {
+                let first = vertices.len() as u32;
+                for (k, &(x, y)) in corners.iter().enumerate() {
+                    let z = lift + if k == 0 { *tilt } else { 0.0 };
+                    vertices.push([f64::from(x), f64::from(y), z]);
+                }
+                triangles.push([first, first + 1, first + 2]);
+            }
+            let tol = 1e-9;
+            let pts = |tr: [u32; 3]| tr.map(|k| vertices[k as usize]);
+            let mut every = Vec::new();
+            for i in 0..triangles.len() {
+                for j in i + 1..triangles.len() {
+                    if crate::eval::near_coplanar::overlapping_near_coplanar(
+                        pts(triangles[i]), pts(triangles[j]), tol,
+                    ) {
+                        every.push([i, j]);
+                    }
+                }
+            }
+            prop_assert_eq!(overlapping_near_coplanar_pairs(&vertices, &triangles, tol), every);
+        }
     }
 }
