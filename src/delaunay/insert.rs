@@ -2,6 +2,10 @@
 //! Bowyer–Watson insertion (conflict region grown from the located tetrahedron, then starred from
 //! the new vertex). All ids here are internal vertex ids (insertion order), except in the public
 //! insertion methods (`insert`, `insert_batch`, ...), which hand out external ids.
+//!
+//! About 800 lines in one file on purpose: the walk, the conflict region and the starring work on
+//! the triangulation's scratch buffers together, and the tagged variant of each step (symbolic
+//! ties on planes) sits beside the plain one (`insert_vertex_with::<TAGGED>`).
 use super::pred::{self, P};
 use super::tags;
 use super::tds::{facet_key, other_two, Tet, ID_MASK, INFINITE, IN_CAVITY, NONE, OUTSIDE};
