@@ -173,119 +173,11 @@ pub fn validate_with_options(
     for (s, sec) in sections.sections.iter().enumerate() {
         check_plane(&sec.plane).map_err(|r| Error::input(loc.plane(s), r))?;
     }
-    let mut duplicates = RepairLog::default();
     let mut reoriented = RepairLog::default();
 
-    // Coordinates: consistent lengths, finite, in range; points3 filled in when missing.
-    for (s, sec) in sections.sections.iter_mut().enumerate() {
-        let plane = sec.plane;
-        for (r, region) in sec.regions.iter_mut().enumerate() {
-            for (role, c) in contours_mut(region) {
-                let id = ContourId {
-                    section: s,
-                    region: r,
-                    role,
-                };
-                if c.points3.is_empty() {
-                    c.points3 = c.points2.iter().map(|&q| plane.to_3d(q)).collect();
-                }
-                if c.points3.len() != c.points2.len() {
-                    return Err(Error::input(
-                        loc.contour(id),
-                        format!(
-                            "{} 2D points but {} 3D points",
-                            c.points2.len(),
-                            c.points3.len()
-                        ),
-                    ));
-                }
-                for (i, q) in c.points2.iter_mut().enumerate() {
-                    for x in q.iter_mut() {
-                        *x = check_coordinate(*x).map_err(|e| {
-                            Error::input(loc.contour(id), format!("vertex {i}: {e}"))
-                        })?;
-                    }
-                }
-                for (i, p) in c.points3.iter().enumerate() {
-                    for &x in p {
-                        check_coordinate(x).map_err(|e| {
-                            Error::input(loc.contour(id), format!("vertex {i}: {e}"))
-                        })?;
-                    }
-                }
-            }
-        }
-    }
-
-    // Off-plane distances and snapping (points3 := the plane point of points2).
-    let tol = off_plane_tolerance(&sections);
-    for (s, sec) in sections.sections.iter_mut().enumerate() {
-        let plane = sec.plane;
-        let mut max_off = sec.max_off_plane.max(0.0);
-        for (r, region) in sec.regions.iter_mut().enumerate() {
-            for (role, c) in contours_mut(region) {
-                let id = ContourId {
-                    section: s,
-                    region: r,
-                    role,
-                };
-                for (i, (p, q)) in c.points3.iter().zip(&c.points2).enumerate() {
-                    let off = plane.signed_distance(*p).abs();
-                    let on = plane.to_3d(*q);
-                    let gap = dot(sub(*p, on), sub(*p, on)).sqrt();
-                    if !(off <= tol && gap <= tol) {
-                        return Err(Error::input(
-                            loc.contour(id),
-                            format!(
-                                "vertex {i} is {:.3e} off its plane (3D point {:.3e} from its 2D point); tolerance {tol:.3e} ({OFF_PLANE_RELATIVE_TOLERANCE} x model diagonal)",
-                                off, gap
-                            ),
-                        ));
-                    }
-                    max_off = max_off.max(off);
-                }
-                c.points3 = c.points2.iter().map(|&q| plane.to_3d(q)).collect();
-            }
-        }
-        sec.max_off_plane = max_off;
-    }
-
-    // Duplicate consecutive vertices (closing edge included), vertices on their neighbours'
-    // chord within rounding, then the vertex count.
-    let flat_tolerance = COLLINEAR_RELATIVE_TOLERANCE * model_diagonal(&sections);
-    let mut collinear = RepairLog::default();
-    let mut collinear_count = 0;
-    for (s, sec) in sections.sections.iter_mut().enumerate() {
-        let shared = positions_in_several_places(sec);
-        for (r, region) in sec.regions.iter_mut().enumerate() {
-            for (role, c) in contours_mut(region) {
-                let id = ContourId {
-                    section: s,
-                    region: r,
-                    role,
-                };
-                if remove_consecutive_duplicates(c) {
-                    duplicates.add(|| loc.contour(id));
-                }
-                let removed = remove_collinear_within_rounding(c, flat_tolerance, &|q| {
-                    shared.contains(&point_key(q))
-                });
-                if removed > 0 {
-                    collinear_count += removed;
-                    collinear.add(|| loc.contour(id));
-                }
-                if c.points2.len() < 3 {
-                    return Err(Error::input(
-                        loc.contour(id),
-                        format!(
-                            "contour has {} distinct vertices, at least 3 are needed",
-                            c.points2.len()
-                        ),
-                    ));
-                }
-            }
-        }
-    }
+    check_coordinates(&mut sections, loc)?;
+    snap_to_planes(&mut sections, loc)?;
+    let (duplicates, collinear, collinear_count) = remove_redundant_vertices(&mut sections, loc)?;
 
     // Self-intersecting and self-touching contours, then same-label and different-label
     // conflicts (unless strict): see `repair` and `labels`.
@@ -329,6 +221,129 @@ pub fn validate_with_options(
         &mut sections.warnings,
     );
     Ok(sections)
+}
+/// Coordinates: consistent lengths, finite, in range; points3 filled in when missing.
+fn check_coordinates(sections: &mut Sections, loc: &dyn Locator) -> Result<()> {
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        let plane = sec.plane;
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let id = ContourId {
+                    section: s,
+                    region: r,
+                    role,
+                };
+                if c.points3.is_empty() {
+                    c.points3 = c.points2.iter().map(|&q| plane.to_3d(q)).collect();
+                }
+                if c.points3.len() != c.points2.len() {
+                    return Err(Error::input(
+                        loc.contour(id),
+                        format!(
+                            "{} 2D points but {} 3D points",
+                            c.points2.len(),
+                            c.points3.len()
+                        ),
+                    ));
+                }
+                for (i, q) in c.points2.iter_mut().enumerate() {
+                    for x in q.iter_mut() {
+                        *x = check_coordinate(*x).map_err(|e| {
+                            Error::input(loc.contour(id), format!("vertex {i}: {e}"))
+                        })?;
+                    }
+                }
+                for (i, p) in c.points3.iter().enumerate() {
+                    for &x in p {
+                        check_coordinate(x).map_err(|e| {
+                            Error::input(loc.contour(id), format!("vertex {i}: {e}"))
+                        })?;
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Off-plane distances and snapping (points3 := the plane point of points2).
+fn snap_to_planes(sections: &mut Sections, loc: &dyn Locator) -> Result<()> {
+    let tol = off_plane_tolerance(sections);
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        let plane = sec.plane;
+        let mut max_off = sec.max_off_plane.max(0.0);
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let id = ContourId {
+                    section: s,
+                    region: r,
+                    role,
+                };
+                for (i, (p, q)) in c.points3.iter().zip(&c.points2).enumerate() {
+                    let off = plane.signed_distance(*p).abs();
+                    let on = plane.to_3d(*q);
+                    let gap = dot(sub(*p, on), sub(*p, on)).sqrt();
+                    if !(off <= tol && gap <= tol) {
+                        return Err(Error::input(
+                            loc.contour(id),
+                            format!(
+                                "vertex {i} is {:.3e} off its plane (3D point {:.3e} from its 2D point); tolerance {tol:.3e} ({OFF_PLANE_RELATIVE_TOLERANCE} x model diagonal)",
+                                off, gap
+                            ),
+                        ));
+                    }
+                    max_off = max_off.max(off);
+                }
+                c.points3 = c.points2.iter().map(|&q| plane.to_3d(q)).collect();
+            }
+        }
+        sec.max_off_plane = max_off;
+    }
+    Ok(())
+}
+
+/// Duplicate consecutive vertices (closing edge included), vertices on their neighbours' chord
+/// within rounding, then the vertex count: the logs of both repairs and the collinear vertices
+/// removed.
+fn remove_redundant_vertices(
+    sections: &mut Sections,
+    loc: &dyn Locator,
+) -> Result<(RepairLog, RepairLog, usize)> {
+    let flat_tolerance = COLLINEAR_RELATIVE_TOLERANCE * model_diagonal(sections);
+    let (mut duplicates, mut collinear) = (RepairLog::default(), RepairLog::default());
+    let mut collinear_count = 0;
+    for (s, sec) in sections.sections.iter_mut().enumerate() {
+        let shared = positions_in_several_places(sec);
+        for (r, region) in sec.regions.iter_mut().enumerate() {
+            for (role, c) in contours_mut(region) {
+                let id = ContourId {
+                    section: s,
+                    region: r,
+                    role,
+                };
+                if remove_consecutive_duplicates(c) {
+                    duplicates.add(|| loc.contour(id));
+                }
+                let removed = remove_collinear_within_rounding(c, flat_tolerance, &|q| {
+                    shared.contains(&point_key(q))
+                });
+                if removed > 0 {
+                    collinear_count += removed;
+                    collinear.add(|| loc.contour(id));
+                }
+                if c.points2.len() < 3 {
+                    return Err(Error::input(
+                        loc.contour(id),
+                        format!(
+                            "contour has {} distinct vertices, at least 3 are needed",
+                            c.points2.len()
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok((duplicates, collinear, collinear_count))
 }
 
 /// The region repairs of every section (not strict): self-intersections, same-label conflicts,

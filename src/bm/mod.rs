@@ -174,16 +174,7 @@ pub fn run_cells_seeded(
         (shared_samples::SharedSamples::default(), 0)
     };
     let seeded = (placed > 0).then_some(&seeds);
-    let progress = if options.progress {
-        let pb = indicatif::ProgressBar::new(n_cells as u64);
-        pb.set_style(
-            indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} cells")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
-        Some(pb)
-    } else {
-        None
-    };
+    let progress = options.progress.then(|| cell_progress(n_cells));
     let t0 = std::time::Instant::now();
     let mut rounds = 0;
     let mut conforming = false;
@@ -192,20 +183,7 @@ pub fn run_cells_seeded(
     while rounds < MAX_ROUNDS {
         rounds += 1;
         let loops = conform::face_loops(arr, &splits);
-        // a cell is dirty when one of its faces' loops changed
-        for (f, l) in loops.iter().enumerate() {
-            let len: usize = l.iter().map(Vec::len).sum();
-            if len != prev_loops[f] {
-                prev_loops[f] = len;
-                let face = &arr.faces[f];
-                for c in [face.positive_cell, face.negative_cell]
-                    .into_iter()
-                    .flatten()
-                {
-                    dirty[c as usize] = true;
-                }
-            }
-        }
+        mark_dirty(arr, &loops, &mut prev_loops, &mut dirty);
         let todo = biggest_first(arr, &loops, (0..n_cells).filter(|&c| dirty[c]));
         if let Some(pb) = &progress {
             pb.set_message(format!("round {rounds}"));
@@ -305,6 +283,39 @@ pub fn run_cells_seeded(
         },
         placed,
     ))
+}
+
+/// The progress bar of the cell runs.
+fn cell_progress(n_cells: usize) -> indicatif::ProgressBar {
+    let pb = indicatif::ProgressBar::new(n_cells as u64);
+    pb.set_style(
+        indicatif::ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} cells")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    pb
+}
+
+/// A cell is dirty when one of its faces' loops changed since the last round (`prev_loops`: the
+/// number of loop vertices per face then, updated here).
+fn mark_dirty(
+    arr: &Arrangement,
+    loops: &[Vec<Vec<u32>>],
+    prev_loops: &mut [usize],
+    dirty: &mut [bool],
+) {
+    for (f, l) in loops.iter().enumerate() {
+        let len: usize = l.iter().map(Vec::len).sum();
+        if len != prev_loops[f] {
+            prev_loops[f] = len;
+            let face = &arr.faces[f];
+            for c in [face.positive_cell, face.negative_cell]
+                .into_iter()
+                .flatten()
+            {
+                dirty[c as usize] = true;
+            }
+        }
+    }
 }
 
 /// What sharing the diagram samples did.
@@ -643,6 +654,13 @@ fn assemble_cells(
             options.delaunay.collar,
         )
     });
+    report_assembly_counts(&k, report);
+    report_assembly_warnings(&k, slabs, report);
+    k
+}
+
+/// The assembly's counts and values in the report.
+fn report_assembly_counts(k: &assembly::Assembled, report: &mut Report) {
     report.count("nonconforming_faces", k.nonconforming_faces);
     report.count("flat_zone_triangles", k.flat_triangles);
     report.values.insert("flat_zone_area".into(), k.flat_area);
@@ -714,6 +732,13 @@ fn assemble_cells(
             .values
             .insert(format!("assembly_seconds.{stage}"), *secs);
     }
+    report.count("singular_edges", k.singular_edges);
+    report.count("singular_vertices", k.singular_vertices);
+}
+
+/// The assembly's warnings: what it could not resolve or protect, and the flat zones; `slabs`:
+/// whether flat zones were to be thickened.
+fn report_assembly_warnings(k: &assembly::Assembled, slabs: bool, report: &mut Report) {
     if k.tunnels.skipped_singular {
         report.warnings.push(
             "tunnels: handles that no section witnesses are left open (the boundary of the complex is not a manifold)".into(),
@@ -749,8 +774,6 @@ fn assemble_cells(
             k.collar.cells_too_sharp
         ));
     }
-    report.count("singular_edges", k.singular_edges);
-    report.count("singular_vertices", k.singular_vertices);
     if k.nonconforming_faces > 0 {
         report.warnings.push(format!(
             "{} faces are triangulated differently by their two cells: the complex is not conforming there and its boundary may cross itself",
@@ -780,5 +803,4 @@ fn assemble_cells(
             k.singular_edges, k.singular_vertices
         ));
     }
-    k
 }
