@@ -426,14 +426,7 @@ const NEEDLE_FRACTION: f64 = 0.2;
 /// stage asks the same search for its pairs at the model's tolerance,
 /// `eval::check::overlapping_near_coplanar_pairs`).
 fn double_sheets(k: &Triangulation, first: usize) -> usize {
-    let near: Vec<[u32; 4]> = (k.kept.iter())
-        .filter(|t| t.iter().any(|&v| v as usize >= first))
-        .copied()
-        .collect();
-    let tris: Vec<[u32; 3]> = boundary_of(&near)
-        .into_iter()
-        .filter(|f| f.iter().any(|&v| v as usize >= first))
-        .collect();
+    let tris = boundary_near(k.kept, |v| v as usize >= first);
     if tris.is_empty() {
         return 0;
     }
@@ -669,6 +662,19 @@ pub fn boundary_of(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
     let mut out = super::faces::boundary(tets);
     out.sort_unstable();
     out
+}
+
+/// The triangles of ∂K with a vertex that is `marked` (∂K of the kept tetrahedra at such
+/// vertices, restricted to those triangles: the same triangles as on the whole of ∂K).
+pub(super) fn boundary_near(kept: &[[u32; 4]], marked: impl Fn(u32) -> bool) -> Vec<[u32; 3]> {
+    let near: Vec<[u32; 4]> = (kept.iter())
+        .filter(|t| t.iter().any(|&v| marked(v)))
+        .copied()
+        .collect();
+    super::faces::boundary(&near)
+        .into_iter()
+        .filter(|f| f.iter().any(|&v| marked(v)))
+        .collect()
 }
 
 /// The vertices of the faces whose two cells triangulate them differently.

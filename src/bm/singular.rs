@@ -291,8 +291,9 @@ fn points_near_cores(t: &Triangulation, groups: &[Vec<Growth>]) -> Vec<([f64; 3]
 
 /// Per growth, the edges from its core to its other vertices, split at `reach` from the core
 /// vertex (at most halfway); an edge asked for twice keeps its first point. A point that would
-/// lie within `MIN_GAP` of the distance (or `SHORT_EDGE` of its edge) of another split point of its core or of a
-/// vertex around its core (`near`) moves along its edge where that clears it (`spacing`).
+/// lie within `MIN_GAP` of the distance (or `SHORT_EDGE` of its edge) of another split point of
+/// its core or of a vertex around its core (`near`) moves along its edge where that clears it
+/// (`spacing`).
 fn split_points(
     positions: &[[f64; 3]],
     planes: &[Planes],

@@ -430,14 +430,7 @@ impl Batches<'_> {
 fn double_sheets(k: &Triangulation, batch: &[Vec<[u32; 4]>], first: usize, tol: f64) -> Vec<u32> {
     let mut mark: FxHashSet<u32> = batch.iter().flatten().flatten().copied().collect();
     mark.extend(first as u32..k.positions.len() as u32);
-    let near: Vec<[u32; 4]> = (k.kept.iter())
-        .filter(|t| t.iter().any(|v| mark.contains(v)))
-        .copied()
-        .collect();
-    let tris: Vec<[u32; 3]> = super::faces::boundary(&near)
-        .into_iter()
-        .filter(|f| f.iter().any(|v| mark.contains(v)))
-        .collect();
+    let tris = super::assembly::boundary_near(k.kept, |v| mark.contains(&v));
     let pairs = crate::eval::check::overlapping_near_coplanar_pairs(k.positions, &tris, tol);
     let mut out: Vec<u32> = pairs.into_iter().flat_map(|[i, _]| tris[i]).collect();
     out.sort_unstable();
