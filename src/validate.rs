@@ -222,6 +222,7 @@ pub fn validate_with_options(
     );
     Ok(sections)
 }
+
 /// Coordinates: consistent lengths, finite, in range; points3 filled in when missing.
 fn check_coordinates(sections: &mut Sections, loc: &dyn Locator) -> Result<()> {
     for (s, sec) in sections.sections.iter_mut().enumerate() {

@@ -38,8 +38,9 @@ fn sweep(mesh: &str, plane_counts: &[usize], seeds: &[u64]) -> Vec<String> {
 /// The hand cases that are not clean today (a listed expectation, like `KNOWN_UNCLEAN`). 12
 /// planes seed 2 had 2 overlapping near-coplanar pairs (the walls of a flat crack that meets no
 /// edge where they fold onto each other) until growth that leaves double sheets was tried again
-/// at a fraction of each edge (`bm::singular::Reach`, session 38). 8 planes seed 1 (8 pairs: a crack whose filling left a
-/// singular simplex) is clean since the fold closing repairs such a filling with the toggles.
+/// at a fraction of each edge (`bm::singular::Reach`, session 38). 8 planes seed 1 (8 pairs: a
+/// crack whose filling left a singular simplex) is clean since the fold closing repairs such a
+/// filling with the toggles.
 /// No case has an exact crossing and every section is within 1e-9. (5 planes, seeds 2 and 3,
 /// kept a pinched vertex each until `carve`; 8 planes seed 3 is clean since growth refuses
 /// sliver children.)
