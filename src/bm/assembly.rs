@@ -68,6 +68,9 @@ pub struct Assembled {
     pub cuts: super::tunnels::TunnelStats,
     /// The prisms over the sections near every plane (`collar`).
     pub collar: super::collar::CollarStats,
+    /// Singular simplices on no plane that the collar left (or that were there where it was
+    /// refused), carved after it (`carve::carve_off_planes`).
+    pub carved_off_planes: super::carve::CarveStats,
     /// Wall-clock seconds of each stage of the assembly, in order.
     pub stage_seconds: Vec<(&'static str, f64)>,
     /// The process's peak resident memory (MiB) when each stage ended, where the platform
@@ -247,11 +250,20 @@ pub fn assemble(
         out.collar.min_height /= diag;
         out.collar.max_shift /= diag;
     }
+    let mut boundary = boundary.unwrap_or_else(|| boundary_of(k.kept));
+    if collar > 0.0 {
+        let singular = super::fill::singular_simplices(&boundary);
+        let distance = CARVE_DISTANCE * diag;
+        out.carved_off_planes =
+            super::carve::carve_off_planes(&mut k, singular, &nonconforming, distance);
+        if out.carved_off_planes.vertices > 0 {
+            boundary = boundary_of(k.kept);
+        }
+    }
     let seconds = laps.lap("collar");
     if collar > 0.0 {
         out.collar.seconds = seconds;
     }
-    let boundary = boundary.unwrap_or_else(|| boundary_of(&tets));
     let (edges, vertices) = singularities(&boundary);
     out.singular_edges = edges;
     out.singular_vertices = vertices;

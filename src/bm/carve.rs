@@ -42,9 +42,21 @@ pub fn carve_pinches(
     nonconforming: &FxHashSet<u32>,
     distance: f64,
 ) -> CarveStats {
+    let count = singular.0.len() + singular.1.len();
+    carve_some(t, singular, count, nonconforming, distance)
+}
+
+/// `carve_pinches` at `cores`, some of ∂K's `count` singular simplices: a carving stays only
+/// where it lowers that count.
+fn carve_some(
+    t: &mut Triangulation,
+    cores: Sets,
+    mut count: usize,
+    nonconforming: &FxHashSet<u32>,
+    distance: f64,
+) -> CarveStats {
     let mut stats = CarveStats::default();
-    let (edges, vertices) = singular;
-    let mut count = edges.len() + vertices.len();
+    let (edges, vertices) = cores;
     let cores = edges
         .iter()
         .map(|&(a, b)| vec![a, b])
@@ -98,6 +110,31 @@ pub fn carve_pinches(
         // nothing to carve, or no carving lowered the count: refused, so the report says so
         stats.refused += u64::from(!done);
     }
+    stats
+}
+
+/// `carve_pinches` at the singular simplices of `singular` whose vertices all lie on no plane,
+/// after the collar: a tip there has no face on a plane (its other vertices are split points of
+/// edges from the core), so no section changes, and the prisms near the planes stay as they are.
+/// The tips are dropped, not left fillable: nothing grows after the collar.
+pub fn carve_off_planes(
+    t: &mut Triangulation,
+    singular: Sets,
+    nonconforming: &FxHashSet<u32>,
+    distance: f64,
+) -> CarveStats {
+    let off = |x: &u32| t.planes[*x as usize].is_empty();
+    let count = singular.0.len() + singular.1.len();
+    let (edges, vertices) = singular;
+    let edges: Vec<(u32, u32)> = (edges.into_iter())
+        .filter(|(a, b)| off(a) && off(b))
+        .collect();
+    let vertices: Vec<u32> = vertices.into_iter().filter(off).collect();
+    if edges.is_empty() && vertices.is_empty() {
+        return CarveStats::default();
+    }
+    let stats = carve_some(t, (edges, vertices), count, nonconforming, distance);
+    t.fillable.clear();
     stats
 }
 
@@ -460,6 +497,43 @@ mod tests {
         let at_origin: Vec<_> = t.kept.iter().filter(|x| x.contains(&0)).collect();
         assert_eq!(at_origin.len(), 1);
         assert_eq!(key4(*at_origin[0]), [0, 1, 2, 3]);
+    }
+
+    /// Two pinched vertices, one on a plane and one on none: after the collar only the second
+    /// is carved (a tip at the first could expose a section face).
+    #[test]
+    fn after_the_collar_only_pinches_on_no_plane_are_carved() {
+        let mut positions = Vec::new();
+        let mut kept = Vec::new();
+        for shift in [0.0, 10.0] {
+            let base = positions.len() as u32;
+            for p in [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [-1.0, 0.0, 0.0],
+                [0.0, -1.0, 0.0],
+                [0.0, 0.0, -1.0],
+            ] {
+                positions.push([p[0] + shift, p[1], p[2]]);
+            }
+            kept.push(positive(&positions, [base, base + 1, base + 2, base + 3]));
+            kept.push(positive(&positions, [base, base + 4, base + 5, base + 6]));
+        }
+        let mut o = Owned {
+            kept,
+            ..Owned::at(positions)
+        };
+        o.planes[7].push(0);
+        let mut t = o.view();
+        let singular = singular_simplices(&boundary_of(t.kept));
+        assert_eq!(singular, (vec![], vec![0, 7]));
+        let stats = carve_off_planes(&mut t, singular, &FxHashSet::default(), 0.1);
+        assert_eq!((stats.vertices, stats.tips, stats.refused), (1, 1, 0));
+        assert!(t.fillable.is_empty());
+        let (e, w) = singular_simplices(&boundary_of(t.kept));
+        assert_eq!((e, w), (vec![], vec![7]));
     }
 
     /// The six octants around the origin but two opposite ones: one cone whose surface link is

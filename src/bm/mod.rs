@@ -692,6 +692,11 @@ fn report_assembly_counts(k: &assembly::Assembled, report: &mut Report) {
     report.count("pinches_carved", k.carved.vertices);
     report.count("pinch_tips_removed", k.carved.tips);
     report.count("pinches_not_carved", k.carved.refused);
+    report.count("pinches_carved_after_collar", k.carved_off_planes.vertices);
+    report.count(
+        "pinches_not_carved_after_collar",
+        k.carved_off_planes.refused,
+    );
     report.count("voids_filled", k.voids.voids_filled);
     report.count("void_tets_filled", k.voids.tets_filled);
     report.count("tunnel_candidates", k.tunnels.candidates);
