@@ -73,34 +73,8 @@ pub struct Level {
 /// The arrangement of the planes `levels[i].z` (strictly increasing, inside the box) in the box
 /// `lo..hi`: one slab cell between consecutive planes.
 pub fn horizontal_slabs(lo: [f64; 3], hi: [f64; 3], levels: &[Level]) -> Arrangement {
-    let mut b = Builder {
-        planes: Vec::new(),
-        pool: VertexPool::default(),
-        faces: Vec::new(),
-    };
-    for (i, l) in levels.iter().enumerate() {
-        b.planes.push(ArrPlane {
-            plane: Plane::from_equation([0.0, 0.0, 1.0], -l.z).unwrap(),
-            section: Some(i),
-        });
-    }
+    let mut b = Builder::with_planes(lo, hi, levels);
     let n_input = levels.len();
-    // Walls with outward normals: x-, x+, y-, y+, z-, z+.
-    let walls = [
-        (lo, [-1.0, 0.0, 0.0]),
-        (hi, [1.0, 0.0, 0.0]),
-        (lo, [0.0, -1.0, 0.0]),
-        (hi, [0.0, 1.0, 0.0]),
-        (lo, [0.0, 0.0, -1.0]),
-        (hi, [0.0, 0.0, 1.0]),
-    ];
-    for (p, n) in walls {
-        b.planes.push(ArrPlane {
-            plane: Plane::from_point_normal(p, n).unwrap(),
-            section: None,
-        });
-    }
-    let wall = |k: usize| (n_input + k) as u32;
     let mut zs = vec![lo[2]];
     zs.extend(levels.iter().map(|l| l.z));
     zs.push(hi[2]);
@@ -111,119 +85,25 @@ pub fn horizontal_slabs(lo: [f64; 3], hi: [f64; 3], levels: &[Level]) -> Arrange
             volume: (hi[0] - lo[0]) * (hi[1] - lo[1]) * (zs[k + 1] - zs[k]),
         })
         .collect();
-    let rect = |z: f64| {
-        vec![
-            [lo[0], lo[1], z],
-            [hi[0], lo[1], z],
-            [hi[0], hi[1], z],
-            [lo[0], hi[1], z],
-        ]
-    };
     // Horizontal faces: bottom wall, input planes, top wall.
     for (k, &z) in zs.iter().enumerate() {
-        let plane = if k == 0 {
-            wall(4)
+        let (plane, level) = if k == 0 {
+            (wall(n_input, 4), None)
         } else if k == zs.len() - 1 {
-            wall(5)
+            (wall(n_input, 5), None)
         } else {
-            (k - 1) as u32
+            ((k - 1) as u32, Some(&levels[k - 1]))
         };
-        let polygon = b.convex_face(plane, &rect(z));
-        let mut pieces = Vec::new();
-        if k > 0 && k < zs.len() - 1 {
-            for (outer, holes) in &levels[k - 1].pieces {
-                let o3: Vec<[f64; 3]> = outer.iter().map(|q| [q[0], q[1], z]).collect();
-                let outer = b.polygon(plane, &o3, true);
-                let holes = holes
-                    .iter()
-                    .map(|h| {
-                        let h3: Vec<[f64; 3]> = h.iter().map(|q| [q[0], q[1], z]).collect();
-                        b.polygon(plane, &h3, false)
-                    })
-                    .collect();
-                pieces.push(SectionPiece {
-                    label: 1,
-                    outer,
-                    holes,
-                });
-            }
-        }
-        let normal_up = b.planes[plane as usize].plane.normal[2] > 0.0;
-        let below = if k == 0 { None } else { Some((k - 1) as u32) };
-        let above = if k == n_cells { None } else { Some(k as u32) };
-        let (positive_cell, negative_cell) = if normal_up {
-            (above, below)
-        } else {
-            (below, above)
-        };
-        let fid = b.faces.len() as u32;
-        b.faces.push(Face {
-            plane,
-            positive_cell,
-            negative_cell,
-            polygon,
-            pieces,
-        });
-        if let Some(c) = above {
-            // The face is the bottom of `above`: outward is −z.
-            cells[c as usize].faces.push(CellFace {
-                face: fid,
-                outward_is_plane_normal: !normal_up,
-            });
-        }
-        if let Some(c) = below {
-            cells[c as usize].faces.push(CellFace {
-                face: fid,
-                outward_is_plane_normal: normal_up,
-            });
-        }
+        b.horizontal_face(&mut cells, k, plane, level, [lo, hi], z);
     }
     // Side walls of every slab.
     for (k, cell) in cells.iter_mut().enumerate() {
-        let (z0, z1) = (zs[k], zs[k + 1]);
-        let sides: [(usize, Vec<[f64; 3]>); 4] = [
-            (
-                0,
-                vec![
-                    [lo[0], lo[1], z0],
-                    [lo[0], hi[1], z0],
-                    [lo[0], hi[1], z1],
-                    [lo[0], lo[1], z1],
-                ],
-            ),
-            (
-                1,
-                vec![
-                    [hi[0], lo[1], z0],
-                    [hi[0], hi[1], z0],
-                    [hi[0], hi[1], z1],
-                    [hi[0], lo[1], z1],
-                ],
-            ),
-            (
-                2,
-                vec![
-                    [lo[0], lo[1], z0],
-                    [hi[0], lo[1], z0],
-                    [hi[0], lo[1], z1],
-                    [lo[0], lo[1], z1],
-                ],
-            ),
-            (
-                3,
-                vec![
-                    [lo[0], hi[1], z0],
-                    [hi[0], hi[1], z0],
-                    [hi[0], hi[1], z1],
-                    [lo[0], hi[1], z1],
-                ],
-            ),
-        ];
-        for (w, pts) in sides {
-            let polygon = b.convex_face(wall(w), &pts);
+        for w in 0..4 {
+            let pts = side_wall(lo, hi, w, zs[k], zs[k + 1]);
+            let polygon = b.convex_face(wall(n_input, w), &pts);
             let fid = b.faces.len() as u32;
             b.faces.push(Face {
-                plane: wall(w),
+                plane: wall(n_input, w),
                 positive_cell: None,
                 negative_cell: Some(k as u32),
                 polygon,
@@ -245,6 +125,127 @@ pub fn horizontal_slabs(lo: [f64; 3], hi: [f64; 3], levels: &[Level]) -> Arrange
         scope: crate::arrangement::CellScope::All,
         max_disagreement: 0.0,
         warnings: Vec::new(),
+    }
+}
+
+/// The plane of wall `w` (x-, x+, y-, y+, z-, z+) after `n_input` input planes.
+fn wall(n_input: usize, w: usize) -> u32 {
+    (n_input + w) as u32
+}
+
+/// The corners of side wall `w` (x-, x+, y-, y+) of the slab from `z0` to `z1`.
+fn side_wall(lo: [f64; 3], hi: [f64; 3], w: usize, z0: f64, z1: f64) -> Vec<[f64; 3]> {
+    if w < 2 {
+        let x = if w == 0 { lo[0] } else { hi[0] };
+        vec![
+            [x, lo[1], z0],
+            [x, hi[1], z0],
+            [x, hi[1], z1],
+            [x, lo[1], z1],
+        ]
+    } else {
+        let y = if w == 2 { lo[1] } else { hi[1] };
+        vec![
+            [lo[0], y, z0],
+            [hi[0], y, z0],
+            [hi[0], y, z1],
+            [lo[0], y, z1],
+        ]
+    }
+}
+
+impl Builder {
+    /// The input planes `z = levels[i].z`, then the six walls with outward normals.
+    fn with_planes(lo: [f64; 3], hi: [f64; 3], levels: &[Level]) -> Builder {
+        let mut planes: Vec<ArrPlane> = (levels.iter().enumerate())
+            .map(|(i, l)| ArrPlane {
+                plane: Plane::from_equation([0.0, 0.0, 1.0], -l.z).unwrap(),
+                section: Some(i),
+            })
+            .collect();
+        let walls = [
+            (lo, [-1.0, 0.0, 0.0]),
+            (hi, [1.0, 0.0, 0.0]),
+            (lo, [0.0, -1.0, 0.0]),
+            (hi, [0.0, 1.0, 0.0]),
+            (lo, [0.0, 0.0, -1.0]),
+            (hi, [0.0, 0.0, 1.0]),
+        ];
+        planes.extend(walls.map(|(p, n)| ArrPlane {
+            plane: Plane::from_point_normal(p, n).unwrap(),
+            section: None,
+        }));
+        Builder {
+            planes,
+            pool: VertexPool::default(),
+            faces: Vec::new(),
+        }
+    }
+
+    /// The horizontal face `k` (0: the bottom wall) at height `z` on `plane`, the box's
+    /// rectangle with `level`'s pieces on it, bounding the slabs below and above it.
+    fn horizontal_face(
+        &mut self,
+        cells: &mut [Cell],
+        k: usize,
+        plane: u32,
+        level: Option<&Level>,
+        [lo, hi]: [[f64; 3]; 2],
+        z: f64,
+    ) {
+        let rect = [
+            [lo[0], lo[1], z],
+            [hi[0], lo[1], z],
+            [hi[0], hi[1], z],
+            [lo[0], hi[1], z],
+        ];
+        let polygon = self.convex_face(plane, &rect);
+        let mut pieces = Vec::new();
+        for (outer, holes) in level.iter().flat_map(|l| &l.pieces) {
+            let o3: Vec<[f64; 3]> = outer.iter().map(|q| [q[0], q[1], z]).collect();
+            let outer = self.polygon(plane, &o3, true);
+            let holes = holes
+                .iter()
+                .map(|h| {
+                    let h3: Vec<[f64; 3]> = h.iter().map(|q| [q[0], q[1], z]).collect();
+                    self.polygon(plane, &h3, false)
+                })
+                .collect();
+            pieces.push(SectionPiece {
+                label: 1,
+                outer,
+                holes,
+            });
+        }
+        let normal_up = self.planes[plane as usize].plane.normal[2] > 0.0;
+        let below = (k > 0).then(|| (k - 1) as u32);
+        let above = (k < cells.len()).then_some(k as u32);
+        let (positive_cell, negative_cell) = if normal_up {
+            (above, below)
+        } else {
+            (below, above)
+        };
+        let fid = self.faces.len() as u32;
+        self.faces.push(Face {
+            plane,
+            positive_cell,
+            negative_cell,
+            polygon,
+            pieces,
+        });
+        if let Some(c) = above {
+            // The face is the bottom of `above`: outward is −z.
+            cells[c as usize].faces.push(CellFace {
+                face: fid,
+                outward_is_plane_normal: !normal_up,
+            });
+        }
+        if let Some(c) = below {
+            cells[c as usize].faces.push(CellFace {
+                face: fid,
+                outward_is_plane_normal: normal_up,
+            });
+        }
     }
 }
 
