@@ -35,7 +35,7 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
     }
     let (selected, arrangement) = arranged(sections, options, false, &mut report)?;
     let mut solid = match options.method {
-        Method::Delaunay => crate::bm::reconstruct(&selected, &arrangement, options, &mut report)?,
+        Method::Delaunay => delaunay(&selected, arrangement, options, &mut report)?,
         Method::Implicit => {
             crate::implicit::reconstruct(&selected, &arrangement, options, &mut report)?
         }
@@ -54,6 +54,51 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
     });
     solid.report = report;
     Ok(solid)
+}
+
+/// The Delaunay method on `selected`. Where a cell had to be triangulated untagged (its points
+/// exactly cospherical across two planes, which the tagged kernel cannot decide; its faces may then
+/// differ from its neighbours'), the contour vertices are moved to generic position in their
+/// planes (`validate::move_to_generic_position`, 1e-10 of the diagonal) and the method runs again;
+/// the run with fewer untagged cells is kept, the first on a tie, with a warning when the moved
+/// one is.
+fn delaunay(
+    selected: &Sections,
+    arrangement: Arrangement,
+    options: &Options,
+    report: &mut Report,
+) -> Result<Solid> {
+    let before = report.clone();
+    let solid = crate::bm::reconstruct(selected, &arrangement, options, report)?;
+    let untagged = |r: &Report| r.counts.get("cells_untagged").copied().unwrap_or(0);
+    let first = untagged(report);
+    if first == 0 {
+        return Ok(solid);
+    }
+    let (moved, moves) = crate::validate::move_to_generic_position(selected);
+    let mut again = before;
+    let arrangement = again.time("arrangement", || {
+        Arrangement::build(&moved, &options.arrangement)
+    })?;
+    again.count("cells", arrangement.cells.len() as u64);
+    again.count("faces", arrangement.faces.len() as u64);
+    again.warnings.extend(arrangement.warnings.iter().cloned());
+    let retried = crate::bm::reconstruct(&moved, &arrangement, options, &mut again)?;
+    let second = untagged(&again);
+    if second >= first {
+        report.count("generic_position_retries_not_kept", 1);
+        return Ok(solid);
+    }
+    again.count("generic_position_vertices_moved", moves.moved);
+    again.warnings.push(format!(
+        "{first} cells had points exactly cospherical across two planes (sections symmetric \
+         about a common line) that the tagged kernel cannot decide: {} contour vertices moved in \
+         their planes by at most {:.3e} (1e-10 of the diagonal) to generic position, {} on common \
+         lines kept; {second} such cells left",
+        moves.moved, moves.max_move, moves.kept_on_lines
+    ));
+    *report = again;
+    Ok(retried)
 }
 
 /// The selected sections (`options.label`), reconciled along their planes' common lines, and

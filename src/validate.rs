@@ -25,12 +25,14 @@ use crate::sections::{cross, dot, sub, Contour, Plane, Section, Sections};
 
 mod common_lines;
 mod contours;
+mod generic_position;
 mod labels;
 pub mod planes;
 mod repair;
 pub use common_lines::{reconcile_common_lines, LineTrims, LINE_STRIP_RELATIVE};
 pub use contours::segments_intersect;
 use contours::{check_intersections, check_nesting, section_contours};
+pub use generic_position::{move_to_generic_position, GenericMoves, GENERIC_MOVE_RELATIVE};
 pub use labels::{one_material, one_material_with_junctions, LABEL_OVERLAP_RELATIVE_AREA};
 use planes::check_duplicate_planes;
 pub use repair::NUDGE_RELATIVE;

@@ -187,44 +187,59 @@ fn a_section_vertex_beside_the_axis_is_the_axis_vertex() {
     assert_eq!(on_all, 4);
 }
 
-/// The cylinder under fans through a vertex of every section: (planes, seed, cells untagged,
-/// non-conforming faces, singular edges, singular vertices) at most. The untagged cells left are
-/// the kernel's open case (`delaunay::tags`): each section is symmetric about the cylinder's
-/// middle, and mirror-image points on two planes through one line are exactly cospherical.
-/// Clean when there is none (six planes, seed 1).
+/// Solids symmetric about a fan's axis: the cylinder above under fans through a vertex of every
+/// section, and the shipped `nested_fan.csl`
+/// (a core ball in a shell, as one material). Mirror-image points on two planes through one line
+/// are exactly cospherical, which the tagged kernel cannot decide (`delaunay::tags`): such cells
+/// were triangulated untagged, their faces differed from the neighbours' (cylinder fan 8: 1 cell,
+/// 2 non-conforming faces, 6 singular edges, 2 pinched vertices; fan 16: 1, 1, 1, 2; nested_fan
+/// 2 cells, 3 singular edges; a sphere STL under 24 to 40 fan planes too). The
+/// pipeline now moves the contour vertices to generic position in their planes (1e-10 of the
+/// diagonal, `validate::move_to_generic_position`) and runs again: (case, vertices moved, 0 when
+/// no retry was needed), every one clean with every section within 1e-9.
 #[test]
-fn a_cylinder_under_fans_through_its_sections_vertices() {
+fn solids_symmetric_about_a_fans_axis_are_moved_to_generic_position() {
+    let nested = {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/nested_fan.csl");
+        slice2solid::io::read_sections(&path).unwrap()
+    };
+    let cases = [
+        ("cylinder fan 6 seed 1", cylinder_fan(6, 1), 0),
+        ("cylinder fan 8 seed 5", cylinder_fan(8, 5), 73),
+        ("cylinder fan 16 seed 5", cylinder_fan(16, 5), 149),
+        ("cylinder fan 40 seed 5", cylinder_fan(40, 5), 371),
+        ("nested_fan.csl", nested, 908),
+    ];
     let mut failures = Vec::new();
-    for (planes, seed, untagged, nonconforming, edges, vertices) in
-        [(6, 1, 0, 0, 0, 0), (8, 5, 1, 2, 6, 2), (16, 5, 1, 1, 1, 2)]
-    {
-        let s = cylinder_fan(planes, seed);
+    for (name, s, moved) in cases {
         let solid = slice2solid::reconstruct(&s, &Options::default()).unwrap();
         let c = check_mesh(&solid.surface, Some(&s));
-        let counts = &solid.report.counts;
-        let got = (
-            counts["cells_untagged"],
-            counts["nonconforming_faces"],
-            counts["singular_edges"],
-            counts["singular_vertices"],
-        );
+        let n = |k: &str| solid.report.counts.get(k).copied().unwrap_or(0);
         let worst = c.worst_section.as_ref().unwrap().relative;
-        eprintln!("cylinder fan {planes} seed {seed}: {got:?}, worst section {worst:.2e}");
-        assert_eq!(c.self_intersections, 0, "{planes} {seed}");
-        assert!(worst < 1e-9, "{planes} {seed}: worst section {worst:e}");
-        let clean = c.closed && c.manifold && c.oriented && c.overlapping_coplanar_pairs == 0;
-        if got.0 > untagged || got.1 > nonconforming || got.2 > edges || got.3 > vertices {
+        eprintln!(
+            "{name}: moved {}, untagged {}, worst section {worst:.2e}",
+            n("generic_position_vertices_moved"),
+            n("cells_untagged")
+        );
+        let clean = c.closed && c.manifold && c.oriented;
+        let crossings = (c.self_intersections, c.overlapping_coplanar_pairs);
+        if !clean || crossings != (0, 0) || worst >= 1e-9 {
+            failures.push(format!("{name}: {c:?}"));
+        }
+        let got = (
+            n("cells_untagged"),
+            n("nonconforming_faces"),
+            n("generic_position_vertices_moved"),
+        );
+        if got != (0, 0, moved) {
             failures.push(format!(
-                "fan {planes} seed {seed}: {got:?} worse than listed"
+                "{name}: (untagged, non-conforming faces, moved) {got:?}, pinned {:?}",
+                (0, 0, moved)
             ));
         }
-        if clean != (got == (0, 0, 0, 0)) || (untagged == 0 && !clean) {
-            failures.push(format!(
-                "fan {planes} seed {seed}: clean {clean}, counts {got:?}"
-            ));
-        }
-        if got == (0, 0, 0, 0) && untagged > 0 {
-            failures.push(format!("fan {planes} seed {seed}: clean now, unlist it"));
+        let warned = (solid.report.warnings.iter()).any(|w| w.contains("generic position"));
+        if warned != (moved > 0) {
+            failures.push(format!("{name}: warning {warned}, moved {moved}"));
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");

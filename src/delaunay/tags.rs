@@ -49,8 +49,10 @@
 //! the two can disagree: the conflict region is then not star-shaped (some new tetrahedron would
 //! not be positive). The insertion is then refused, the triangulation stays valid without the
 //! point and takes no more points, and `Delaunay::consistent` fails; the engine triangulates such
-//! a cell untagged instead (counted). Removing this needs every predicate on the ideal points
-//! (exact plane-frame coordinates, one position per point on two planes); open. (The untagged
+//! a cell untagged instead (counted), and the pipeline then moves the contour vertices to generic
+//! position in their planes, 1e-10 of the diagonal, and runs again
+//! (`validate::move_to_generic_position`). Removing the tie itself needs every predicate on the
+//! ideal points (exact plane-frame coordinates, one position per point on two planes); open. (The untagged
 //! cells once seen on axis-plane grids were not this: the star test's inner point, the centroid
 //! of a tetrahedron flat up to rounding, had rounded out of the hull; it is now checked to be
 //! strictly inside. No cell of the generated axis grids up to 200 planes is refused, nor of the
@@ -336,8 +338,9 @@ mod tests {
     /// engine now reads the plane rule on the 3D positions (one position per point, through each
     /// plane's apex), which removes the two planes' disagreement but not the tie itself: the 3D
     /// floats decide exactly cospherical points of two planes by rounding, differently for a mixed
-    /// tetrahedron and a co-tagged one, and the shipped file keeps two untagged cells. Needed: every
-    /// predicate on the ideal points (exact plane-frame coordinates).
+    /// tetrahedron and a co-tagged one. Needed: every predicate on the ideal points (exact
+    /// plane-frame coordinates). Until then the pipeline moves such inputs' contour vertices to
+    /// generic position and runs again (`bm_fan`'s symmetric solids; the shipped file is clean).
     #[test]
     fn fan_poles_rounded_differently_in_two_planes_refuse_the_tagged_kernel() {
         use crate::delaunay::Delaunay;
