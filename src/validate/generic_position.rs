@@ -11,17 +11,17 @@
 //!
 //! The repair: every contour vertex that lies on its own plane only moves in that plane by a
 //! distance far above the rounding of the predicates (1e-10 of the model's diagonal, and at most
-//! 1e-4 of its shorter contour edge so that no contour can cross itself or another), in a
-//! direction that is a hash of its coordinates (vertices at one position move alike, so contours
-//! that touch still share their vertices). Vertices on a common line of two planes stay where they
-//! are: the two sections agree there. The ideal ties are gone, and the moves are 1e-10 of the
-//! diagonal: every section agrees with the input's to that order.
+//! 1e-4 of the shortest contour edge at its position, so that no contour can cross itself or
+//! another), in a direction that is a hash of its coordinates (vertices at one position move
+//! alike, so contours that touch still share their vertices). Vertices on a common line of two
+//! planes stay where they are: the two sections agree there. The ideal ties are gone, and the
+//! moves are 1e-10 of the diagonal: every section agrees with the input's to that order.
 use crate::sections::{dot, Contour, Region, Sections};
 
 /// How far a vertex moves, relative to the model's diagonal.
 pub const GENERIC_MOVE_RELATIVE: f64 = 1e-10;
 
-/// At most this fraction of the vertex's shorter contour edge.
+/// At most this fraction of the shortest contour edge at the vertex's position.
 const MOVE_PER_EDGE: f64 = 1e-4;
 
 /// A vertex within this many moves of another plane is on a common line: it stays.
@@ -54,50 +54,68 @@ pub fn move_to_generic_position(sections: &Sections) -> (Sections, GenericMoves)
             .collect();
         let on_a_line =
             |p: [f64; 3]| (others.iter()).any(|o| o.signed_distance(p).abs() <= on_line);
+        let shortest = shortest_edges(section);
         let contours = (section.regions.iter_mut()).flat_map(|r| {
             let Region { outer, holes, .. } = r;
             std::iter::once(outer).chain(holes.iter_mut())
         });
         for c in contours {
-            move_contour(c, step, &on_a_line, &mut moves);
+            move_contour(c, step, &shortest, &on_a_line, &mut moves);
             c.points3 = c.points2.iter().map(|&q| plane.to_3d(q)).collect();
         }
     }
     (out, moves)
 }
 
+/// The bits of a 2D point: vertices of different contours at one position are one key.
+type Key = [u64; 2];
+
+fn key(q: [f64; 2]) -> Key {
+    q.map(f64::to_bits)
+}
+
+/// Per vertex position of the section, its shortest contour edge over every contour through it
+/// (so that a vertex two contours share moves alike in both).
+fn shortest_edges(section: &crate::sections::Section) -> crate::fxhash::FxHashMap<Key, f64> {
+    let mut out: crate::fxhash::FxHashMap<Key, f64> = Default::default();
+    let contours = (section.regions.iter()).flat_map(|r| std::iter::once(&r.outer).chain(&r.holes));
+    for c in contours {
+        let n = c.points2.len();
+        for k in 0..n {
+            let (a, b) = (c.points2[k], c.points2[(k + 1) % n]);
+            let len = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+            for q in [a, b] {
+                let e = out.entry(key(q)).or_insert(f64::INFINITY);
+                *e = e.min(len);
+            }
+        }
+    }
+    out
+}
+
 /// Move the vertices of `c` (its 2D coordinates) that are not `on_a_line`.
 fn move_contour(
     c: &mut Contour,
     step: f64,
+    shortest: &crate::fxhash::FxHashMap<Key, f64>,
     on_a_line: &impl Fn([f64; 3]) -> bool,
     moves: &mut GenericMoves,
 ) {
-    let n = c.points2.len();
-    let len = |a: [f64; 2], b: [f64; 2]| {
-        let d = sub2(a, b);
-        (d[0] * d[0] + d[1] * d[1]).sqrt()
-    };
-    let old = c.points2.clone();
-    for k in 0..n {
+    for k in 0..c.points2.len() {
         if on_a_line(c.points3[k]) {
             moves.kept_on_lines += 1;
             continue;
         }
-        let shorter = len(old[k], old[(k + n - 1) % n]).min(len(old[k], old[(k + 1) % n]));
-        let d = step.min(MOVE_PER_EDGE * shorter);
+        let q = c.points2[k];
+        let d = step.min(MOVE_PER_EDGE * shortest[&key(q)]);
         if !(d > 0.0) {
             continue;
         }
-        let angle = direction(old[k]);
-        c.points2[k] = [old[k][0] + d * angle.cos(), old[k][1] + d * angle.sin()];
+        let angle = direction(q);
+        c.points2[k] = [q[0] + d * angle.cos(), q[1] + d * angle.sin()];
         moves.moved += 1;
         moves.max_move = moves.max_move.max(d);
     }
-}
-
-fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] - b[0], a[1] - b[1]]
 }
 
 /// An angle that depends only on the bits of `q` (a splitmix64 of them).
@@ -200,5 +218,24 @@ mod tests {
             assert!(d > 0.0 && d <= 1e-4 * 1e-9 * 1.0001, "{d:e}");
         }
         assert!(crate::validate::orientation(small) > 0.0);
+    }
+
+    /// Two triangles touching at (5, 5), one with edges of 1 there and one with an edge of 1e-8:
+    /// the shared vertex moves alike in both, by the bound of the shorter edge.
+    #[test]
+    fn a_shared_vertex_moves_alike_in_every_contour() {
+        let z0 = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+        let big = vec![[5.0, 5.0, 0.0], [6.0, 5.0, 0.0], [5.0, 6.0, 0.0]];
+        let small = vec![[5.0, 5.0, 0.0], [5.0, 4.0, 0.0], [5.0 - 1e-8, 5.0, 0.0]];
+        let sections = Sections {
+            sections: vec![section(z0, vec![big, small])],
+            ..Default::default()
+        };
+        let (moved, _) = move_to_generic_position(&sections);
+        let at = |r: usize| moved.sections[0].regions[r].outer.points2[0];
+        assert_eq!(at(0), at(1));
+        let p = sections.sections[0].regions[0].outer.points2[0];
+        let d = ((p[0] - at(0)[0]).powi(2) + (p[1] - at(0)[1]).powi(2)).sqrt();
+        assert!(d > 0.0 && d <= 1e-4 * 1e-8 * 1.01, "{d:e}"); // the coordinates round it
     }
 }
