@@ -20,7 +20,10 @@
 //!
 //! After the pieces are built, a section point on two or more planes (contour crossing) closer than
 //! the same tolerance to an arrangement vertex on all its planes becomes that vertex
-//! (`merge_line_points`), so no contour leaves a micro edge next to a face corner.
+//! (`merge_line_points`), so no contour leaves a micro edge next to a face corner; and a contour
+//! vertex on its own plane only closer than the tolerance to a section point on a line of that
+//! plane becomes that point, whether next to it along a piece (a micro edge) or not (two sections
+//! touching their common line at one point).
 use super::{Arrangement, CellId, FaceId, PlaneTags, VertexId};
 use crate::fxhash::FxHashMap as HashMap;
 
@@ -366,6 +369,7 @@ fn micro_edges_to_lines(
             }
         }
     }
+    found.extend(touching_lines(arr, n_arr, tol));
     found.sort_unstable();
     for (v, w) in found {
         if !merged_into.contains_key(&v) {
@@ -373,6 +377,43 @@ fn micro_edges_to_lines(
             merged_into.insert(v, w);
         }
     }
+}
+
+/// The contour vertices on their own plane only (from `n_arr` on) closer than `tol` to a section
+/// point on a line of that plane that is not next to them along a piece, with that point: where
+/// two sections touch their common line at one point (a cone cut by a plane along its axis and a
+/// plane across it, each section tangent to the line there), one section's vertex can round to
+/// just off the line while the other's crossing is on it, two vertices 1e-17 apart that the
+/// cells of the face triangulate differently.
+fn touching_lines(arr: &Arrangement, n_arr: usize, tol: f64) -> Vec<(VertexId, VertexId)> {
+    let (pos, tags) = (&arr.pool.positions, &arr.pool.tags);
+    let mut on_lines: Vec<VertexId> = (n_arr..pos.len())
+        .filter(|&v| tags[v].len() >= 2)
+        .map(|v| v as VertexId)
+        .collect();
+    on_lines.sort_by(|&a, &b| pos[a as usize][0].total_cmp(&pos[b as usize][0]));
+    let xs: Vec<f64> = on_lines.iter().map(|&a| pos[a as usize][0]).collect();
+    let mut found = Vec::new();
+    for v in n_arr..pos.len() {
+        if tags[v].len() != 1 {
+            continue;
+        }
+        let (p, plane) = (pos[v], tags[v][0]);
+        let start = xs.partition_point(|&x| x <= p[0] - tol);
+        let near = (on_lines[start..].iter())
+            .take_while(|&&w| pos[w as usize][0] < p[0] + tol)
+            .filter(|&&w| tags[w as usize].contains(&plane))
+            .map(|&w| {
+                let q = pos[w as usize];
+                ((0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>(), w)
+            })
+            .filter(|&(d2, _)| d2 < tol * tol)
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((_, w)) = near {
+            found.push((v as VertexId, w));
+        }
+    }
+    found
 }
 
 /// Volume of a cell from its face polygons (outward orientation from `outward_is_plane_normal`).
@@ -680,5 +721,46 @@ mod tests {
             .positions
             .iter()
             .any(|p| p[0] == 1e-3 && p[1] == 0.5));
+    }
+
+    /// On z = 0 a triangle whose apex touches the line x = 0 from one side, 1e-16 off it; on
+    /// x = 0 a triangle whose vertex touches z = 0 there, exactly on it (a cone cut along and
+    /// across its axis: both sections tangent to their common line at one point). One vertex, on
+    /// both planes; before, the apex stayed 1e-16 beside the other's point, and the cells of the
+    /// face triangulated the two differently (a cone under axis planes: 3 non-conforming faces,
+    /// 3 overlapping pairs).
+    #[test]
+    fn sections_touching_their_common_line_at_one_point_share_it() {
+        let section = |plane: Plane, pts: &[[f64; 3]], k: usize| Section {
+            plane,
+            regions: vec![Region {
+                label: 1,
+                outer: Contour::from_2d(&plane, pts.iter().map(|&p| plane.to_2d(p)).collect()),
+                holes: Vec::new(),
+            }],
+            source_index: k,
+            max_off_plane: 0.0,
+        };
+        let z = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+        let x = Plane::from_equation([1.0, 0.0, 0.0], 0.0).unwrap();
+        let touching_x = [[-1.0, 0.0, 0.0], [-1e-16, 0.5, 0.0], [-1.0, 1.0, 0.0]];
+        let touching_z = [[0.0, 0.5, 0.0], [0.0, 1.0, 0.5], [0.0, 0.0, 0.5]];
+        let s = Sections {
+            sections: vec![section(z, &touching_x, 0), section(x, &touching_z, 1)],
+            n_labels: 1,
+            warnings: Vec::new(),
+            label_names: Default::default(),
+        };
+        let opt = ArrangementOptions::default();
+        let arr = Arrangement::build(&s, &opt).unwrap();
+        let near: Vec<usize> = (0..arr.pool.positions.len())
+            .filter(|&v| {
+                let p = arr.pool.positions[v];
+                p[0].abs() < 1e-9 && (p[1] - 0.5).abs() < 1e-9 && p[2].abs() < 1e-9
+            })
+            .collect();
+        assert_eq!(near.len(), 1, "{near:?}");
+        assert_eq!(arr.pool.tags[near[0]].as_slice(), &[0, 1]);
+        assert!(closest_pair(&arr) >= opt.merge_tolerance * diag(&s));
     }
 }
