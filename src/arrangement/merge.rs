@@ -668,10 +668,9 @@ mod tests {
         }
     }
 
-    /// On z = 0 a triangle with its apex `delta` beside the line x = 0 (meant on it: a fan's axis
-    /// through a vertex of every section), on x = 0 a square meeting z = 0 where the triangle does.
-    fn vertex_beside_a_line(delta: f64) -> Sections {
-        let section = |plane: Plane, pts: &[[f64; 3]], k: usize| Section {
+    /// Plane `k` of the input, `plane`, with one region bounded by `pts`.
+    fn section(plane: Plane, pts: &[[f64; 3]], k: usize) -> Section {
+        Section {
             plane,
             regions: vec![Region {
                 label: 1,
@@ -680,7 +679,12 @@ mod tests {
             }],
             source_index: k,
             max_off_plane: 0.0,
-        };
+        }
+    }
+
+    /// On z = 0 a triangle with its apex `delta` beside the line x = 0 (meant on it: a fan's axis
+    /// through a vertex of every section), on x = 0 a square meeting z = 0 where the triangle does.
+    fn vertex_beside_a_line(delta: f64) -> Sections {
         let z = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
         let x = Plane::from_equation([1.0, 0.0, 0.0], 0.0).unwrap();
         let triangle = [[-1.0, 0.0, 0.0], [delta, 0.5, 0.0], [1.0, 0.0, 0.0]];
@@ -731,16 +735,6 @@ mod tests {
     /// 3 overlapping pairs).
     #[test]
     fn sections_touching_their_common_line_at_one_point_share_it() {
-        let section = |plane: Plane, pts: &[[f64; 3]], k: usize| Section {
-            plane,
-            regions: vec![Region {
-                label: 1,
-                outer: Contour::from_2d(&plane, pts.iter().map(|&p| plane.to_2d(p)).collect()),
-                holes: Vec::new(),
-            }],
-            source_index: k,
-            max_off_plane: 0.0,
-        };
         let z = Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
         let x = Plane::from_equation([1.0, 0.0, 0.0], 0.0).unwrap();
         let touching_x = [[-1.0, 0.0, 0.0], [-1e-16, 0.5, 0.0], [-1.0, 1.0, 0.0]];

@@ -461,20 +461,23 @@ mod tests {
     use super::*;
     use crate::bm::refine::test_support::{positive, Owned};
 
+    /// The origin and the six unit points on the axes (+x, +y, +z, -x, -y, -z).
+    const AXIS_STAR: [[f64; 3]; 7] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, -1.0],
+    ];
+
     /// Two tetrahedra meeting at the origin only (a pinched vertex): the smaller cone loses its
     /// tip, the boundary becomes two closed surfaces without a singular vertex.
     #[test]
     fn two_cones_touching_at_a_vertex_are_separated() {
-        let positions = vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [-1.0, 0.0, 0.0],
-            [0.0, -1.0, 0.0],
-            [0.0, 0.0, -1.0],
-            [-1.0, -1.0, -1.0],
-        ];
+        let mut positions = AXIS_STAR.to_vec();
+        positions.push([-1.0, -1.0, -1.0]);
         // one cone at the origin of one tet, the other of one tet and one beyond it
         let kept = vec![
             positive(&positions, [0, 1, 2, 3]),
@@ -507,15 +510,7 @@ mod tests {
         let mut kept = Vec::new();
         for shift in [0.0, 10.0] {
             let base = positions.len() as u32;
-            for p in [
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.0, 0.0, 1.0],
-                [-1.0, 0.0, 0.0],
-                [0.0, -1.0, 0.0],
-                [0.0, 0.0, -1.0],
-            ] {
+            for p in AXIS_STAR {
                 positions.push([p[0] + shift, p[1], p[2]]);
             }
             kept.push(positive(&positions, [base, base + 1, base + 2, base + 3]));
