@@ -81,12 +81,7 @@ fn delaunay(
     }
     let (moved, moves) = crate::validate::move_to_generic_position(selected);
     let mut again = before;
-    let arrangement = again.time("arrangement", || {
-        Arrangement::build(&moved, &options.arrangement)
-    })?;
-    again.count("cells", arrangement.cells.len() as u64);
-    again.count("faces", arrangement.faces.len() as u64);
-    again.warnings.extend(arrangement.warnings.iter().cloned());
+    let arrangement = arrangement_of(&moved, &options.arrangement, &mut again)?;
     let retried = crate::bm::reconstruct(&moved, &arrangement, options, &mut again)?;
     let second = harm(&again);
     if second >= first {
@@ -136,13 +131,21 @@ fn arranged(
     if options.method == Method::Implicit {
         arrangement_options.scope = CellScope::All;
     }
-    let arrangement = report.time("arrangement", || {
-        Arrangement::build(&selected, &arrangement_options)
-    })?;
+    let arrangement = arrangement_of(&selected, &arrangement_options, report)?;
+    Ok((selected, arrangement))
+}
+
+/// The arrangement of `selected`, timed, with its counts and warnings in `report`.
+fn arrangement_of(
+    selected: &Sections,
+    options: &crate::arrangement::ArrangementOptions,
+    report: &mut Report,
+) -> Result<Arrangement> {
+    let arrangement = report.time("arrangement", || Arrangement::build(selected, options))?;
     report.count("cells", arrangement.cells.len() as u64);
     report.count("faces", arrangement.faces.len() as u64);
     report.warnings.extend(arrangement.warnings.iter().cloned());
-    Ok((selected, arrangement))
+    Ok(arrangement)
 }
 
 /// Every label at once (`reconstruct --all-labels`): a partition of space into labelled domains,

@@ -154,8 +154,13 @@ fn split_contour_edges_are_kept_by_the_next_run() {
     // generic position (it doubled the time, 1.7 -> 3.5 s, before the retry asked for a face
     // triangulated differently)
     assert_eq!((n("cells_untagged"), n("nonconforming_faces")), (1, 0));
-    let retried = ["generic_position_retries_not_kept", "generic_position_vertices_moved"];
-    assert!(retried.iter().all(|k| !solid.report.counts.contains_key(*k)));
+    let retried = [
+        "generic_position_retries_not_kept",
+        "generic_position_vertices_moved",
+    ];
+    assert!(retried
+        .iter()
+        .all(|k| !solid.report.counts.contains_key(*k)));
     let c = check_mesh(&solid.surface, Some(&s));
     assert!(c.closed && c.manifold && c.oriented);
     assert_eq!((c.self_intersections, c.overlapping_coplanar_pairs), (0, 0));

@@ -292,30 +292,15 @@ pub(super) fn merge_line_points(arr: &mut Arrangement, n_arr: usize, tol: f64) -
         return 0;
     }
     let pos = &arr.pool.positions;
-    let mut corners: Vec<u32> = (0..n_arr as u32).collect();
-    corners.sort_by(|&a, &b| pos[a as usize][0].total_cmp(&pos[b as usize][0]));
-    let xs: Vec<f64> = corners.iter().map(|&a| pos[a as usize][0]).collect();
+    let corners = ByX::of(pos, 0..n_arr as VertexId);
     let mut merged_into: HashMap<VertexId, VertexId> = HashMap::default();
     for v in n_arr..pos.len() {
         let tags = &arr.pool.tags[v];
         if tags.len() < 2 {
             continue;
         }
-        let p = pos[v];
-        let start = xs.partition_point(|&x| x <= p[0] - tol);
-        let mut best: Option<(f64, u32)> = None;
-        for &a in &corners[start..] {
-            let q = pos[a as usize];
-            if q[0] >= p[0] + tol {
-                break;
-            }
-            let d = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt();
-            let on_all = tags.iter().all(|t| arr.pool.tags[a as usize].contains(t));
-            if d < tol && on_all && best.is_none_or(|b| d < b.0) {
-                best = Some((d, a));
-            }
-        }
-        if let Some((_, a)) = best {
+        let on_all = |a: VertexId| tags.iter().all(|t| arr.pool.tags[a as usize].contains(t));
+        if let Some(a) = corners.nearest(pos, pos[v], tol, on_all) {
             merged_into.insert(v as VertexId, a);
         }
     }
@@ -387,33 +372,63 @@ fn micro_edges_to_lines(
 /// cells of the face triangulate differently.
 fn touching_lines(arr: &Arrangement, n_arr: usize, tol: f64) -> Vec<(VertexId, VertexId)> {
     let (pos, tags) = (&arr.pool.positions, &arr.pool.tags);
-    let mut on_lines: Vec<VertexId> = (n_arr..pos.len())
-        .filter(|&v| tags[v].len() >= 2)
-        .map(|v| v as VertexId)
-        .collect();
-    on_lines.sort_by(|&a, &b| pos[a as usize][0].total_cmp(&pos[b as usize][0]));
-    let xs: Vec<f64> = on_lines.iter().map(|&a| pos[a as usize][0]).collect();
+    let on_lines = ByX::of(
+        pos,
+        (n_arr..pos.len())
+            .filter(|&v| tags[v].len() >= 2)
+            .map(|v| v as VertexId),
+    );
     let mut found = Vec::new();
     for v in n_arr..pos.len() {
         if tags[v].len() != 1 {
             continue;
         }
-        let (p, plane) = (pos[v], tags[v][0]);
-        let start = xs.partition_point(|&x| x <= p[0] - tol);
-        let near = (on_lines[start..].iter())
-            .take_while(|&&w| pos[w as usize][0] < p[0] + tol)
-            .filter(|&&w| tags[w as usize].contains(&plane))
-            .map(|&w| {
-                let q = pos[w as usize];
-                ((0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>(), w)
-            })
-            .filter(|&(d2, _)| d2 < tol * tol)
-            .min_by(|a, b| a.0.total_cmp(&b.0));
-        if let Some((_, w)) = near {
+        let plane = tags[v][0];
+        let on_plane = |w: VertexId| tags[w as usize].contains(&plane);
+        if let Some(w) = on_lines.nearest(pos, pos[v], tol, on_plane) {
             found.push((v as VertexId, w));
         }
     }
     found
+}
+
+/// Pool vertices sorted by x, for the nearest one to a point within a tolerance.
+struct ByX {
+    ids: Vec<VertexId>,
+    xs: Vec<f64>,
+}
+
+impl ByX {
+    fn of(pos: &[[f64; 3]], ids: impl Iterator<Item = VertexId>) -> ByX {
+        let mut ids: Vec<VertexId> = ids.collect();
+        ids.sort_by(|&a, &b| pos[a as usize][0].total_cmp(&pos[b as usize][0]));
+        let xs = ids.iter().map(|&a| pos[a as usize][0]).collect();
+        ByX { ids, xs }
+    }
+
+    /// The vertex nearest to `p` closer than `tol` that `accept` takes (the first in x order on
+    /// a tie).
+    fn nearest(
+        &self,
+        pos: &[[f64; 3]],
+        p: [f64; 3],
+        tol: f64,
+        accept: impl Fn(VertexId) -> bool,
+    ) -> Option<VertexId> {
+        let start = self.xs.partition_point(|&x| x <= p[0] - tol);
+        let mut best: Option<(f64, VertexId)> = None;
+        for &a in &self.ids[start..] {
+            let q = pos[a as usize];
+            if q[0] >= p[0] + tol {
+                break;
+            }
+            let d = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt();
+            if d < tol && accept(a) && best.is_none_or(|b| d < b.0) {
+                best = Some((d, a));
+            }
+        }
+        best.map(|(_, a)| a)
+    }
 }
 
 /// Volume of a cell from its face polygons (outward orientation from `outward_is_plane_normal`).

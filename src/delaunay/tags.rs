@@ -52,11 +52,11 @@
 //! a cell untagged instead (counted), and the pipeline then moves the contour vertices to generic
 //! position in their planes, 1e-10 of the diagonal, and runs again
 //! (`validate::move_to_generic_position`). Removing the tie itself needs every predicate on the
-//! ideal points (exact plane-frame coordinates, one position per point on two planes); open. (The untagged
-//! cells once seen on axis-plane grids were not this: the star test's inner point, the centroid
-//! of a tetrahedron flat up to rounding, had rounded out of the hull; it is now checked to be
-//! strictly inside. No cell of the generated axis grids up to 200 planes is refused, nor of the
-//! 12 shared files; of the odd files, odd026 keeps one.)
+//! ideal points (exact plane-frame coordinates, one position per point on two planes); open.
+//! (The untagged cells once seen on axis-plane grids were not this: the star test's inner point,
+//! the centroid of a tetrahedron flat up to rounding, had rounded out of the hull; it is now
+//! checked to be strictly inside. No cell of the generated axis grids up to 200 planes is
+//! refused, nor of the 12 shared files, nor of the shared odd files: `tests/odd_inputs.rs`.)
 use super::pred::{self, P};
 use smallvec::SmallVec;
 

@@ -108,7 +108,7 @@ fn move_contour(
         }
         let q = c.points2[k];
         let d = step.min(MOVE_PER_EDGE * shortest[&key(q)]);
-        if !(d > 0.0) {
+        if d.is_nan() || d <= 0.0 {
             continue;
         }
         let angle = direction(q);
