@@ -7,9 +7,9 @@ use rayon::prelude::*;
 
 /// Per face (sorted key): the tetrahedra that have it, in increasing index.
 pub struct FaceTable {
-    /// `keys[start[v]..start[v + 1]]`: the faces whose smallest vertex is `v` (other two vertices).
+    /// `keys[start[v]..start[v + 1]]`: the faces whose smallest vertex is `v` (other two vertices, `k1 << 32 | k2`).
     start: Vec<u32>,
-    keys: Vec<[u32; 2]>,
+    keys: Vec<u64>,
     /// Per entry, `4 * tet + i`: the face is opposite local vertex `i` of tetrahedron `tet`.
     codes: Vec<u32>,
 }
@@ -38,12 +38,17 @@ impl FaceTable {
 
     /// The faces of the concatenation of `lists`.
     pub fn of_lists(lists: &[&[[u32; 4]]]) -> FaceTable {
-        let (start, rows) = bucketed(lists);
-        let keys = rows
-            .iter()
-            .map(|&r| [(r >> 64) as u32, (r >> 32) as u32])
-            .collect();
-        let codes = rows.iter().map(|&r| r as u32).collect();
+        let (n, n_codes) = sizes(lists);
+        if Narrow::fits(n, n_codes) {
+            Self::of_rows(bucketed::<Narrow>(lists, n))
+        } else {
+            Self::of_rows(bucketed::<Wide>(lists, n))
+        }
+    }
+
+    fn of_rows<R: Row>((start, rows): (Vec<u32>, Vec<R>)) -> FaceTable {
+        let keys = rows.iter().map(|r| r.key()).collect();
+        let codes = rows.iter().map(|r| r.code()).collect();
         FaceTable { start, keys, codes }
     }
 
@@ -54,7 +59,7 @@ impl FaceTable {
         };
         let (lo, hi) = (lo as usize, self.start[f[0] as usize + 1] as usize);
         let bucket = &self.keys[lo..hi];
-        let k = [f[1], f[2]];
+        let k = (f[1] as u64) << 32 | f[2] as u64;
         let a = bucket.partition_point(|x| *x < k);
         let b = a + bucket[a..].partition_point(|x| *x == k);
         &self.codes[lo + a..lo + b]
@@ -125,12 +130,68 @@ impl FaceTable {
     }
 }
 
+/// One face in [`bucketed`]'s buckets: its two larger vertices and its code `4 * tet + i`, packed
+/// in one integer whose order is (key, code), so that each bucket sorts as plain integers.
+trait Row: Copy + Ord + Send + Sync + Default {
+    fn pack(k1: u32, k2: u32, code: u32) -> Self;
+    /// The two larger vertices `k1 << 32 | k2`.
+    fn key(self) -> u64;
+    fn code(self) -> u32;
+}
+
+/// 64 bits: vertices below 2^20 and codes below 2^24 (four million tetrahedra), the usual case;
+/// half the bytes of [`Wide`] to scatter and sort.
+#[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord)]
+struct Narrow(u64);
+
+impl Narrow {
+    const VERTEX_BITS: u32 = 20;
+    const CODE_BITS: u32 = 24;
+    fn fits(n_vertices: usize, n_codes: usize) -> bool {
+        n_vertices <= 1 << Self::VERTEX_BITS && n_codes <= 1 << Self::CODE_BITS
+    }
+}
+
+impl Row for Narrow {
+    #[inline]
+    fn pack(k1: u32, k2: u32, code: u32) -> Self {
+        Narrow((k1 as u64) << 44 | (k2 as u64) << 24 | code as u64)
+    }
+    #[inline]
+    fn key(self) -> u64 {
+        let k = self.0 >> Self::CODE_BITS;
+        (k >> Self::VERTEX_BITS) << 32 | (k & ((1 << Self::VERTEX_BITS) - 1))
+    }
+    #[inline]
+    fn code(self) -> u32 {
+        (self.0 & ((1 << Self::CODE_BITS) - 1)) as u32
+    }
+}
+
+/// 128 bits: any input.
+#[derive(Clone, Copy, Default, PartialEq, Eq, PartialOrd, Ord)]
+struct Wide(u128);
+
+impl Row for Wide {
+    #[inline]
+    fn pack(k1: u32, k2: u32, code: u32) -> Self {
+        Wide((k1 as u128) << 64 | (k2 as u128) << 32 | code as u128)
+    }
+    #[inline]
+    fn key(self) -> u64 {
+        (self.0 >> 32) as u64
+    }
+    #[inline]
+    fn code(self) -> u32 {
+        self.0 as u32
+    }
+}
+
 /// Per face of the tetrahedra of `lists` (concatenated), bucketed by its smallest vertex `v` at
-/// `rows[start[v]..start[v + 1]]`: its other two vertices and its code `4 * tet + i`, packed in one
-/// integer so that each bucket sorts as plain integers (a counting sort, then small sorts).
-pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
+/// `rows[start[v]..start[v + 1]]` (a counting sort, then small sorts): its other two vertices
+/// and its code, as a [`Row`]. Equal faces are adjacent in their bucket, in increasing code.
+fn bucketed<R: Row>(lists: &[&[[u32; 4]]], n: usize) -> (Vec<u32>, Vec<R>) {
     let all = || lists.iter().flat_map(|l| l.iter());
-    let n = all().flatten().max().map_or(0, |&v| v as usize + 1);
     let mut start = vec![0u32; n + 1];
     for t in all() {
         // three faces have the smallest vertex, the one opposite it the second smallest
@@ -142,7 +203,7 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
         start[v + 1] += start[v];
     }
     let mut next = start.clone();
-    let mut rows: Vec<u128> = vec![0; start[n] as usize];
+    let mut rows: Vec<R> = vec![R::default(); start[n] as usize];
     for (ti, t) in all().enumerate() {
         // the sorted key of the face opposite i: the sorted tetrahedron without t[i]
         let s = sorted4(*t);
@@ -150,8 +211,7 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
             let j = s.iter().position(|&v| v == x).unwrap_or(0);
             let k: [u32; 3] = std::array::from_fn(|m| s[m + (m >= j) as usize]);
             let slot = &mut next[k[0] as usize];
-            let code = 4 * ti as u32 + i as u32;
-            rows[*slot as usize] = (k[1] as u128) << 64 | (k[2] as u128) << 32 | code as u128;
+            rows[*slot as usize] = R::pack(k[1], k[2], 4 * ti as u32 + i as u32);
             *slot += 1;
         }
     }
@@ -161,6 +221,13 @@ pub fn bucketed(lists: &[&[[u32; 4]]]) -> (Vec<u32>, Vec<u128>) {
         }
     });
     (start, rows)
+}
+
+/// The number of vertices of `lists` (one more than the largest) and of their faces' codes.
+fn sizes(lists: &[&[[u32; 4]]]) -> (usize, usize) {
+    let all = || lists.iter().flat_map(|l| l.iter());
+    let n = all().flatten().max().map_or(0, |&v| v as usize + 1);
+    (n, 4 * lists.iter().map(|l| l.len()).sum::<usize>())
 }
 
 /// Vertices per range of buckets handed to one thread.
@@ -187,7 +254,15 @@ pub(super) fn for_ranges<T: Send>(
 
 /// The triangles of `tets` with exactly one tetrahedron, oriented outward from it (unsorted).
 pub fn boundary(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
-    let (start, rows) = bucketed(&[tets]);
+    let (n, n_codes) = sizes(&[tets]);
+    if Narrow::fits(n, n_codes) {
+        boundary_of_rows(tets, bucketed::<Narrow>(&[tets], n))
+    } else {
+        boundary_of_rows(tets, bucketed::<Wide>(&[tets], n))
+    }
+}
+
+fn boundary_of_rows<R: Row>(tets: &[[u32; 4]], (start, rows): (Vec<u32>, Vec<R>)) -> Vec<[u32; 3]> {
     // ranges of buckets in parallel, concatenated in order
     let n = start.len().saturating_sub(1);
     let parts: Vec<Vec<[u32; 3]>> = (0..n.div_ceil(RANGE))
@@ -196,9 +271,10 @@ pub fn boundary(tets: &[[u32; 4]]) -> Vec<[u32; 3]> {
             let mut out = Vec::new();
             for b in start[r * RANGE..=((r + 1) * RANGE).min(n)].windows(2) {
                 // equal faces are adjacent in their bucket
-                for run in rows[b[0] as usize..b[1] as usize].chunk_by(|x, y| x >> 32 == y >> 32) {
+                let bucket = &rows[b[0] as usize..b[1] as usize];
+                for run in bucket.chunk_by(|x, y| x.key() == y.key()) {
                     if let [r] = run {
-                        let c = *r as u32;
+                        let c = r.code();
                         out.push(outward_face(&tets[(c >> 2) as usize], (c & 3) as usize));
                     }
                 }
@@ -256,5 +332,49 @@ mod tests {
         assert_eq!(n[0][0], MANY_NEIGHBOURS);
         assert_eq!(n[0][3], 2);
         assert_eq!(n[2][0], 0);
+    }
+
+    /// The narrow rows hold what the wide ones hold, up to their largest vertex and code.
+    #[test]
+    fn narrow_rows_round_trip_to_their_bounds() {
+        let (v, c) = ((1 << Narrow::VERTEX_BITS) - 1, (1 << Narrow::CODE_BITS) - 1);
+        for (k1, k2, code) in [(0, 1, 0), (7, 9, 12), (v - 1, v, c), (v, v, c)] {
+            let (n, w) = (Narrow::pack(k1, k2, code), Wide::pack(k1, k2, code));
+            assert_eq!((n.key(), n.code()), (w.key(), w.code()));
+            assert_eq!(n.key(), (k1 as u64) << 32 | k2 as u64);
+        }
+        assert!(Narrow::pack(3, 5, 9) < Narrow::pack(3, 6, 0));
+        assert!(Narrow::pack(3, 6, 0) < Narrow::pack(3, 6, 1));
+        assert!(Narrow::fits(1 << 20, 1 << 24) && !Narrow::fits((1 << 20) + 1, 4));
+    }
+
+    /// Both row widths bucket the same faces in the same order (pseudo-random tetrahedra, with
+    /// repeated faces).
+    #[test]
+    fn narrow_and_wide_rows_give_the_same_table() {
+        let mut x = 12345u64;
+        let mut next = |m: u64| {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((x >> 33) % m) as u32
+        };
+        let tets: Vec<[u32; 4]> = (0..2000)
+            .map(|_| {
+                let a = next(300);
+                [a, a + 1 + next(5), a + 7 + next(3), a + 11 + next(2)]
+            })
+            .collect();
+        let n = sizes(&[&tets]).0;
+        let narrow = FaceTable::of_rows(bucketed::<Narrow>(&[&tets], n));
+        let wide = FaceTable::of_rows(bucketed::<Wide>(&[&tets], n));
+        assert_eq!(
+            (&narrow.start, &narrow.keys, &narrow.codes),
+            (&wide.start, &wide.keys, &wide.codes)
+        );
+        let b = boundary(&tets);
+        let wide_b = boundary_of_rows(&tets, bucketed::<Wide>(&[&tets], n));
+        assert_eq!(b, wide_b);
+        assert!(!b.is_empty() && b.len() < 4 * tets.len());
     }
 }

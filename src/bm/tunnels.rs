@@ -402,8 +402,9 @@ impl Batches<'_> {
             let mut after = self.now.after(k.kept, &touched);
             if self.how == Move::Close && after.may_hide_a_void(&mut self.now, &touched) {
                 // membranes can close a pocket into a cavity: filled when no section witnesses it
-                super::voids::fill(k);
-                after = Surface::of(k.kept);
+                if super::voids::fill(k).tets_filled > 0 {
+                    after = Surface::of(k.kept);
+                }
             }
             let (now, then) = (self.now.topology, after.topology);
             if then.components <= now.components && then.genus + batch.len() as i64 <= now.genus {
