@@ -5,6 +5,11 @@ use std::process::ExitCode;
 
 mod cli;
 
+/// The assembly and the collar make and drop many small vectors per cell; glibc's allocator
+/// fragments on dense inputs (a third of a 200-plane run in `malloc`, docs/design/scale.md).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 #[derive(Parser)]
 #[command(
     name = "slice2solid",
