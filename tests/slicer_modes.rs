@@ -182,3 +182,16 @@ fn the_figure_eight_on_a_sweep_of_100_frames() {
         Some(0)
     );
 }
+
+/// Elephant cut by a freehand sweep of 300 frames (seed 1): one singular edge was left on a
+/// frame, from a vertex on its line with the next frame out, with a kept cone on each side of the
+/// frame (a checkerboard inside its section). Both gaps touch the next frame outside its section,
+/// so only growth off the planes may close one, and it had left whole the gap's edge on the first
+/// frame (inside its section): no part of the gap near the edge avoided the line
+/// (`singular::OnPlaneEdges`).
+#[test]
+fn the_elephant_on_a_sweep_of_300_frames() {
+    let (problems, solid) = problems_and_solid_seeded("Elephant", SliceMode::Sweep, 300, 1);
+    assert!(problems.is_empty(), "{problems:?}");
+    assert_eq!(solid.report.counts.get("singular_edges").copied(), Some(0));
+}

@@ -189,7 +189,12 @@ fn grow_round(
             break;
         }
         let near = points_near_cores(t, &groups);
-        let points = split_points(t.positions, t.planes, &groups, reach, on_plane_edges, &near);
+        let on_plane = OnPlaneEdges {
+            split: on_plane_edges,
+            planes: t.planes,
+            internal: t.internal,
+        };
+        let points = split_points(t.positions, &groups, reach, on_plane, &near);
         let g = grow(t, &groups, points);
         let mut grew = vec![false; tried.len()];
         for (&owner, &n) in owners.iter().zip(&g.tets_per_group) {
@@ -296,23 +301,18 @@ fn points_near_cores(t: &Triangulation, groups: &[Vec<Growth>]) -> Vec<([f64; 3]
 /// (`spacing`).
 fn split_points(
     positions: &[[f64; 3]],
-    planes: &[Planes],
     groups: &[Vec<Growth>],
     reach: Reach,
-    on_plane_edges: bool,
+    on_plane: OnPlaneEdges,
     near: &[([f64; 3], u32)],
 ) -> FxHashMap<(u32, u32), [f64; 3]> {
     let mut out = FxHashMap::default();
     let mut spaced = Spaced::new(MIN_GAP * reach.distance, near);
-    let on_a_plane_edge = |a: u32, b: u32| {
-        planes[a as usize]
-            .iter()
-            .any(|p| planes[b as usize].contains(p))
-    };
+    let kept_off = on_plane.kept_off(groups);
     for g in groups.iter().flatten() {
         for &c in &g.core {
             for &x in g.tet.iter().filter(|x| !g.core.contains(x)) {
-                if !on_plane_edges && on_a_plane_edge(c, x) {
+                if kept_off.contains(&edge(c, x)) {
                     continue;
                 }
                 let (p, q) = (positions[c as usize], positions[x as usize]);
@@ -327,6 +327,40 @@ fn split_points(
         }
     }
     out
+}
+
+/// Which edges on a plane a growth splits (`EdgeGaps`): all, or (off the planes) only those whose
+/// faces on a plane in the growths' tetrahedra are all inside their sections. A face outside its
+/// section is the gap on the plane that must stay open (a saddle); a point on such a face's edge
+/// would put a kept face there. A face inside its section may be kept, and an edge of it left
+/// whole can leave a gap tetrahedron with no part near the core (its near part would reach the
+/// edge's far end): Elephant under a 300-frame sweep (seed 1) kept a singular edge on a plane,
+/// at a vertex on two frames' line, that way.
+#[derive(Clone, Copy)]
+struct OnPlaneEdges<'a> {
+    split: bool,
+    planes: &'a [Planes],
+    internal: &'a FxHashSet<[u32; 3]>,
+}
+
+impl OnPlaneEdges<'_> {
+    /// The edges of `groups`' tetrahedra not to split: none when all are split, else those on a
+    /// face on a plane outside its section.
+    fn kept_off(&self, groups: &[Vec<Growth>]) -> FxHashSet<(u32, u32)> {
+        let mut out = FxHashSet::default();
+        if self.split {
+            return out;
+        }
+        for g in groups.iter().flatten() {
+            for i in 0..4 {
+                let f = super::complex::outward_face(&g.tet, i);
+                if on_a_plane(self.planes, &f) && !self.internal.contains(&key3(f)) {
+                    out.extend([edge(f[0], f[1]), edge(f[1], f[2]), edge(f[0], f[2])]);
+                }
+            }
+        }
+        out
+    }
 }
 
 /// The tetrahedra of the triangulation around each wanted simplex (`key` gives the simplices of
@@ -716,6 +750,52 @@ mod tests {
     /// which touch at the origin; above them the octants 0 and 6 are kept, so the edge from the
     /// origin up (0, 5) is singular. Growing near the edge would put the quadrants +x-y or -x+y,
     /// outside the section, into K; growth off the plane bridges the octants above it instead.
+    /// Two planes crossing in a line through a section, as two frames of a freehand sweep: z = 0
+    /// (vertices 0-4, section on the +x half) and x = 0 (vertices 0, 3-6, section in the
+    /// quadrants +y+z and -y-z), the origin on both. The octants +x+y+z and +x-y-z are kept, so
+    /// the edge (0, 1) on z = 0, from the line out, is singular: a checkerboard across z = 0
+    /// inside its section. Each gap has a face on x = 0 outside that section, so only growth off
+    /// the planes may close one; it must split the gap's edge from 1 to the line (on z = 0,
+    /// inside its section), or the gap has no part near the edge that avoids the line (Elephant,
+    /// 300-frame sweep, seed 1, before `OnPlaneEdges`).
+    #[test]
+    fn a_checkerboard_at_two_crossing_planes_is_bridged_off_the_planes() {
+        let mut o = octants_owned(&[0, 3]);
+        for v in 0..5 {
+            o.planes[v].push(0);
+        }
+        for v in [0, 3, 4, 5, 6] {
+            o.planes[v].push(1);
+        }
+        let internal = [[0, 1, 3], [0, 1, 4], [0, 3, 5], [0, 4, 6]];
+        o.internal = internal.into_iter().map(key3).collect();
+        assert_eq!(singularities(&boundary_of(&o.kept)).0, 1);
+        // the gap +x+y-z: its edges on its face on x = 0 (outside) stay whole, not the others
+        let gap = Growth {
+            tet: positive(&o.positions, [0, 1, 3, 6]),
+            core: [0, 1].into_iter().collect(),
+            keep_slivers: false,
+        };
+        let rule = |split| OnPlaneEdges {
+            split,
+            planes: &o.planes,
+            internal: &o.internal,
+        };
+        let kept_off = rule(false).kept_off(&[vec![gap.clone()]]);
+        let want: FxHashSet<(u32, u32)> = [(0, 3), (0, 6), (3, 6)].into_iter().collect();
+        assert_eq!(kept_off, want);
+        assert!(rule(true).kept_off(&[vec![gap]]).is_empty());
+        resolve(&mut o.view(), 4, Reach::near(0.1), EdgeGaps::OffPlane, None);
+        let in_sections = o
+            .kept
+            .iter()
+            .all(|x| crate::bm::refine::faces_in_sections(x, &o.planes, &o.internal));
+        assert_eq!(
+            (singularities(&boundary_of(&o.kept)), in_sections),
+            ((0, 0), true)
+        );
+    }
+
     #[test]
     fn a_section_pinched_at_a_vertex_gets_a_saddle() {
         let run = |how: EdgeGaps| {
@@ -891,14 +971,13 @@ mod tests {
         ];
         let distance = 1e-3;
         let near = [(positions[4], 0)];
-        let points = split_points(
-            &positions,
-            &planes,
-            &groups,
-            Reach::near(distance),
-            true,
-            &near,
-        );
+        let internal = FxHashSet::default();
+        let on_plane = OnPlaneEdges {
+            split: true,
+            planes: &planes,
+            internal: &internal,
+        };
+        let points = split_points(&positions, &groups, Reach::near(distance), on_plane, &near);
         assert_eq!(points.len(), 4);
         let ps: Vec<[f64; 3]> = points.values().copied().collect();
         for (i, a) in ps.iter().enumerate() {
