@@ -155,7 +155,8 @@ impl Narrow {
 impl Row for Narrow {
     #[inline]
     fn pack(k1: u32, k2: u32, code: u32) -> Self {
-        Narrow((k1 as u64) << 44 | (k2 as u64) << 24 | code as u64)
+        let (v, c) = (Self::VERTEX_BITS, Self::CODE_BITS);
+        Narrow((k1 as u64) << (v + c) | (k2 as u64) << c | code as u64)
     }
     #[inline]
     fn key(self) -> u64 {
