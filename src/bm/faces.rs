@@ -7,7 +7,8 @@ use rayon::prelude::*;
 
 /// Per face (sorted key): the tetrahedra that have it, in increasing index.
 pub struct FaceTable {
-    /// `keys[start[v]..start[v + 1]]`: the faces whose smallest vertex is `v` (other two vertices, `k1 << 32 | k2`).
+    /// `keys[start[v]..start[v + 1]]`: the faces whose smallest vertex is `v` (the other two
+    /// vertices, `k1 << 32 | k2`).
     start: Vec<u32>,
     keys: Vec<u64>,
     /// Per entry, `4 * tet + i`: the face is opposite local vertex `i` of tetrahedron `tet`.

@@ -38,9 +38,10 @@ pub enum EdgeGaps {
     Whole,
     /// Only the part near the edge (split points at `distance`): nothing far from it changes.
     NearEdge,
-    /// As `NearEdge`, but an edge lying on a plane (its ends share one) is not split, so the part
-    /// kept touches a plane only at the core's vertices on it: the bridge of a saddle, where a
-    /// section's regions touch at a vertex and the gap between them on the plane must stay open.
+    /// As `NearEdge`, but an edge of a gap's face on a plane outside its section is not split
+    /// (`OnPlaneEdges`), so the part kept touches such a face only at the core's vertices on it:
+    /// the bridge of a saddle, where a section's regions touch at a vertex and the gap between
+    /// them on the plane must stay open.
     OffPlane,
 }
 
@@ -167,7 +168,6 @@ fn grow_round(
 ) -> Option<Vec<u32>> {
     let (mut edges, mut vertices) = (edges.to_vec(), vertices.to_vec());
     let (mut touched, mut grown_any) = (Vec::new(), false);
-    let on_plane_edges = how != EdgeGaps::OffPlane;
     for stay in 0..ALTERNATIVES {
         let edge_groups = edge_gaps(t, &edges, how, stay);
         let vertex_groups = vertex_gaps(t, &vertices, stay);
@@ -190,7 +190,7 @@ fn grow_round(
         }
         let near = points_near_cores(t, &groups);
         let on_plane = OnPlaneEdges {
-            split: on_plane_edges,
+            split: how != EdgeGaps::OffPlane,
             planes: t.planes,
             internal: t.internal,
         };
@@ -295,10 +295,10 @@ fn points_near_cores(t: &Triangulation, groups: &[Vec<Growth>]) -> Vec<([f64; 3]
 }
 
 /// Per growth, the edges from its core to its other vertices, split at `reach` from the core
-/// vertex (at most halfway); an edge asked for twice keeps its first point. A point that would
-/// lie within `MIN_GAP` of the distance (or `SHORT_EDGE` of its edge) of another split point of
-/// its core or of a vertex around its core (`near`) moves along its edge where that clears it
-/// (`spacing`).
+/// vertex (at most halfway), but those `on_plane` keeps whole; an edge asked for twice keeps its
+/// first point. A point that would lie within `MIN_GAP` of the distance (or `SHORT_EDGE` of its
+/// edge) of another split point of its core or of a vertex around its core (`near`) moves along
+/// its edge where that clears it (`spacing`).
 fn split_points(
     positions: &[[f64; 3]],
     groups: &[Vec<Growth>],
@@ -746,10 +746,6 @@ mod tests {
         (s, o.kept, o.positions)
     }
 
-    /// A saddle: on the plane z = 0 (vertices 0-4) the section is the quadrants +x+y and -x-y,
-    /// which touch at the origin; above them the octants 0 and 6 are kept, so the edge from the
-    /// origin up (0, 5) is singular. Growing near the edge would put the quadrants +x-y or -x+y,
-    /// outside the section, into K; growth off the plane bridges the octants above it instead.
     /// Two planes crossing in a line through a section, as two frames of a freehand sweep: z = 0
     /// (vertices 0-4, section on the +x half) and x = 0 (vertices 0, 3-6, section in the
     /// quadrants +y+z and -y-z), the origin on both. The octants +x+y+z and +x-y-z are kept, so
@@ -796,6 +792,10 @@ mod tests {
         );
     }
 
+    /// A saddle: on the plane z = 0 (vertices 0-4) the section is the quadrants +x+y and -x-y,
+    /// which touch at the origin; above them the octants 0 and 6 are kept, so the edge from the
+    /// origin up (0, 5) is singular. Growing near the edge would put the quadrants +x-y or -x+y,
+    /// outside the section, into K; growth off the plane bridges the octants above it instead.
     #[test]
     fn a_section_pinched_at_a_vertex_gets_a_saddle() {
         let run = |how: EdgeGaps| {
