@@ -349,7 +349,7 @@ fn resolve_singularities(
     let sheets = double_sheets(k, first_grown);
     if sheets > 0 {
         let left = singular_count(k);
-        let after_near = Snapshot::of(k);
+        let after_near = Snapshot::of_since(k, &start);
         start.clone().restore(k);
         let spread = Reach {
             fraction: NEEDLE_FRACTION,
@@ -474,7 +474,7 @@ fn grow_all_ways(
     let kept = if near_first.is_clean() {
         near_first
     } else {
-        let after_near = Snapshot::of(k);
+        let after_near = Snapshot::of_since(k, &start);
         start.clone().restore(k);
         let whole_first = grow_then_toggle(
             k,

@@ -234,9 +234,14 @@ fn grow_round(
 /// Choices of the gap left open tried per singular simplex in a round (`grow_round`).
 const ALTERNATIVES: usize = 3;
 
-/// A copy of what growth changes in a triangulation.
+/// What growth changes in a triangulation, to put it back. Points and their planes are only ever
+/// appended while a snapshot is held (growth adds split points; nothing moves one), so a snapshot
+/// keeps their count, and of the points appended since an earlier snapshot (`of_since`) a copy:
+/// copying every position on each try was a pass over all of them.
 #[derive(Clone, Default)]
 pub(crate) struct Snapshot {
+    /// Points kept as they are; those after them are `positions`'s (and likewise the planes).
+    base: (usize, usize),
     positions: Vec<[f64; 3]>,
     planes: Vec<Planes>,
     kept: Vec<[u32; 4]>,
@@ -246,10 +251,23 @@ pub(crate) struct Snapshot {
 }
 
 impl Snapshot {
+    /// The state of `t`, to be restored while its points are still there (restoring an earlier
+    /// snapshot first takes them away: use [`Snapshot::of_since`] then).
     pub(crate) fn of(t: &Triangulation) -> Snapshot {
+        Self::with_base(t, (t.positions.len(), t.planes.len()))
+    }
+
+    /// The state of `t`, restorable after `earlier` was restored and other points appended.
+    pub(crate) fn of_since(t: &Triangulation, earlier: &Snapshot) -> Snapshot {
+        let (p, q) = earlier.base;
+        Self::with_base(t, (p + earlier.positions.len(), q + earlier.planes.len()))
+    }
+
+    fn with_base(t: &Triangulation, base: (usize, usize)) -> Snapshot {
         Snapshot {
-            positions: t.positions.clone(),
-            planes: t.planes.clone(),
+            base,
+            positions: t.positions[base.0..].to_vec(),
+            planes: t.planes[base.1..].to_vec(),
             kept: t.kept.clone(),
             fillable: t.fillable.clone(),
             external: t.external.clone(),
@@ -258,8 +276,10 @@ impl Snapshot {
     }
 
     pub(crate) fn restore(self, t: &mut Triangulation) {
-        *t.positions = self.positions;
-        *t.planes = self.planes;
+        t.positions.truncate(self.base.0);
+        t.positions.extend(self.positions);
+        t.planes.truncate(self.base.1);
+        t.planes.extend(self.planes);
         *t.kept = self.kept;
         *t.fillable = self.fillable;
         *t.external = self.external;
