@@ -399,18 +399,15 @@ fn carve_core(t: &mut Triangulation, core: &[u32], cut: Cut, distance: f64) -> u
 fn take_tips(t: &mut Triangulation, core: &[u32], tips: &[[u32; 4]]) -> u64 {
     let tip_keys: FxHashSet<[u32; 4]> = tips.iter().map(|&x| key4(x)).collect();
     let through_core = |f: &[u32; 3]| f.iter().any(|v| core.contains(v));
-    let in_kept = t
-        .kept
-        .iter()
-        .filter(|x| tip_keys.contains(&key4(**x)))
-        .count();
+    let is_tip = super::refine::one_of(t.positions.len(), &tip_keys);
+    let in_kept = t.kept.iter().filter(|x| is_tip(x)).count();
     if tips.is_empty()
         || !sections_stay_covered(t, tips, &tip_keys, through_core)
         || in_kept < tips.len()
     {
         return 0;
     }
-    t.kept.retain(|x| !tip_keys.contains(&key4(*x)));
+    t.kept.retain(|x| !is_tip(x));
     t.fillable.extend(tips.iter().copied());
     tips.len() as u64
 }

@@ -306,8 +306,13 @@ fn plan_round(k: &Triangulation, cores: &[Vec<u32>], min_gap: f64) -> Vec<Plan> 
     // the kept tetrahedra through a core's first vertex (one pass over K)
     let mut first: crate::fxhash::FxHashMap<u32, Vec<u32>> =
         cores.iter().flatten().map(|&v| (v, Vec::new())).collect();
+    // a flag per vertex spares the map a lookup for every vertex of K
+    let mut in_core = vec![false; k.positions.len()];
+    for &v in cores.iter().flatten() {
+        in_core[v as usize] = true;
+    }
     for (i, t) in k.kept.iter().enumerate() {
-        for v in t {
+        for v in t.iter().filter(|&&v| in_core[v as usize]) {
             if let Some(star) = first.get_mut(v) {
                 star.push(i as u32);
             }
@@ -510,7 +515,8 @@ fn take_tips(k: &mut Triangulation, tips: &[[u32; 4]]) {
     if tips.is_empty() || !super::carve::sections_stay_covered(k, tips, &tip_keys, |_| true) {
         return;
     }
-    k.kept.retain(|x| !tip_keys.contains(&key4(*x)));
+    let is_tip = super::refine::one_of(k.positions.len(), &tip_keys);
+    k.kept.retain(|x| !is_tip(x));
     k.external.extend(tips.iter().copied());
 }
 

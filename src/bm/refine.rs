@@ -196,6 +196,14 @@ fn marks(n: usize, vertices: impl Iterator<Item = u32>) -> Vec<bool> {
     out
 }
 
+/// Membership in `keys` (sorted keys of tetrahedra with vertices below `n_vertices`): a flag per
+/// vertex of theirs spares hashing every tetrahedron that has a vertex of none of them, which is
+/// most of a whole complex scanned for a few.
+pub fn one_of(n_vertices: usize, keys: &FxHashSet<[u32; 4]>) -> impl Fn(&[u32; 4]) -> bool + '_ {
+    let on = marks(n_vertices, keys.iter().flatten().copied());
+    move |x: &[u32; 4]| x.iter().all(|&v| on[v as usize]) && keys.contains(&key4(*x))
+}
+
 /// Whether at least two vertices of `s` are marked (it may have a split edge).
 fn touches_two<const N: usize>(s: &[u32; N], marked: &[bool]) -> bool {
     s.iter().filter(|&&v| marked[v as usize]).count() >= 2

@@ -297,7 +297,8 @@ impl Move {
         touched.dedup();
         match self {
             Move::Close => {
-                k.fillable.retain(|t| !keys.contains(&key4(*t)));
+                let in_batch = super::refine::one_of(k.positions.len(), &keys);
+                k.fillable.retain(|t| !in_batch(t));
                 k.kept.extend(batch.iter().flatten().copied());
                 // ∂K was a manifold: it is one again unless singular next to the membranes
                 let sets =
@@ -312,7 +313,8 @@ impl Move {
                 (sets, touched)
             }
             Move::Cut => {
-                k.kept.retain(|t| !keys.contains(&key4(*t)));
+                let in_batch = super::refine::one_of(k.positions.len(), &keys);
+                k.kept.retain(|t| !in_batch(t));
                 k.external.extend(batch.iter().flatten().copied());
                 // only the stars of the cut's vertices changed; its sides are then separated
                 // (the resolution's fill would only close the cut again)
