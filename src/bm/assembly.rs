@@ -474,7 +474,7 @@ fn grow_all_ways(
     let kept = if near_first.is_clean() {
         near_first
     } else {
-        let after_near = Snapshot::of_since(k, &start);
+        let after_near = Snapshot::of_since(k, start);
         start.clone().restore(k);
         let whole_first = grow_then_toggle(
             k,
