@@ -157,6 +157,10 @@ pub type TaggedPoint<'a> = (&'a PointTags, P);
 /// Bit i set when `p` lies on `q`'s i-th plane.
 #[inline]
 fn mask(p: &PointTags, q: &PointTags) -> u8 {
+    if let ([(a, _)], [(b, _)]) = (&p.planes[..], &q.planes[..]) {
+        // one plane each, the usual contour vertex
+        return (a == b) as u8;
+    }
     let mut m = 0;
     for (i, &(pl, _)) in q.planes.iter().enumerate() {
         if p.planes.iter().any(|x| x.0 == pl) {
@@ -178,18 +182,20 @@ pub(super) fn conflict(
     apexes: &PlaneApexes,
 ) -> Option<bool> {
     let (q, qp) = q;
-    let p = v.map(|t| t.map(|t| t.1));
-    let v = v.map(|t| t.map(|t| t.0));
     if q.planes.is_empty() {
         return None;
     }
-    let m = v.map(|t| t.map_or(0, |t| mask(t, q)));
+    let m: [u8; 4] = std::array::from_fn(|i| v[i].map_or(0, |t| mask(t.0, q)));
+    // a rule needs two vertices on a plane of q's (most tests of a cavity have none)
+    if m.iter().filter(|&&x| x != 0).count() < 2 {
+        return None;
+    }
     for (i, j) in PAIRS {
         let c = m[i] & m[j];
         if c == 0 {
             continue;
         }
-        let (a, b) = (v[i].unwrap(), v[j].unwrap());
+        let (a, b) = (v[i].unwrap().0, v[j].unwrap().0);
         if let Some(pl) = line_plane_of(a, b, q, c) {
             return Some(pred::line_between(
                 a.uv(pl).unwrap(),
@@ -199,18 +205,19 @@ pub(super) fn conflict(
         }
     }
     for k in 0..4 {
-        let c = (0..4).filter(|&i| i != k).fold(u8::MAX, |c, i| c & m[i]);
+        let [x, y, z] = FACETS[k];
+        let c = m[x] & m[y] & m[z];
         if c != 0 {
             let pl = q.planes[c.trailing_zeros() as usize].0;
-            let f: SmallVec<[(&PointTags, P); 3]> = (0..4)
-                .filter(|&i| i != k)
-                .map(|i| (v[i].unwrap(), p[i].unwrap()))
-                .collect();
-            return plane_conflict(pl, [f[0], f[1], f[2]], (q, qp), apexes);
+            let f = [v[x].unwrap(), v[y].unwrap(), v[z].unwrap()];
+            return plane_conflict(pl, f, (q, qp), apexes);
         }
     }
     None
 }
+
+/// The vertices of the facet opposite each vertex of a tetrahedron, in increasing order.
+const FACETS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
 
 /// Whether `q` is inside the circumcircle of facet `f`, all four on plane `pl`: through the
 /// plane's apex when it has one, else in its uv. `None` when `f` is collinear (no circle).
