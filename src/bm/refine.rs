@@ -97,14 +97,21 @@ pub fn grow(
             t.external.push(g.tet);
         }
     }
+    // the tetrahedra an edge to split can be on (two vertices at the ends of one), found in one
+    // pass over each list: refusing edges below only drops ends, so later passes read these only
+    let ends = marks(t.positions.len(), points.keys().flat_map(|e| [e.0, e.1]));
+    let near = [&*t.kept, &*t.fillable, &*t.external].map(|list| {
+        (list.iter().enumerate())
+            .filter(|(_, x)| touches_two(x, &ends))
+            .map(|(i, _)| i)
+            .collect::<Vec<usize>>()
+    });
     // each round drops at least one edge
     loop {
         let ends = marks(t.positions.len(), points.keys().flat_map(|e| [e.0, e.1]));
-        let all = t
-            .kept
-            .iter()
-            .chain(t.fillable.iter())
-            .chain(t.external.iter())
+        let lists = [&*t.kept, &*t.fillable, &*t.external];
+        let all = (0..3)
+            .flat_map(|l| near[l].iter().map(move |&i| &lists[l][i]))
             .filter(|x| touches_two(x, &ends));
         let bad = inverted_edges(t.positions, &points, all);
         if bad.is_empty() {
@@ -116,9 +123,9 @@ pub fn grow(
     // a simplex is split only where two of its vertices end a split edge
     let ends = marks(t.positions.len(), ids.keys().flat_map(|e| [e.0, e.1]));
     let mut touched = Vec::new();
-    split_all(t.kept, &ends, &ids, Some(&mut touched));
-    split_all(t.fillable, &ends, &ids, None);
-    split_all(t.external, &ends, &ids, None);
+    split_all(t.kept, &near[0], &ends, &ids, Some(&mut touched));
+    split_all(t.fillable, &near[1], &ends, &ids, None);
+    split_all(t.external, &near[2], &ends, &ids, None);
     let refined: Vec<[u32; 3]> = t
         .internal
         .iter()
@@ -161,29 +168,37 @@ pub fn grow(
 }
 
 /// Replaces each tetrahedron of `list` with two vertices at `ends` by its children at the split
-/// points `ids`; with `touched`, the vertices of the children are pushed there.
+/// points `ids`, in place (the children where their parent was); `near` holds the positions of
+/// every such tetrahedron (and maybe others), in increasing order. With `touched`, the vertices
+/// of the children are pushed there.
 fn split_all(
     list: &mut Vec<[u32; 4]>,
+    near: &[usize],
     ends: &[bool],
     ids: &FxHashMap<(u32, u32), u32>,
     mut touched: Option<&mut Vec<u32>>,
 ) {
-    if !list.iter().any(|x| touches_two(x, ends)) {
+    let mut at = near
+        .iter()
+        .copied()
+        .filter(|&i| touches_two(&list[i], ends))
+        .peekable();
+    if at.peek().is_none() {
         return;
     }
-    // in order, children where their parent was; one allocation (not one per tetrahedron)
+    // the runs between split tetrahedra copied whole; one allocation
     let mut out = Vec::with_capacity(list.len() + 64);
-    for &x in list.iter() {
-        if !touches_two(&x, ends) {
-            out.push(x);
-            continue;
-        }
-        let children = split(x, ids);
+    let mut from = 0;
+    for i in at {
+        out.extend_from_slice(&list[from..i]);
+        let children = split(list[i], ids);
         if let Some(touched) = touched.as_deref_mut() {
             touched.extend(children.iter().flatten());
         }
         out.extend(children);
+        from = i + 1;
     }
+    out.extend_from_slice(&list[from..]);
     *list = out;
 }
 
