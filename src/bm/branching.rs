@@ -267,9 +267,19 @@ impl NearestSite<'_> {
     /// Same answer as a scan of all sites in order (smallest r, first site on ties), visiting only
     /// the sites whose in-plane distance can still beat the best r found (r_b(a) >= that distance).
     fn argmin(&self, q: [f64; 2]) -> usize {
+        self.argmin_near(q, None)
+    }
+
+    /// [`NearestSite::argmin`] starting from `hint`'s r (the minimiser of a neighbouring grid
+    /// point, usually this one's too): buckets whose bound exceeds it are skipped from the start.
+    /// The same answer: every site with r up to the hint's is still visited.
+    fn argmin_near(&self, q: [f64; 2], hint: Option<usize>) -> usize {
         let a3 = self.plane.to_3d(q);
-        let mut best = (f64::INFINITY, 0);
-        self.index.visit(q, |k| {
+        let mut best = hint.map_or((f64::INFINITY, 0), |k| (self.r(a3, &self.sites[k]), k));
+        if best.0 == f64::INFINITY {
+            best = (f64::INFINITY, 0);
+        }
+        self.index.visit_below(q, best.0, |k| {
             let v = self.r(a3, &self.sites[k]);
             if v < best.0 || (v == best.0 && v < f64::INFINITY && k < best.1) {
                 best = (v, k);
@@ -295,7 +305,12 @@ fn grid_minimisers(
         for i in 0..=grid.nx {
             let q = grid.at(i as f64, j as f64);
             if row.locate(q[0]) == super::cell_input::Where::Inside {
-                minimiser[j * w + i] = Some(search.argmin(q));
+                // the left or lower neighbour's minimiser bounds the search
+                let hint = (i > 0)
+                    .then(|| minimiser[j * w + i - 1])
+                    .flatten()
+                    .or_else(|| (j > 0).then(|| minimiser[(j - 1) * w + i]).flatten());
+                minimiser[j * w + i] = Some(search.argmin_near(q, hint));
             }
         }
     }
@@ -589,7 +604,13 @@ impl SiteIndex {
 
     /// Call `f(site)` for every site that may have r below the current best, ring by ring of buckets
     /// around `q`; `f` returns the best r so far.
-    pub(super) fn visit(&self, q: [f64; 2], mut f: impl FnMut(usize) -> f64) {
+    pub(super) fn visit(&self, q: [f64; 2], f: impl FnMut(usize) -> f64) {
+        self.visit_below(q, f64::INFINITY, f)
+    }
+
+    /// [`SiteIndex::visit`] when a site with r = `start` is known: the buckets whose bound
+    /// exceeds it are not visited.
+    pub(super) fn visit_below(&self, q: [f64; 2], start: f64, mut f: impl FnMut(usize) -> f64) {
         let fx = ((q[0] - self.lo[0]) / self.cell).floor();
         let fy = ((q[1] - self.lo[1]) / self.cell).floor();
         // far outside the buckets (or not finite): plain scan
@@ -611,7 +632,7 @@ impl SiteIndex {
         let first = [-cx, cx - (self.nx - 1), -cy, cy - (self.ny - 1)]
             .into_iter()
             .fold(0, i64::max);
-        let mut best = f64::INFINITY;
+        let mut best = start;
         let mut bucket = |x: i64, y: i64, best: &mut f64| {
             if x >= 0 && x < self.nx && y >= 0 && y < self.ny {
                 let b = (y * self.nx + x) as usize;
