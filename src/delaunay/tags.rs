@@ -204,8 +204,7 @@ pub(super) fn conflict(
             ));
         }
     }
-    for k in 0..4 {
-        let [x, y, z] = FACETS[k];
+    for [x, y, z] in FACETS {
         let c = m[x] & m[y] & m[z];
         if c != 0 {
             let pl = q.planes[c.trailing_zeros() as usize].0;
