@@ -689,6 +689,57 @@ mod tests {
         dist2(a, site.1) / (2.0 * site.2)
     }
 
+    /// A search started from any site's r (a neighbour's minimiser, which may even be a site
+    /// below the plane, r infinite) finds what the search from nothing finds, and what a scan of
+    /// all sites finds (smallest r, first site on ties): sites on a coarse lattice, so that
+    /// equal r are common.
+    #[test]
+    fn a_search_started_from_a_hint_finds_the_same_minimiser() {
+        let plane = crate::sections::Plane::from_equation([0.0, 0.0, 1.0], 0.0).unwrap();
+        let mut x = 7u64;
+        let mut next = |m: u64| {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (x >> 33) % m
+        };
+        let sites: Vec<Site> = (0..300u32)
+            .map(|k| {
+                let (px, py) = (next(20) as f64 * 0.05, next(20) as f64 * 0.05);
+                // a few below the plane (r infinite from above)
+                let h = if k % 37 == 0 {
+                    -0.1
+                } else {
+                    0.05 * (1 + next(4)) as f64
+                };
+                (k, [px, py, h], h)
+            })
+            .collect();
+        let index = SiteIndex::new(&plane, &sites);
+        let search = NearestSite {
+            plane,
+            n: [0.0, 0.0, 1.0],
+            sites: &sites,
+            index: &index,
+        };
+        for _ in 0..2000 {
+            let q3 = [next(41) as f64 * 0.025, next(41) as f64 * 0.025, 0.0];
+            let q = plane.to_2d(q3);
+            let scan = (0..sites.len())
+                .map(|k| (search.r(q3, &sites[k]), k))
+                .fold((f64::INFINITY, 0), |m, x| if x.0 < m.0 { x } else { m });
+            let plain = search.argmin(q);
+            assert_eq!(plain, scan.1, "at {q:?}");
+            let hint = next(sites.len() as u64) as usize;
+            assert_eq!(
+                search.argmin_near(q, Some(hint)),
+                plain,
+                "at {q:?} from {hint}"
+            );
+            assert_eq!(search.argmin_near(q, Some(plain)), plain, "at {q:?}");
+        }
+    }
+
     /// Sites in a 2e-5 square, queries up to 1 away (odd076: a tiny contour beside a large section;
     /// every query walked up to 10⁶ empty rings of buckets before reaching the sites, 2 minutes
     /// in one cell): the index finds the scan's minimiser, and 40,000 far queries take well under

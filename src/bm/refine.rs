@@ -608,6 +608,26 @@ mod tests {
         pairs.iter().copied().collect()
     }
 
+    /// `one_of` answers as the keys' set does, whatever the order of a tetrahedron's vertices,
+    /// for tetrahedra with every vertex on the keys' tetrahedra and for the others.
+    #[test]
+    fn one_of_is_membership_in_the_keys() {
+        let keys: FxHashSet<[u32; 4]> = [key4([3, 1, 2, 0]), key4([4, 5, 6, 7])]
+            .into_iter()
+            .collect();
+        let member = one_of(9, &keys);
+        for (t, want) in [
+            ([0, 1, 2, 3], true),
+            ([2, 3, 0, 1], true),
+            ([7, 6, 5, 4], true),
+            ([0, 1, 2, 4], false), // every vertex on a key's tetrahedron, not a key
+            ([0, 1, 2, 8], false),
+            ([8, 8, 8, 8], false),
+        ] {
+            assert_eq!(member(&t), want, "{t:?}");
+        }
+    }
+
     /// A tetrahedron flat up to rounding on the outer boundary: the square a b c d with c lifted
     /// 1e-15 (its upper faces a b c and a c d, lower a b d and b c d) over two kept tetrahedra
     /// below (apex e). Kept, with only its lower faces beside kept tetrahedra, it goes and ∂K

@@ -717,6 +717,40 @@ mod tests {
 
     use crate::bm::refine::test_support::{orient, positive, Owned};
 
+    /// Snapshots put back the points they saw, as the growth orders use them: a later state
+    /// kept (`of_since`), the earlier one restored and other points appended, then the later
+    /// state restored again over those.
+    #[test]
+    fn snapshots_restore_the_points_they_saw() {
+        let mut o = Owned::at(vec![[0.0; 3], [1.0, 0.0, 0.0]]);
+        o.kept.push([0, 1, 0, 1]);
+        let mut t = o.view();
+        let start = Snapshot::of(&t);
+        let add = |t: &mut Triangulation, x: f64, plane: u32| {
+            t.positions.push([x, x, x]);
+            t.planes.push(smallvec::smallvec![plane]);
+            t.kept.push([0, 1, t.positions.len() as u32 - 1, 0]);
+        };
+        add(&mut t, 2.0, 7);
+        add(&mut t, 3.0, 8);
+        let later = Snapshot::of_since(&t, &start);
+        let (positions, planes, kept) = (t.positions.clone(), t.planes.clone(), t.kept.clone());
+        start.clone().restore(&mut t);
+        assert_eq!(t.positions.len(), 2);
+        assert_eq!((t.planes.len(), t.kept.len()), (2, 1));
+        add(&mut t, 9.0, 9);
+        later.restore(&mut t);
+        assert_eq!(*t.positions, positions);
+        assert_eq!(*t.planes, planes);
+        assert_eq!(*t.kept, kept);
+        // a snapshot restored after growth that only appended takes the new points away
+        let before = Snapshot::of(&t);
+        add(&mut t, 4.0, 1);
+        before.restore(&mut t);
+        assert_eq!(*t.positions, positions);
+        assert_eq!(*t.planes, planes);
+    }
+
     /// Eight tetrahedra around the vertex 0 (the octants of an octahedron with apexes ±x, ±y,
     /// ±z), `kept` of them in K.
     type Split = (Vec<[f64; 3]>, Vec<[u32; 4]>, Vec<[u32; 4]>);
