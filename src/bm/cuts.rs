@@ -202,11 +202,13 @@ fn section_layer(
 /// the grounded core leaves out.
 fn grow(k: &Triangulation, stats: &mut TunnelStats) -> Vec<Vec<[u32; 4]>> {
     let tets: &[[u32; 4]] = k.kept;
-    let faces = FaceTable::new(tets);
+    // three tables of K, built side by side
     let n = k.positions.len();
-    let stars = Stars::<u32>::new(n, tets);
+    let (faces, (stars, edges)) = rayon::join(
+        || FaceTable::new(tets),
+        || rayon::join(|| Stars::<u32>::new(n, tets), || EdgeTable::new(tets)),
+    );
     let adj = faces.neighbours(tets.len());
-    let edges = EdgeTable::new(tets);
     let grounded = section_layer(k, tets, &faces, &edges);
     // per tetrahedron, a bit per face on ∂K
     let open: Vec<u8> = (adj.iter())

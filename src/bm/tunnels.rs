@@ -78,10 +78,10 @@ impl<'a> Thinning<'a> {
         tets: &'a [[u32; 4]],
         faces: &'a FaceTable,
         stars: &'a Stars<u32>,
+        edges: EdgeTable,
         n_vertices: usize,
     ) -> Self {
         let mut vertex_count = vec![0u32; n_vertices];
-        let edges = EdgeTable::new(tets);
         let mut edge_count = vec![0u32; edges.count];
         for (tet, ids) in tets.iter().zip(&edges.of_tet) {
             for &v in tet {
@@ -247,9 +247,13 @@ fn thin(k: &Triangulation, on_hole: &[bool], stats: &mut TunnelStats) -> Vec<Vec
     if tets.len() == n_kept {
         return Vec::new();
     }
-    let faces = FaceTable::new(&tets);
-    let stars = Stars::<u32>::new(k.positions.len(), &tets);
-    let mut s = Thinning::new(&tets, &faces, &stars, k.positions.len());
+    // three tables of S, built side by side
+    let n = k.positions.len();
+    let (faces, (stars, edges)) = rayon::join(
+        || FaceTable::new(&tets),
+        || rayon::join(|| Stars::<u32>::new(n, &tets), || EdgeTable::new(&tets)),
+    );
+    let mut s = Thinning::new(&tets, &faces, &stars, edges, n);
     let depth = depths(&s, n_kept);
     let mut heap: BinaryHeap<(u32, usize)> = (n_kept..tets.len()).map(|t| (depth[t], t)).collect();
     while let Some((_, t)) = heap.pop() {
