@@ -275,10 +275,10 @@ impl NearestSite<'_> {
     /// The same answer: every site with r up to the hint's is still visited.
     fn argmin_near(&self, q: [f64; 2], hint: Option<usize>) -> usize {
         let a3 = self.plane.to_3d(q);
-        let mut best = hint.map_or((f64::INFINITY, 0), |k| (self.r(a3, &self.sites[k]), k));
-        if best.0 == f64::INFINITY {
-            best = (f64::INFINITY, 0);
-        }
+        // a hint below the plane (r infinite) bounds nothing: the search starts as without one
+        let mut best = (hint.map(|k| (self.r(a3, &self.sites[k]), k)))
+            .filter(|b| b.0 < f64::INFINITY)
+            .unwrap_or((f64::INFINITY, 0));
         self.index.visit_below(q, best.0, |k| {
             let v = self.r(a3, &self.sites[k]);
             if v < best.0 || (v == best.0 && v < f64::INFINITY && k < best.1) {

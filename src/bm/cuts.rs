@@ -309,10 +309,7 @@ fn plan_round(k: &Triangulation, cores: &[Vec<u32>], min_gap: f64) -> Vec<Plan> 
     let mut first: crate::fxhash::FxHashMap<u32, Vec<u32>> =
         cores.iter().flatten().map(|&v| (v, Vec::new())).collect();
     // a flag per vertex spares the map a lookup for every vertex of K
-    let mut in_core = vec![false; k.positions.len()];
-    for &v in cores.iter().flatten() {
-        in_core[v as usize] = true;
-    }
+    let in_core = super::refine::marks(k.positions.len(), cores.iter().flatten().copied());
     for (i, t) in k.kept.iter().enumerate() {
         for v in t.iter().filter(|&&v| in_core[v as usize]) {
             if let Some(star) = first.get_mut(v) {

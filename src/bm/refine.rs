@@ -99,7 +99,7 @@ pub fn grow(
     }
     // the tetrahedra an edge to split can be on (two vertices at the ends of one), found in one
     // pass over each list: refusing edges below only drops ends, so later passes read these only
-    let ends = marks(t.positions.len(), points.keys().flat_map(|e| [e.0, e.1]));
+    let mut ends = marks(t.positions.len(), points.keys().flat_map(|e| [e.0, e.1]));
     let near = [&*t.kept, &*t.fillable, &*t.external].map(|list| {
         (list.iter().enumerate())
             .filter(|(_, x)| touches_two(x, &ends))
@@ -108,7 +108,6 @@ pub fn grow(
     });
     // each round drops at least one edge
     loop {
-        let ends = marks(t.positions.len(), points.keys().flat_map(|e| [e.0, e.1]));
         let lists = [&*t.kept, &*t.fillable, &*t.external];
         let all = (0..3)
             .flat_map(|l| near[l].iter().map(move |&i| &lists[l][i]))
@@ -118,6 +117,7 @@ pub fn grow(
             break;
         }
         points.retain(|e, _| !bad.contains(e));
+        ends = marks(t.positions.len(), points.keys().flat_map(|e| [e.0, e.1]));
     }
     let ids = insert_points(t, &points);
     // a simplex is split only where two of its vertices end a split edge
@@ -152,11 +152,9 @@ pub fn grow(
         });
         out.tets_per_group.push(added as u64);
     }
-    // only a tetrahedron with every vertex on a grown one can be one (no hashing of the rest)
-    let on_grown = marks(t.positions.len(), grown.iter().flatten().copied());
-    let moved = |x: &[u32; 4]| x.iter().all(|&v| on_grown[v as usize]) && grown.contains(&key4(*x));
-    let mut taken: Vec<[u32; 4]> = t.fillable.iter().copied().filter(moved).collect();
-    taken.extend(t.external.iter().copied().filter(moved));
+    let moved = one_of(t.positions.len(), &grown);
+    let mut taken: Vec<[u32; 4]> = t.fillable.iter().copied().filter(|x| moved(x)).collect();
+    taken.extend(t.external.iter().copied().filter(|x| moved(x)));
     t.fillable.retain(|x| !moved(x));
     t.external.retain(|x| !moved(x));
     touched.extend(taken.iter().flatten());
@@ -203,7 +201,7 @@ fn split_all(
 }
 
 /// Per vertex below `n`, whether it is one of `vertices`.
-fn marks(n: usize, vertices: impl Iterator<Item = u32>) -> Vec<bool> {
+pub(super) fn marks(n: usize, vertices: impl Iterator<Item = u32>) -> Vec<bool> {
     let mut out = vec![false; n];
     for v in vertices {
         out[v as usize] = true;
