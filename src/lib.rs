@@ -24,6 +24,7 @@ pub mod slice;
 pub mod solid;
 pub mod validate;
 
+pub use bm::smooth::Smoothing;
 pub use error::{Error, Result};
 pub use mesh::{TetMesh, TriMesh};
 pub use pipeline::{reconstruct, reconstruct_partition};

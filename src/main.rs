@@ -128,6 +128,21 @@ pub struct ReconstructArgs {
     /// planes and handles that no section witnesses are filled and closed)
     #[arg(long)]
     pub keep_topology: bool,
+    /// Delaunay method: refine the surface between the planes and fair it (thin-plate,
+    /// bi-Laplacian), every contour and section kept exactly where the input puts it; the
+    /// tetrahedra (`--tets`) follow
+    #[arg(long)]
+    pub smooth: bool,
+    /// With --smooth: rounds of refinement between the planes (each splits every surface edge
+    /// from one plane to another; 2: three points on such an edge)
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub smooth_rounds: u32,
+    /// With --smooth: Gauss-Seidel sweeps of the fairing
+    #[arg(long, default_value_t = 30, value_name = "N")]
+    pub smooth_sweeps: u32,
+    /// With --smooth: 2 fairs a thin plate (bi-Laplacian), 1 a membrane (Laplacian)
+    #[arg(long, default_value_t = 2, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=2))]
+    pub smooth_order: u32,
     /// Delaunay method: each cell inserts its own diagram samples only, not those of the other
     /// side of its faces (the two sides of a face may then be triangulated differently and the
     /// tetrahedra do not conform there; to study what sharing contributes)

@@ -16,6 +16,12 @@ pub fn reconstruct(sections: &Sections, options: &Options) -> Result<Solid> {
         ..Default::default()
     };
     report.warnings.extend(sections.warnings.iter().cloned());
+    if options.method == Method::Implicit && options.delaunay.smooth.is_some() {
+        return Err(Error::input(
+            "--smooth",
+            "smoothing is a stage of the Delaunay method (the implicit surface is smooth already)",
+        ));
+    }
     if let Some(l) = options.label {
         let present = sections.regions_per_label();
         if !present.contains_key(&l) {
@@ -153,6 +159,14 @@ fn arrangement_of(
 /// as one material, with the outlines labels share as points of the cells' triangulations, then
 /// its complex split between the labels).
 pub fn reconstruct_partition(sections: &Sections, options: &Options) -> Result<Partition> {
+    if options.delaunay.smooth.is_some() {
+        // the partition reads labels off the planes through the complex's points; the faired
+        // points between them are not placed for that yet
+        return Err(Error::input(
+            "--smooth",
+            "not supported with --all-labels yet (smooth one label at a time with --label)",
+        ));
+    }
     if options.method == Method::Implicit {
         return crate::implicit::labels::reconstruct_partition(sections, options);
     }

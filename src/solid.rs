@@ -52,6 +52,9 @@ pub struct DelaunayOptions {
     /// solid is the prism over its section (`bm::collar`), so that sections just off a plane are the
     /// plane's section, not the folds of the pruned complex's vertex links there.
     pub collar: f64,
+    /// Refine the surface between the planes and fair it, every section kept exactly
+    /// (`bm::smooth`); `None`: the pruned complex's piecewise-linear surface as it is.
+    pub smooth: Option<crate::bm::smooth::Smoothing>,
 }
 
 /// Default collar height, relative to the bounding-box diagonal: ten times the offset at which
@@ -67,6 +70,7 @@ impl Default for DelaunayOptions {
             shared_samples: true,
             keep_topology: false,
             collar: COLLAR_HEIGHT,
+            smooth: None,
         }
     }
 }

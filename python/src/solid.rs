@@ -130,11 +130,13 @@ pub(crate) fn parse_method(py: Python<'_>, name: &str) -> PyResult<Method> {
 /// `method` ("delaunay" or "implicit"), `label` (only this label), `depth` (octree depth of the
 /// implicit method), `no_branching`, `no_cutting`, `no_thicken`, `no_shared_samples`,
 /// `keep_topology`, `collar` (height of the prisms over the sections near every plane, relative
-/// to the bounding-box diagonal; 0: none). Runs without the GIL.
+/// to the bounding-box diagonal; 0: none), `smooth` (refine and fair the surface between the
+/// planes, every section kept: `slice2solid reconstruct --smooth` with its default parameters).
+/// Runs without the GIL.
 #[pyfunction]
 #[pyo3(signature = (sections, method = "delaunay", label = None, depth = 9, no_branching = false,
     no_cutting = false, no_thicken = false, no_shared_samples = false, keep_topology = false,
-    collar = slice2solid::COLLAR_HEIGHT))]
+    collar = slice2solid::COLLAR_HEIGHT, smooth = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn reconstruct(
     py: Python<'_>,
@@ -148,6 +150,7 @@ pub fn reconstruct(
     no_shared_samples: bool,
     keep_topology: bool,
     collar: f64,
+    smooth: bool,
 ) -> PyResult<Solid> {
     let method = parse_method(py, method)?;
     let options = Options {
@@ -162,6 +165,7 @@ pub fn reconstruct(
             shared_samples: !no_shared_samples,
             keep_topology,
             collar,
+            smooth: smooth.then(slice2solid::Smoothing::default),
         },
         ..Default::default()
     };

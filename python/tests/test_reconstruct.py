@@ -29,7 +29,7 @@ def test_round_trip_through_trimesh(eight):
     assert same["iou"] == pytest.approx(1.0, abs=1e-12) and same["hausdorff_surface"] < 1e-12
 
 
-@pytest.mark.parametrize("options", [{}, {"no_cutting": True, "no_thicken": True}, {"label": 1, "no_branching": True}])
+@pytest.mark.parametrize("options", [{}, {"no_cutting": True, "no_thicken": True}, {"label": 1, "no_branching": True}, {"smooth": True}])
 def test_options_match_the_cli(tmp_path, cli, options):
     flags = []
     for k, v in options.items():

@@ -68,6 +68,8 @@ pub struct Assembled {
     pub cuts: super::tunnels::TunnelStats,
     /// The prisms over the sections near every plane (`collar`).
     pub collar: super::collar::CollarStats,
+    /// What `--smooth` did (all zero without it).
+    pub smooth: super::smooth::SmoothStats,
     /// Singular simplices on no plane that the collar left (or that were there where it was
     /// refused), carved after it (`carve::carve_off_planes`).
     pub carved_off_planes: super::carve::CarveStats,
@@ -168,7 +170,8 @@ fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
 /// `slabs`, flat zones get slabs of tetrahedra; with `fill_voids`, enclosed voids that no section
 /// witnesses are filled (before singularities are resolved, and again after growth); with
 /// `collar` > 0 (relative to the diagonal), the solid near every plane is the prism over its
-/// section (`collar`).
+/// section (`collar`); with `smooth`, ∂K is refined and faired between the planes first
+/// (`smooth`).
 pub fn assemble(
     arr: &Arrangement,
     pool: &VertexPool,
@@ -176,6 +179,7 @@ pub fn assemble(
     slabs: bool,
     fill_voids: bool,
     collar: f64,
+    smooth: Option<super::smooth::Smoothing>,
 ) -> Assembled {
     let mut laps = Laps::start();
     let mut positions = pool.positions.clone();
@@ -236,6 +240,11 @@ pub fn assemble(
         out.cuts = super::cuts::cut(&mut k, settle);
     }
     laps.lap("tunnels");
+    if let Some(how) = smooth {
+        out.smooth = super::smooth::smooth(&mut k, &arr.planes, how, diag);
+        out.smooth.max_shift /= diag;
+        laps.lap("smooth");
+    }
     let mut boundary = None;
     let n_before_collar = k.positions.len();
     let mut lifted = Vec::new();

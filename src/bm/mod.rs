@@ -53,6 +53,7 @@ pub mod refine;
 pub mod shared_samples;
 pub mod singular;
 pub mod slab;
+pub mod smooth;
 pub mod spacing;
 pub mod tunnels;
 pub mod voids;
@@ -652,11 +653,27 @@ fn assemble_cells(
             slabs,
             fill_voids,
             options.delaunay.collar,
+            options.delaunay.smooth,
         )
     });
     report_assembly_counts(&k, report);
     report_assembly_warnings(&k, slabs, report);
     k
+}
+
+/// What `--smooth` did, in the report (nothing without it).
+fn report_smoothing(s: &smooth::SmoothStats, report: &mut Report) {
+    if s.sweeps == 0 && s.points == 0 {
+        return;
+    }
+    report.count("smooth_points", s.points);
+    report.count("smooth_edges_not_split", s.edges_not_split);
+    report.count("smooth_sweeps", s.sweeps);
+    report.count("smooth_points_moved", s.moved);
+    report.count("smooth_steps_shortened", s.steps_shortened);
+    report.count("smooth_steps_refused", s.steps_refused);
+    report.count("smooth_points_put_back", s.put_back);
+    report.values.insert("smooth_max_shift".into(), s.max_shift);
 }
 
 /// The assembly's counts and values in the report.
@@ -698,6 +715,7 @@ fn report_assembly_counts(k: &assembly::Assembled, report: &mut Report) {
         k.carved_off_planes.refused,
     );
     report.count("voids_filled", k.voids.voids_filled);
+    report_smoothing(&k.smooth, report);
     report.count("void_tets_filled", k.voids.tets_filled);
     report.count("tunnel_candidates", k.tunnels.candidates);
     report.count("tunnel_membranes", k.tunnels.membranes);
@@ -744,6 +762,12 @@ fn report_assembly_counts(k: &assembly::Assembled, report: &mut Report) {
 /// The assembly's warnings: what it could not resolve or protect, and the flat zones; `slabs`:
 /// whether flat zones were to be thickened.
 fn report_assembly_warnings(k: &assembly::Assembled, slabs: bool, report: &mut Report) {
+    if k.smooth.put_back > 0 {
+        report.warnings.push(format!(
+            "smooth: {} points put back where their fairing found them (the faired surface crossed itself there): the surface is less smooth there",
+            k.smooth.put_back
+        ));
+    }
     if k.tunnels.skipped_singular {
         report.warnings.push(
             "tunnels: handles that no section witnesses are left open (the boundary of the complex is not a manifold)".into(),

@@ -72,6 +72,12 @@ pub fn options(args: &ReconstructArgs) -> Options {
             keep_topology: args.keep_topology,
             shared_samples: !args.no_shared_samples,
             collar: args.collar,
+            smooth: args.smooth.then(|| slice2solid::Smoothing {
+                rounds: args.smooth_rounds,
+                sweeps: args.smooth_sweeps,
+                order: args.smooth_order,
+                ..Default::default()
+            }),
         },
         ..Default::default()
     }
