@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Accuracy and topology table (issue 19): the shared reference meshes cut by each slicer mode at a
-sparse and a dense plane count, reconstructed by our methods and by screened Poisson, side by side.
+sparse and a dense plane count, reconstructed by our methods (Delaunay raw and with --smooth,
+implicit) and by screened Poisson, side by side.
 
 Run on demand (not in CI), with the evaluation environment of ../shared/eval (its setup.sh):
 
@@ -104,7 +105,7 @@ def main():
     ap.add_argument("--out", default="/tmp/slice2solid-accuracy")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
-    methods = ["delaunay", "implicit"] + (["poisson"] if has_pymeshlab() else [])
+    methods = ["delaunay", "smooth", "implicit"] + (["poisson"] if has_pymeshlab() else [])
     if "poisson" not in methods:
         print("# pymeshlab not installed: no screened Poisson column", file=sys.stderr)
     head = f"{'case':28s} {'method':9s} {'chamfer':>8s} {'hausdorff':>9s} {'iou':>6s} {'genus':>5s} {'comps':>5s} {'sec':>6s}"
@@ -126,6 +127,8 @@ def main():
                     try:
                         if m == "poisson":
                             poisson(csl, out)
+                        elif m == "smooth":
+                            run([a.bin, "reconstruct", csl, "-o", out, "--smooth", "-q"])
                         else:
                             run([a.bin, "reconstruct", csl, "-o", out, "--method", m, "-q"])
                         sec = time.time() - t0
