@@ -138,7 +138,7 @@ pub struct ReconstructArgs {
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub smooth_rounds: u32,
     /// With --smooth: Gauss-Seidel sweeps of the fairing
-    #[arg(long, default_value_t = 30, value_name = "N")]
+    #[arg(long, default_value_t = 10, value_name = "N")]
     pub smooth_sweeps: u32,
     /// With --smooth: 2 fairs a thin plate (bi-Laplacian), 1 a membrane (Laplacian)
     #[arg(long, default_value_t = 2, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=2))]

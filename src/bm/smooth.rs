@@ -58,7 +58,7 @@ impl Default for Smoothing {
     fn default() -> Self {
         Smoothing {
             rounds: 1,
-            sweeps: 30,
+            sweeps: 10,
             order: 2,
             min_edge: 2e-3,
         }
