@@ -1,9 +1,9 @@
 //! Boissonnat–Memari through the general arrangement: the paper's configurations with non-parallel
 //! planes (sphere cut by the six faces of a cube; two non-parallel planes).
 mod bm_common;
-use bm_common::worst_section;
+use bm_common::{polygon_section, worst_section};
 use slice2solid::eval::check::check_mesh;
-use slice2solid::{Contour, DelaunayOptions, Options, Plane, Region, Section, Sections};
+use slice2solid::{DelaunayOptions, Options, Plane, Section, Sections};
 
 fn circle_section(plane: Plane, center: [f64; 3], r: f64, n: usize, index: usize) -> Section {
     let c = plane.to_2d(center);
@@ -14,20 +14,6 @@ fn circle_section(plane: Plane, center: [f64; 3], r: f64, n: usize, index: usize
         })
         .collect();
     polygon_section(plane, pts, index)
-}
-
-/// One region (label 1) bounded by `pts` (in the plane's frame) on `plane`.
-fn polygon_section(plane: Plane, pts: Vec<[f64; 2]>, index: usize) -> Section {
-    Section {
-        plane,
-        regions: vec![Region {
-            label: 1,
-            outer: Contour::from_2d(&plane, pts),
-            holes: vec![],
-        }],
-        source_index: index,
-        max_off_plane: 0.0,
-    }
 }
 
 /// Reconstruct, check (a closed oriented manifold free of self-intersections and degenerate
@@ -80,15 +66,7 @@ fn run_with(name: &str, sections: &Sections, options: &Options) -> (usize, i64, 
         c.triangles, c.closed, c.manifold, c.oriented, c.components, c.genus, c.volume,
         c.self_intersections_vertex_disjoint, worst, solid.report.counts, solid.report.warnings
     );
-    assert!(
-        c.closed && c.manifold && c.oriented,
-        "{name}: not a closed oriented manifold"
-    );
-    assert!(
-        c.self_intersection_free,
-        "{name}: {} crossing pairs, {} overlapping near-coplanar pairs",
-        c.self_intersections, c.overlapping_coplanar_pairs
-    );
+    bm_common::assert_closed_embedded(name, &c);
     assert_eq!(c.degenerate_triangles, 0, "{name}: degenerate triangles");
     let exact = c.worst_section.as_ref().map_or(0.0, |w| w.relative);
     eprintln!(

@@ -9,10 +9,7 @@ use slice2solid::eval::check::check_mesh;
 use slice2solid::eval::compare::compare_meshes_with_lines;
 use slice2solid::io::mesh::read_trimesh;
 use slice2solid::io::read_sections;
-use slice2solid::{
-    reconstruct, Contour, DelaunayOptions, Options, Plane, Region, Section, Sections, Smoothing,
-    Solid,
-};
+use slice2solid::{reconstruct, DelaunayOptions, Options, Plane, Sections, Smoothing, Solid};
 
 fn smooth_options() -> Options {
     Options {
@@ -40,16 +37,7 @@ fn assert_valid(name: &str, s: &Solid, sections: &Sections) {
 }
 
 fn assert_valid_as(name: &str, s: &Solid, sections: &Sections, raw_worst: f64) {
-    let c = check_mesh(&s.surface, Some(sections));
-    assert!(
-        c.closed && c.manifold && c.oriented,
-        "{name}: not a closed oriented manifold"
-    );
-    assert!(
-        c.self_intersection_free,
-        "{name}: {} crossing pairs, {} overlapping near-coplanar pairs",
-        c.self_intersections, c.overlapping_coplanar_pairs
-    );
+    bm_common::assert_closed_embedded(name, &check_mesh(&s.surface, Some(sections)));
     let worst = worst_section(&s.surface, sections);
     let bound = 1e-6_f64.max(raw_worst * 1.1);
     assert!(
@@ -82,22 +70,7 @@ fn a_barrel_bulges_between_its_sections_and_keeps_them() {
             .map(|(i, &(z, r))| {
                 let plane = Plane::from_equation([0.0, 0.0, 1.0], -z).unwrap();
                 let c = plane.to_2d([0.0, 0.0, z]);
-                let pts: Vec<[f64; 2]> = (0..n)
-                    .map(|k| {
-                        let a = std::f64::consts::TAU * k as f64 / n as f64;
-                        [c[0] + r * a.cos(), c[1] + r * a.sin()]
-                    })
-                    .collect();
-                Section {
-                    plane,
-                    regions: vec![Region {
-                        label: 1,
-                        outer: Contour::from_2d(&plane, pts),
-                        holes: vec![],
-                    }],
-                    source_index: i,
-                    max_off_plane: 0.0,
-                }
+                bm_common::polygon_section(plane, bm_common::circle(c[0], c[1], r, n), i)
             })
             .collect(),
         ..Default::default()

@@ -18,6 +18,34 @@ pub fn circle(cx: f64, cy: f64, r: f64, n: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// A surface check's verdict on a solid's surface: a closed, oriented manifold with no crossing
+/// and no near-coplanar overlapping triangle pair; fails naming `name`.
+pub fn assert_closed_embedded(name: &str, c: &slice2solid::eval::check::CheckReport) {
+    assert!(
+        c.closed && c.manifold && c.oriented,
+        "{name}: not a closed oriented manifold"
+    );
+    assert!(
+        c.self_intersection_free,
+        "{name}: {} crossing pairs, {} overlapping near-coplanar pairs",
+        c.self_intersections, c.overlapping_coplanar_pairs
+    );
+}
+
+/// One region (label 1) bounded by `pts` (in the plane's frame) on `plane`.
+pub fn polygon_section(plane: Plane, pts: Vec<[f64; 2]>, index: usize) -> Section {
+    Section {
+        plane,
+        regions: vec![Region {
+            label: 1,
+            outer: Contour::from_2d(&plane, pts),
+            holes: vec![],
+        }],
+        source_index: index,
+        max_off_plane: 0.0,
+    }
+}
+
 pub fn reversed(mut p: Vec<[f64; 2]>) -> Vec<[f64; 2]> {
     p.reverse();
     p
