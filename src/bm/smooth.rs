@@ -39,6 +39,7 @@ use crate::geom::bvh::{triangle_boxes, Bvh};
 use crate::geom::predicates::orient3d;
 use crate::mesh::Stars;
 use crate::sections::{dot, sub};
+use rayon::prelude::*;
 
 /// What `--smooth` does (library: `DelaunayOptions::smooth`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -537,44 +538,52 @@ impl Fairing {
             normal, overlapping_near_coplanar_with_normals, NEAR_COPLANAR_RELATIVE_TOLERANCE,
         };
         let tris = super::faces::boundary(k.kept);
+        let positions: &[[f64; 3]] = k.positions;
         let moved = |v: u32| {
             self.slot
                 .get(&v)
-                .is_some_and(|&s| k.positions[v as usize] != self.start[s])
+                .is_some_and(|&s| positions[v as usize] != self.start[s])
         };
-        let bvh = Bvh::build(triangle_boxes(k.positions, &tris));
+        let bvh = Bvh::build(triangle_boxes(positions, &tris));
         let tol = 2.0 * NEAR_COPLANAR_RELATIVE_TOLERANCE * bvh.bounds().diagonal();
-        let pts = |t: [u32; 3]| t.map(|v| k.positions[v as usize]);
-        let mut out = Vec::new();
-        for (i, &t) in tris.iter().enumerate() {
-            if !t.iter().any(|&v| moved(v)) {
-                continue;
-            }
-            let b = bvh.item_box(i as u32);
-            let grown = crate::geom::bvh::Aabb {
-                lo: b.lo.map(|x| x - 2.0 * tol),
-                hi: b.hi.map(|x| x + 2.0 * tol),
-            };
-            let n = normal(pts(t));
-            bvh.for_each_overlap(&grown, |j| {
-                let j = j as usize;
-                let u = tris[j];
-                if j == i || (j < i && u.iter().any(|&v| moved(v))) {
-                    return;
-                }
-                if crate::geom::tri_tri::mesh_triangles_intersect(t, u, k.positions)
-                    || overlapping_near_coplanar_with_normals(
-                        pts(t),
-                        n,
-                        pts(u),
-                        normal(pts(u)),
-                        tol,
-                    )
-                {
-                    out.extend(t.iter().chain(&u).copied());
-                }
-            });
-        }
+        let pts = |t: [u32; 3]| t.map(|v| positions[v as usize]);
+        let normals: Vec<_> = tris.par_iter().map(|&t| normal(pts(t))).collect();
+        let at_moved: Vec<bool> = (tris.par_iter())
+            .map(|t| t.iter().any(|&v| moved(v)))
+            .collect();
+        // each pair once: from its first triangle at a moved point
+        let mut out: Vec<u32> = (0..tris.len())
+            .into_par_iter()
+            .filter(|&i| at_moved[i])
+            .flat_map_iter(|i| {
+                let t = tris[i];
+                let b = bvh.item_box(i as u32);
+                let grown = crate::geom::bvh::Aabb {
+                    lo: b.lo.map(|x| x - 2.0 * tol),
+                    hi: b.hi.map(|x| x + 2.0 * tol),
+                };
+                let mut found = Vec::new();
+                bvh.for_each_overlap(&grown, |j| {
+                    let j = j as usize;
+                    let u = tris[j];
+                    if j == i || (j < i && at_moved[j]) {
+                        return;
+                    }
+                    if crate::geom::tri_tri::mesh_triangles_intersect(t, u, positions)
+                        || overlapping_near_coplanar_with_normals(
+                            pts(t),
+                            normals[i],
+                            pts(u),
+                            normals[j],
+                            tol,
+                        )
+                    {
+                        found.extend(t.iter().chain(&u).copied());
+                    }
+                });
+                found
+            })
+            .collect();
         out.retain(|v| self.slot.contains_key(v));
         out.sort_unstable();
         out.dedup();
