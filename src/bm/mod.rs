@@ -715,7 +715,6 @@ fn report_assembly_counts(k: &assembly::Assembled, report: &mut Report) {
         k.carved_off_planes.refused,
     );
     report.count("voids_filled", k.voids.voids_filled);
-    report_smoothing(&k.smooth, report);
     report.count("void_tets_filled", k.voids.tets_filled);
     report.count("tunnel_candidates", k.tunnels.candidates);
     report.count("tunnel_membranes", k.tunnels.membranes);
@@ -757,6 +756,7 @@ fn report_assembly_counts(k: &assembly::Assembled, report: &mut Report) {
     }
     report.count("singular_edges", k.singular_edges);
     report.count("singular_vertices", k.singular_vertices);
+    report_smoothing(&k.smooth, report);
 }
 
 /// The assembly's warnings: what it could not resolve or protect, and the flat zones; `slabs`:

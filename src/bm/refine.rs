@@ -401,6 +401,12 @@ pub fn on_a_plane(planes: &[Planes], f: &[u32; 3]) -> bool {
     common_plane(planes, *f).is_some()
 }
 
+/// The edge `a b` lies on a plane: its two ends share that plane's tag.
+pub fn edge_on_a_plane(planes: &[Planes], a: u32, b: u32) -> bool {
+    let pb = &planes[b as usize];
+    planes[a as usize].iter().any(|g| pb.contains(g))
+}
+
 /// The plane shared by the three vertices of `f`, if any.
 pub fn common_plane(planes: &[Planes], f: [u32; 3]) -> Option<u32> {
     let [a, b, c] = f.map(|v| &planes[v as usize]);

@@ -430,11 +430,7 @@ fn split_points(
     on_planes: bool,
     first_new: usize,
 ) -> FxHashMap<(u32, u32), ([f64; 3], f64)> {
-    let on_a_plane = |a: u32, b: u32| {
-        planes[a as usize]
-            .iter()
-            .any(|g| planes[b as usize].contains(g))
-    };
+    let on_a_plane = |a: u32, b: u32| super::refine::edge_on_a_plane(planes, a, b);
     let earlier: Vec<([f64; 3], u32)> = positions[first_new..]
         .iter()
         .map(|&p| (p, u32::MAX))

@@ -32,7 +32,7 @@
 //! such a one lets ∂K bend one way only, so many moves are halved and the faired surface is
 //! crumpled at that scale. Most of the distance to the truth on oblique planes is elsewhere (webs
 //! between separate parts), which no fairing between the planes reaches.
-use super::refine::{edge, Planes, Triangulation};
+use super::refine::{edge, Triangulation};
 use crate::arrangement::ArrPlane;
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::geom::bvh::{triangle_boxes, Bvh};
@@ -219,7 +219,7 @@ fn split_points(
     for f in tris {
         for (a, b) in [(f[0], f[1]), (f[1], f[2]), (f[2], f[0])] {
             let e = edge(a, b);
-            if points.contains_key(&e) || share_plane(k.planes, a, b) {
+            if points.contains_key(&e) || super::refine::edge_on_a_plane(k.planes, a, b) {
                 continue;
             }
             let (pa, pb) = (k.positions[e.0 as usize], k.positions[e.1 as usize]);
@@ -237,12 +237,6 @@ fn split_points(
         }
     }
     (points, targets)
-}
-
-/// Whether vertices `a` and `b` lie on a common plane (the edge between them lies on it).
-fn share_plane(planes: &[Planes], a: u32, b: u32) -> bool {
-    let pb = &planes[b as usize];
-    planes[a as usize].iter().any(|g| pb.contains(g))
 }
 
 /// The fairing's fixed data: ∂K's graph, T's stars at the free points, where each started, how
@@ -443,14 +437,18 @@ impl Fairing {
         })
     }
 
-    /// Move `v` towards `target`, as far as [`Fairing::allowed`] lets it (the whole way, or half
-    /// of it, ... up to `HALVINGS` times).
+    /// Move `v` towards `target`, as far as [`Fairing::allowed`] lets it.
     fn move_towards(&self, p: &mut [[f64; 3]], v: u32, target: [f64; 3], stats: &mut SmoothStats) {
-        let from = p[v as usize];
-        let mut d = sub(target, from);
-        if dot(d, d) == 0.0 {
-            return;
+        let d = sub(target, p[v as usize]);
+        if dot(d, d) != 0.0 {
+            self.step_by(p, v, d, stats);
         }
+    }
+
+    /// Move `v` by `d`, or half of it, ... up to `HALVINGS` times, the first that
+    /// [`Fairing::allowed`] lets it (counted); the length of the move made.
+    fn step_by(&self, p: &mut [[f64; 3]], v: u32, mut d: [f64; 3], stats: &mut SmoothStats) -> f64 {
+        let from = p[v as usize];
         for h in 0..=HALVINGS {
             let q = std::array::from_fn(|i| from[i] + d[i]);
             if self.allowed(p, v, q) {
@@ -458,40 +456,23 @@ impl Fairing {
                 if h > 0 {
                     stats.steps_shortened += 1;
                 }
-                return;
+                return dot(d, d).sqrt();
             }
             d = d.map(|x| 0.5 * x);
         }
         stats.steps_refused += 1;
+        0.0
     }
 
     /// One sweep over the free points; the longest move made.
     fn sweep(&self, p: &mut [[f64; 3]], order: u32, stats: &mut SmoothStats) -> f64 {
         let mut longest: f64 = 0.0;
         for &v in &self.free {
-            let mut d = self.normal_step(p, v, order);
-            let len = dot(d, d).sqrt();
-            if len < STILL * self.diag * 1e-3 {
+            let d = self.normal_step(p, v, order);
+            if dot(d, d).sqrt() < STILL * self.diag * 1e-3 {
                 continue;
             }
-            let from = p[v as usize];
-            let mut taken = false;
-            for h in 0..=HALVINGS {
-                let q = std::array::from_fn(|i| from[i] + d[i]);
-                if self.allowed(p, v, q) {
-                    p[v as usize] = q;
-                    longest = longest.max(dot(d, d).sqrt());
-                    if h > 0 {
-                        stats.steps_shortened += 1;
-                    }
-                    taken = true;
-                    break;
-                }
-                d = d.map(|x| 0.5 * x);
-            }
-            if !taken {
-                stats.steps_refused += 1;
-            }
+            longest = longest.max(self.step_by(p, v, d, stats));
         }
         longest
     }
@@ -557,11 +538,7 @@ impl Fairing {
             .filter(|&i| at_moved[i])
             .flat_map_iter(|i| {
                 let t = tris[i];
-                let b = bvh.item_box(i as u32);
-                let grown = crate::geom::bvh::Aabb {
-                    lo: b.lo.map(|x| x - 2.0 * tol),
-                    hi: b.hi.map(|x| x + 2.0 * tol),
-                };
+                let grown = bvh.item_box(i as u32).grown(2.0 * tol);
                 let mut found = Vec::new();
                 bvh.for_each_overlap(&grown, |j| {
                     let j = j as usize;

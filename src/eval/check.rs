@@ -1,6 +1,6 @@
 //! `check`: is a triangle mesh a valid solid boundary, and (optionally) do its sections agree with
 //! the input cross-sections?
-use super::bvh::{triangle_boxes, Aabb, Bvh};
+use super::bvh::{triangle_boxes, Bvh};
 use super::near_coplanar::{
     edge_in_other_plane, normal, overlapping_near_coplanar_with_normals,
     EDGE_IN_PLANE_RELATIVE_TOLERANCE, NEAR_COPLANAR_RELATIVE_TOLERANCE,
@@ -216,7 +216,7 @@ pub fn self_intersections(mesh: &TriMesh) -> SelfIntersections {
             let mut r = SelfIntersections::default();
             // A point of the other triangle's projection lies within tolerance/|n_k| ≤ √3·tolerance of
             // this triangle along the dropped axis: grow the query box by twice the tolerance.
-            let bb = grown(bvh.item_box(i as u32), 2.0 * tolerance);
+            let bb = bvh.item_box(i as u32).grown(2.0 * tolerance);
             bvh.for_each_overlap(&bb, |j| {
                 let j = j as usize;
                 if j <= i || skip[j] {
@@ -272,7 +272,7 @@ pub fn overlapping_near_coplanar_pairs(
     for (i, &a) in triangles.iter().enumerate() {
         // as in `self_intersections`: a point within the tolerance of the other's plane is within
         // twice it of its box
-        let bb = grown(bvh.item_box(i as u32), 2.0 * tolerance);
+        let bb = bvh.item_box(i as u32).grown(2.0 * tolerance);
         let mut found: Vec<usize> = Vec::new();
         bvh.for_each_overlap(&bb, |j| {
             let j = j as usize;
@@ -316,13 +316,6 @@ pub fn coincident_vertices(mesh: &TriMesh) -> usize {
         .collect();
     pts.par_sort_unstable();
     pts.windows(2).filter(|w| w[0] == w[1]).count()
-}
-
-fn grown(b: &Aabb, d: f64) -> Aabb {
-    Aabb {
-        lo: b.lo.map(|x| x - d),
-        hi: b.hi.map(|x| x + d),
-    }
 }
 
 #[cfg(test)]

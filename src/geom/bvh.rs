@@ -65,6 +65,14 @@ impl Aabb {
         d
     }
 
+    /// The box grown by `d` on every side.
+    pub fn grown(&self, d: f64) -> Aabb {
+        Aabb {
+            lo: self.lo.map(|x| x - d),
+            hi: self.hi.map(|x| x + d),
+        }
+    }
+
     pub fn diagonal(&self) -> f64 {
         (0..3)
             .map(|k| (self.hi[k] - self.lo[k]).powi(2))
