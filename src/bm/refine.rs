@@ -18,6 +18,7 @@
 //! ([`drop_hull_slivers`]).
 use crate::fxhash::{FxHashMap, FxHashSet};
 use crate::sections::{cross, dot, sub};
+use rayon::prelude::*;
 use smallvec::SmallVec;
 
 /// The planes a global vertex lies on (plane ids).
@@ -108,7 +109,7 @@ pub fn grow(
     });
     // each round drops at least one edge
     loop {
-        let lists = [&*t.kept, &*t.fillable, &*t.external];
+        let lists: [&[[u32; 4]]; 3] = [t.kept, t.fillable, t.external];
         let all = (0..3)
             .flat_map(|l| near[l].iter().map(move |&i| &lists[l][i]))
             .filter(|x| touches_two(x, &ends));
@@ -279,16 +280,32 @@ fn kept_children(
 /// one side of it, the faces beside kept tetrahedra the other, so ∂K trades one side's triangles
 /// for the other's, with the same border. Returns how many were taken out.
 pub fn drop_hull_slivers(t: &mut Triangulation) -> u64 {
-    // tetrahedra numbered as the table has them: kept first, then fillable, then external
-    let table = super::faces::FaceTable::of_lists(&[t.kept, t.fillable, t.external]);
-    let n_kept = t.kept.len() as u32;
     let (planes, positions) = (&*t.planes, &*t.positions);
-    // `x` (number `j`) has a face no other tetrahedron shares
+    let flat_off_planes = |x: &[u32; 4]| {
+        flat_to_rounding(positions, x)
+            && !(0..4).any(|i| on_a_plane(planes, &key3(super::complex::outward_face(x, i))))
+    };
+    // tetrahedra numbered as the table has them: kept first, then fillable, then external
+    let lists: [&[[u32; 4]]; 3] = [t.kept, t.fillable, t.external];
+    // such slivers are rare: the face table of everything is built only when there are some
+    let mut candidates: Vec<u32> = Vec::new();
+    let mut first = 0u32;
+    for list in lists {
+        let found: Vec<u32> = (list.par_iter().enumerate())
+            .filter(|(_, x)| flat_off_planes(x))
+            .map(|(j, _)| first + j as u32)
+            .collect();
+        candidates.extend(found);
+        first += list.len() as u32;
+    }
+    if candidates.is_empty() {
+        return 0;
+    }
+    let table = super::faces::FaceTable::of_lists(&lists);
+    let n_kept = t.kept.len() as u32;
+    // `x` (number `j`, flat and off the planes) has a face no other tetrahedron shares
     let goes = |j: u32, x: &[u32; 4]| -> bool {
         let fs: [[u32; 3]; 4] = std::array::from_fn(|i| key3(super::complex::outward_face(x, i)));
-        if fs.iter().any(|f| on_a_plane(planes, f)) || !flat_to_rounding(positions, x) {
-            return false;
-        }
         if j >= n_kept {
             return true;
         }
@@ -307,15 +324,12 @@ pub fn drop_hull_slivers(t: &mut Triangulation) -> u64 {
             Some(f) => t.external[f - nf as usize],
         }
     };
-    let mut outer: Vec<u32> = Vec::new();
-    table.for_each_face(|codes| {
-        if let [c] = codes {
-            outer.push(c >> 2);
-        }
-    });
-    outer.sort_unstable();
-    outer.dedup();
-    let going: Vec<u32> = outer.into_iter().filter(|&j| goes(j, &tet(j))).collect();
+    let outer = |x: &[u32; 4]| {
+        (0..4).any(|i| table.codes(&key3(super::complex::outward_face(x, i))).len() == 1)
+    };
+    let going: Vec<u32> = (candidates.into_iter())
+        .filter(|&j| outer(&tet(j)) && goes(j, &tet(j)))
+        .collect();
     if going.is_empty() {
         return 0;
     }
