@@ -27,6 +27,7 @@ use crate::geom::predicates::orient3d;
 use crate::sections::{dot, sub};
 use petgraph::unionfind::UnionFind;
 use rayon::prelude::*;
+use smallvec::SmallVec;
 
 mod affine;
 
@@ -129,31 +130,55 @@ fn cell_parts(k: &Triangulation) -> Vec<CellPart> {
             parts.len() - 1
         })
     };
-    for (i, t) in all.iter().enumerate() {
+    // per tetrahedron in parallel, its section faces, volume and moment; summed in order after
+    let shares: Vec<TetShare> = (all.par_iter().enumerate())
+        .map(|(i, t)| tet_share(k, t, i < k.kept.len()))
+        .collect();
+    for (i, share) in shares.into_iter().enumerate() {
         let p = part_of(class[i], &mut parts);
         if i < k.kept.len() {
             parts[p].kept.push(i);
         }
-        for j in 0..4 {
-            let f = outward_face(t, j);
-            if let Some(plane) = common_plane(k.planes, f) {
-                if i < k.kept.len() || k.internal.contains(&key3(f)) {
-                    parts[p].bases.push((f, plane));
-                }
-            }
+        parts[p].bases.extend(share.bases);
+        for (m, x) in parts[p].moment.iter_mut().zip(share.moment) {
+            *m += x;
         }
-        let x = t.map(|v| k.positions[v as usize]);
-        let vol = orient3d(x[0], x[1], x[2], x[3]).abs();
-        for (d, m) in parts[p].moment.iter_mut().enumerate() {
-            *m += vol * (x[0][d] + x[1][d] + x[2][d] + x[3][d]) / 4.0;
-        }
-        parts[p].volume += vol;
+        parts[p].volume += share.volume;
     }
     for part in &mut parts {
         part.bases.sort_unstable_by_key(|b| key3(b.0));
         part.bases.dedup_by_key(|b| key3(b.0));
     }
     parts
+}
+
+/// One tetrahedron's part in its cell's [`CellPart`].
+struct TetShare {
+    bases: SmallVec<[([u32; 3], u32); 1]>,
+    moment: [f64; 3],
+    volume: f64,
+}
+
+/// Tetrahedron `t`'s faces on a plane (a kept one's all, another's those on a section) and its
+/// volume and moment.
+fn tet_share(k: &Triangulation, t: &[u32; 4], kept: bool) -> TetShare {
+    let mut bases = SmallVec::new();
+    for j in 0..4 {
+        let f = outward_face(t, j);
+        if let Some(plane) = common_plane(k.planes, f) {
+            if kept || k.internal.contains(&key3(f)) {
+                bases.push((f, plane));
+            }
+        }
+    }
+    let x = t.map(|v| k.positions[v as usize]);
+    let volume = orient3d(x[0], x[1], x[2], x[3]).abs();
+    let moment = std::array::from_fn(|d| volume * (x[0][d] + x[1][d] + x[2][d] + x[3][d]) / 4.0);
+    TetShare {
+        bases,
+        moment,
+        volume,
+    }
 }
 
 fn signed_distance(plane: &ArrPlane, x: [f64; 3]) -> f64 {

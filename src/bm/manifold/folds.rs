@@ -29,7 +29,9 @@ pub fn close_flat_folds(
         positions,
     };
     let mut stats = ToggleStats::default();
-    if !flat.flat.contains(&true) {
+    if !flat.flat.contains(&true)
+        || !has_flat_wedge(lists, &flat, k.planes, k.internal, nonconforming)
+    {
         return stats;
     }
     let mut l = Labelled::new(lists, k.planes, k.internal, nonconforming);
@@ -58,6 +60,55 @@ pub fn close_flat_folds(
     let (kept, fillable, external) = l.into_lists();
     (*k.kept, *k.fillable, *k.external) = (kept, fillable, external);
     stats
+}
+
+/// Whether ∂K has a wedge of flat tetrahedra (`Labelled::flat_wedges`), looked for among the
+/// tetrahedra that share a vertex with a flat one only: a wedge is flat tetrahedra around an edge
+/// of a kept tetrahedron that is flat or beside a flat one, so every tetrahedron the search reads,
+/// and every other one on a face it reads, has a vertex of a flat tetrahedron. The labelling of
+/// the whole complex is then built only where there is a wedge (rarely; it was most of the
+/// resolution's time on the shared files).
+fn has_flat_wedge(
+    lists: [&[[u32; 4]]; 3],
+    flat: &Flat,
+    planes: &[refine::Planes],
+    internal: &FxHashSet<[u32; 3]>,
+    nonconforming: &FxHashSet<u32>,
+) -> bool {
+    let mut near = vec![false; flat.positions.len()];
+    let all = || lists.iter().flat_map(|l| l.iter());
+    for (t, _) in all().zip(&flat.flat).filter(|(_, &f)| f) {
+        for &v in t {
+            near[v as usize] = true;
+        }
+    }
+    // the lists' order is kept: the search's choices among a face's owners go by index
+    let mut sub_flat = Vec::new();
+    let sub: Vec<Vec<[u32; 4]>> = {
+        let mut flags = flat.flat.iter();
+        (lists.iter())
+            .map(|l| {
+                (l.iter())
+                    .filter(|t| {
+                        let f = *flags.next().unwrap_or(&false);
+                        let keep = t.iter().any(|&v| near[v as usize]);
+                        if keep {
+                            sub_flat.push(f);
+                        }
+                        keep
+                    })
+                    .copied()
+                    .collect()
+            })
+            .collect()
+    };
+    let sub_lists: [&[[u32; 4]]; 3] = [&sub[0], &sub[1], &sub[2]];
+    let l = Labelled::new(sub_lists, planes, internal, nonconforming);
+    let sub_flat = Flat {
+        flat: sub_flat,
+        positions: flat.positions,
+    };
+    !l.flat_wedges(&sub_flat).is_empty()
 }
 
 /// Passes of [`close_flat_folds`] (each toggle can uncover a fold behind it).
@@ -309,5 +360,62 @@ impl Labelled<'_> {
             i += 1;
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bm::refine::test_support::{positive as oriented, Owned};
+
+    /// A crack (the flat tetrahedron a b c d, `height` thick, unkept between the kept a b d top
+    /// and a b c bottom) and, apart from it, kept tetrahedra sharing no vertex with it: the
+    /// search among the flat one's neighbours finds a wedge exactly when the whole complex's does.
+    #[test]
+    fn the_wedge_search_near_flat_tetrahedra_agrees_with_the_whole_complex() {
+        for (height, wedge) in [(1e-13, true), (0.1, false)] {
+            let mut p = vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.3, 0.3, height],
+                [0.4, 0.2, 1.0],
+                [0.3, 0.3, -1.0],
+            ];
+            // far away, a kept pair and an unkept one beside them
+            p.extend([
+                [5.0, 0.0, 0.0],
+                [6.0, 0.0, 0.0],
+                [5.0, 1.0, 0.0],
+                [5.0, 0.0, 1.0],
+            ]);
+            p.extend([[6.0, 1.0, 1.0], [5.0, 0.0, -1.0]]);
+            let (a, b, c, d, top, bottom) = (0, 1, 2, 3, 4, 5);
+            let o = Owned {
+                kept: [
+                    [a, b, d, top],
+                    [a, b, c, bottom],
+                    [6, 7, 8, 9],
+                    [7, 8, 9, 10],
+                ]
+                .map(|t| oriented(&p, t))
+                .to_vec(),
+                fillable: vec![oriented(&p, [6, 7, 8, 11])],
+                external: vec![oriented(&p, [a, b, c, d])],
+                ..Owned::at(p)
+            };
+            let lists: [&[[u32; 4]]; 3] = [&o.kept, &o.fillable, &o.external];
+            let flat = Flat {
+                flat: (lists.iter().flat_map(|l| l.iter()))
+                    .map(|t| flat_height(t.map(|v| o.positions[v as usize])) <= 1e-8)
+                    .collect(),
+                positions: &o.positions,
+            };
+            let none = FxHashSet::default();
+            let whole = Labelled::new(lists, &o.planes, &o.internal, &none);
+            assert_eq!(!whole.flat_wedges(&flat).is_empty(), wedge);
+            let near = has_flat_wedge(lists, &flat, &o.planes, &o.internal, &none);
+            assert_eq!(near, wedge);
+        }
     }
 }
