@@ -236,8 +236,9 @@ pub fn assemble(
             min_gap: TUNNEL_MIN_GAP * diag,
             near_coplanar: crate::eval::near_coplanar::NEAR_COPLANAR_RELATIVE_TOLERANCE * diag,
         };
-        out.tunnels = super::tunnels::close(&mut k, &on_hole, settle);
-        out.cuts = super::cuts::cut(&mut k, settle);
+        let found;
+        (out.tunnels, found) = super::tunnels::close(&mut k, &on_hole, settle);
+        out.cuts = super::cuts::cut(&mut k, settle, found);
     }
     laps.lap("tunnels");
     if let Some(how) = smooth {
@@ -245,7 +246,7 @@ pub fn assemble(
         out.smooth.max_shift /= diag;
         laps.lap("smooth");
     }
-    let mut boundary = None;
+    let mut collared = None;
     let n_before_collar = k.positions.len();
     let mut lifted = Vec::new();
     if collar > 0.0 {
@@ -253,29 +254,33 @@ pub fn assemble(
         let (stats, b) = super::collar::build(&mut k, &arr.planes, collar * diag, max_shift);
         out.collar = stats;
         if let Some(c) = b {
-            boundary = Some(c.boundary);
+            collared = Some((c.boundary, c.singular));
             lifted = c.lifted_from;
         }
         out.collar.min_height /= diag;
         out.collar.max_shift /= diag;
     }
-    let mut boundary = boundary.unwrap_or_else(|| boundary_of(k.kept));
+    // ∂K and its singular simplices, each found once (the collar found them for its result)
+    let (mut boundary, mut singular) = collared.unwrap_or_else(|| {
+        let b = boundary_of(k.kept);
+        let s = super::fill::singular_simplices(&b);
+        (b, s)
+    });
     if collar > 0.0 {
-        let singular = super::fill::singular_simplices(&boundary);
         let distance = CARVE_DISTANCE * diag;
         out.carved_off_planes =
-            super::carve::carve_off_planes(&mut k, singular, &nonconforming, distance);
+            super::carve::carve_off_planes(&mut k, singular.clone(), &nonconforming, distance);
         if out.carved_off_planes.vertices > 0 {
             boundary = boundary_of(k.kept);
+            singular = super::fill::singular_simplices(&boundary);
         }
     }
     let seconds = laps.lap("collar");
     if collar > 0.0 {
         out.collar.seconds = seconds;
     }
-    let (edges, vertices) = singularities(&boundary);
-    out.singular_edges = edges;
-    out.singular_vertices = vertices;
+    out.singular_edges = singular.0.len() as u64;
+    out.singular_vertices = singular.1.len() as u64;
     out.surface = TriMesh::with_used_vertices(&positions, &boundary);
     // TetMesh wants positive volume (orient3d < 0): swap two vertices
     out.tets = TetMesh {

@@ -548,10 +548,11 @@ fn apply(k: &Triangulation, parts: &[CellPart], collars: &[Option<CellCollar>]) 
     out
 }
 
-/// K with its collar: ∂K, and per point the collar appended (after K's), the point on a plane
-/// whose image it is.
+/// K with its collar: ∂K and its singular simplices, and per point the collar appended (after
+/// K's), the point on a plane whose image it is.
 pub struct Collared {
     pub boundary: Vec<[u32; 3]>,
+    pub singular: super::assembly::Sets,
     pub lifted_from: Vec<u32>,
 }
 
@@ -629,7 +630,7 @@ pub fn build(
         let boundary = super::assembly::boundary_of(&a.kept);
         let (e, v) = super::fill::singular_simplices(&boundary);
         if (e.len() + v.len()) as u64 <= allowed {
-            applied = Some((a, boundary));
+            applied = Some((a, boundary, (e, v)));
             break;
         }
         let at: FxHashSet<u32> = e.iter().flat_map(|&(x, y)| [x, y]).chain(v).collect();
@@ -643,7 +644,7 @@ pub fn build(
     }
     k.fillable.clear();
     k.external.clear();
-    let Some((a, boundary)) = applied else {
+    let Some((a, boundary, singular)) = applied else {
         stats.cells_left_singular += collars.iter().flatten().count() as u64;
         return (stats, None);
     };
@@ -662,6 +663,7 @@ pub fn build(
     *k.kept = a.kept;
     let collared = Collared {
         boundary,
+        singular,
         lifted_from: a.lifted_from,
     };
     (stats, Some(collared))

@@ -23,7 +23,7 @@ use super::edges::EdgeTable;
 use super::faces::{FaceTable, NO_NEIGHBOUR};
 use super::refine::{edge, key3, Triangulation};
 use super::tunnels::{
-    face_steps, vertex_groups, Batches, Move, Settle, Surface, TunnelStats, TESTS_BASE,
+    face_steps, vertex_groups, Batches, Found, Move, Settle, Surface, TunnelStats, TESTS_BASE,
 };
 use crate::eval::topology::UnionFind;
 use crate::fxhash::FxHashMap;
@@ -32,9 +32,15 @@ use std::collections::BinaryHeap;
 
 /// Cut K's unwitnessed handles (the module's steps); counted in a [`TunnelStats`] (membranes are
 /// cuts, tunnels closed are handles cut). Nothing is tried when ∂K is not a manifold.
-pub fn cut(k: &mut Triangulation, settle: Settle) -> TunnelStats {
+/// `found`: ∂K if known (`tunnels::close` left K as it found it).
+pub(super) fn cut(k: &mut Triangulation, settle: Settle, found: Option<Found>) -> TunnelStats {
     let mut stats = TunnelStats::default();
-    let Some(now) = Surface::of_manifold(k.kept) else {
+    let now = match found {
+        Some(Found::Manifold(now)) => Some(now),
+        Some(Found::Singular) => None,
+        None => Surface::of_manifold(k.kept),
+    };
+    let Some(now) = now else {
         stats.skipped_singular = true;
         return stats;
     };
@@ -557,7 +563,7 @@ mod tests {
         let mut k = owned.view();
         let before = Surface::of(k.kept).topology;
         assert_eq!((before.components, before.genus), (1, 1));
-        let stats = cut(&mut k, settle());
+        let stats = cut(&mut k, settle(), None);
         assert_eq!((stats.membranes, stats.tunnels_closed), (1, 1), "{stats:?}");
         let after = Surface::of(k.kept).topology;
         assert_eq!((after.components, after.genus), (1, 0));
@@ -626,7 +632,7 @@ mod tests {
         let mut owned = ring_with_floor(8, 0..8);
         let mut k = owned.view();
         let n = k.kept.len();
-        let stats = cut(&mut k, settle());
+        let stats = cut(&mut k, settle(), None);
         assert_eq!((stats.membranes, stats.tunnels_closed), (0, 0), "{stats:?}");
         assert_eq!(k.kept.len(), n);
         assert_eq!(Surface::of(k.kept).topology.genus, 1);

@@ -208,18 +208,24 @@ pub struct Settle {
 /// `kept` where they leave ∂K a manifold with fewer handles. `on_hole`: per vertex, whether it
 /// lies on a hole of a section. Nothing is tried when ∂K is not a manifold (`skipped_singular`):
 /// settling membranes beside what the resolution left singular made double sheets (odd033).
-pub fn close(k: &mut Triangulation, on_hole: &[bool], settle: Settle) -> TunnelStats {
+/// With the stats, ∂K as found at the start when no membrane was taken (K is then as it was).
+pub(super) fn close(
+    k: &mut Triangulation,
+    on_hole: &[bool],
+    settle: Settle,
+) -> (TunnelStats, Option<Found>) {
     let mut stats = TunnelStats::default();
-    let (edges, vertices) = super::assembly::singular_sets(k.kept);
+    let tris = super::faces::boundary(k.kept);
+    let (edges, vertices) = super::fill::singular_simplices(&tris);
     if !edges.is_empty() || !vertices.is_empty() {
         stats.skipped_singular = true;
-        return stats;
+        return (stats, Some(Found::Singular));
     }
     let membranes = thin(k, on_hole, &mut stats);
+    let now = Surface::from_tris(tris);
     if membranes.is_empty() {
-        return stats;
+        return (stats, Some(Found::Manifold(now)));
     }
-    let now = Surface::of(k.kept);
     stats.genus_before = now.topology.genus;
     let mut batches = Batches {
         how: Move::Close,
@@ -229,8 +235,16 @@ pub fn close(k: &mut Triangulation, on_hole: &[bool], settle: Settle) -> TunnelS
         stats: &mut stats,
     };
     batches.take(k, &membranes);
-    stats.genus_after = batches.now.topology.genus;
-    stats
+    let now = batches.now;
+    let taken = stats.tunnels_closed > 0 || stats.tets_added > 0;
+    stats.genus_after = now.topology.genus;
+    (stats, (!taken).then_some(Found::Manifold(now)))
+}
+
+/// ∂K of a K that `close` left as it found it.
+pub(super) enum Found {
+    Singular,
+    Manifold(Surface),
 }
 
 /// Step 1: the membranes (groups of survivors joined through shared vertices) that thinning S
@@ -889,7 +903,7 @@ mod tests {
             min_gap: 1e-7,
             near_coplanar: 1e-9,
         };
-        let stats = close(&mut k, &[false; 7], settle);
+        let (stats, _) = close(&mut k, &[false; 7], settle);
         assert_eq!(
             (stats.candidates, stats.membranes, stats.tets_added),
             (3, 0, 0)
