@@ -207,7 +207,8 @@ pub struct Settle {
 /// Close K's unwitnessed tunnels (the module's steps): membranes move from `fillable` into
 /// `kept` where they leave ∂K a manifold with fewer handles. `on_hole`: per vertex, whether it
 /// lies on a hole of a section. Nothing is tried when ∂K is not a manifold (`skipped_singular`):
-/// settling membranes beside what the resolution left singular made double sheets (odd033).
+/// settling membranes beside what the resolution left singular made double sheets (odd033); nor
+/// when ∂K has genus 0 (no batch could lower it; the candidates are then not counted).
 /// With the stats, ∂K as found at the start when no membrane was taken (K is then as it was).
 pub(super) fn close(
     k: &mut Triangulation,
@@ -221,8 +222,12 @@ pub(super) fn close(
         stats.skipped_singular = true;
         return (stats, Some(Found::Singular));
     }
-    let membranes = thin(k, on_hole, &mut stats);
     let now = Surface::from_tris(tris);
+    // a batch stays only when the genus falls: with none, thinning would find nothing to take
+    if now.topology.genus == 0 {
+        return (stats, Some(Found::Manifold(now)));
+    }
+    let membranes = thin(k, on_hole, &mut stats);
     if membranes.is_empty() {
         return (stats, Some(Found::Manifold(now)));
     }
@@ -903,11 +908,16 @@ mod tests {
             min_gap: 1e-7,
             near_coplanar: 1e-9,
         };
-        let (stats, _) = close(&mut k, &[false; 7], settle);
+        let mut stats = TunnelStats::default();
+        assert!(thin(&k, &[false; 7], &mut stats).is_empty());
+        assert_eq!((stats.candidates, stats.membranes), (3, 0));
+        // ∂K is a sphere: closing does not even thin, and K stays as it is
+        let (stats, found) = close(&mut k, &[false; 7], settle);
         assert_eq!(
             (stats.candidates, stats.membranes, stats.tets_added),
-            (3, 0, 0)
+            (0, 0, 0)
         );
+        assert!(matches!(found, Some(Found::Manifold(s)) if s.topology.genus == 0));
         assert_eq!(k.kept.len(), 2);
         assert_eq!(k.fillable.len(), 3);
     }
