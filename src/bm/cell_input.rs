@@ -12,6 +12,18 @@ use std::collections::{HashMap, HashSet};
 
 pub type Mask = u128;
 
+/// The slots of `mask` (its set bits), ascending.
+pub fn slots_of(mask: Mask) -> impl Iterator<Item = usize> {
+    let mut rest = mask;
+    std::iter::from_fn(move || {
+        (rest != 0).then(|| {
+            let s = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            s
+        })
+    })
+}
+
 /// The cells' id-keyed maps use the crate's Fx hasher.
 pub type IdHash = crate::fxhash::FxBuild;
 pub type IdMap<K, V> = HashMap<K, V, IdHash>;
@@ -554,6 +566,16 @@ impl CellInput {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn slots_of_a_mask_are_its_set_bits_ascending() {
+        assert_eq!(slots_of(0).count(), 0);
+        let m: Mask = 1 | 1 << 5 | 1 << 64 | 1 << 127;
+        assert_eq!(slots_of(m).collect::<Vec<_>>(), vec![0, 5, 64, 127]);
+        let scan: Vec<usize> = (0..128).filter(|&s| m >> s & 1 == 1).collect();
+        assert_eq!(slots_of(m).collect::<Vec<_>>(), scan);
+    }
+
     #[test]
     fn a_row_locates_as_the_locator_does() {
         // a star with a hole, vertices on grid rows and columns, a horizontal edge, a near-flat one
