@@ -185,9 +185,11 @@ pub fn assemble(
     let mut positions = pool.positions.clone();
     let maps = global_maps(results, &mut positions);
     let mut out = Assembled::default();
-    let mut tets: Vec<[u32; 4]> = Vec::new();
-    let mut fillable: Vec<[u32; 4]> = Vec::new();
-    let mut external: Vec<[u32; 4]> = Vec::new();
+    // sized once: grown cell by cell, the lists were copied over and over
+    let total = |f: fn(&CellResult) -> usize| results.iter().flatten().map(f).sum::<usize>();
+    let mut tets: Vec<[u32; 4]> = Vec::with_capacity(total(|r| r.kept.len()));
+    let mut fillable: Vec<[u32; 4]> = Vec::with_capacity(total(|r| r.fillable.len()));
+    let mut external: Vec<[u32; 4]> = Vec::with_capacity(total(|r| r.external.len()));
     for (c, r) in results.iter().enumerate() {
         let Some(r) = r else { continue };
         let m = &maps[c];
