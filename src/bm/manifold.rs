@@ -557,19 +557,24 @@ mod tests {
 
     use crate::bm::refine::test_support::positive as oriented;
 
-    /// A triangle a b c with d `height` above a point inside it: the tetrahedron a b c d, unkept,
-    /// between two kept ones, a b d p above and a b c q below. Flat (1e-13), its faces a b d and
-    /// a b c are on ∂K and lie on each other (a crack; edge a b is singular too), and adding it
-    /// closes the crack: returns the toggles and the singular edges left.
-    fn crack(height: f64) -> (ToggleStats, u64) {
-        let p = vec![
+    /// The points a b c d top bottom of [`crack`].
+    pub(super) fn crack_points(height: f64) -> Vec<[f64; 3]> {
+        vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
             [0.3, 0.3, height],
             [0.4, 0.2, 1.0],
             [0.3, 0.3, -1.0],
-        ];
+        ]
+    }
+
+    /// A triangle a b c with d `height` above a point inside it: the tetrahedron a b c d, unkept,
+    /// between two kept ones, a b d p above and a b c q below. Flat (1e-13), its faces a b d and
+    /// a b c are on ∂K and lie on each other (a crack; edge a b is singular too), and adding it
+    /// closes the crack: returns the toggles and the singular edges left.
+    fn crack(height: f64) -> (ToggleStats, u64) {
+        let p = crack_points(height);
         let (a, b, c, d, top, bottom) = (0, 1, 2, 3, 4, 5);
         let mut o = Owned {
             kept: [[a, b, d, top], [a, b, c, bottom]]

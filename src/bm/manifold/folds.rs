@@ -368,20 +368,13 @@ mod tests {
     use super::*;
     use crate::bm::refine::test_support::{positive as oriented, Owned};
 
-    /// A crack (the flat tetrahedron a b c d, `height` thick, unkept between the kept a b d top
-    /// and a b c bottom) and, apart from it, kept tetrahedra sharing no vertex with it: the
+    /// A crack (`manifold`'s test `crack`: the flat tetrahedron a b c d, `height` thick, unkept
+    /// between the kept a b d top and a b c bottom) and, apart from it, kept tetrahedra sharing no vertex with it: the
     /// search among the flat one's neighbours finds a wedge exactly when the whole complex's does.
     #[test]
     fn the_wedge_search_near_flat_tetrahedra_agrees_with_the_whole_complex() {
         for (height, wedge) in [(1e-13, true), (0.1, false)] {
-            let mut p = vec![
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.3, 0.3, height],
-                [0.4, 0.2, 1.0],
-                [0.3, 0.3, -1.0],
-            ];
+            let mut p = super::super::tests::crack_points(height);
             // far away, a kept pair and an unkept one beside them
             p.extend([
                 [5.0, 0.0, 0.0],
