@@ -12,7 +12,7 @@ use std::collections::{HashMap, HashSet};
 
 pub type Mask = u128;
 
-/// The slots of `mask` (its set bits), ascending.
+/// The slots of `mask` (its set bits), ascending: one step per set bit, not per slot.
 pub fn slots_of(mask: Mask) -> impl Iterator<Item = usize> {
     let mut rest = mask;
     std::iter::from_fn(move || {

@@ -11,7 +11,7 @@
 //! every linked pair that is not an edge of the slot's grounded triangles with a Steiner point on the
 //! diagram between them, a few rounds, and reports what is left.
 use super::branching::{into_cell_normal, moebius_sites, Site, SiteIndex};
-use super::cell_input::{CellInput, IdMap, Mask, Where};
+use super::cell_input::{slots_of, CellInput, IdMap, Mask, Where};
 use super::cutting::{diagram_point_across, Thinning};
 use super::guard::ContourGuard;
 use crate::delaunay::Delaunay;
@@ -423,7 +423,7 @@ fn diagram_edges(dt: &Delaunay, mask: &[Mask], min_id: u32) -> IdMap<(usize, u32
     for_each_diagram_edge(dt, min_id, mask, |tv, u, v| {
         let on = mask[u as usize] & mask[v as usize];
         // the set bits only: a scan of all 128 was most of the pairs' routing time
-        for s in super::cell_input::slots_of(on) {
+        for s in slots_of(on) {
             if grounded_on(tv, u, v, mask, s) {
                 adj.entry((s, u)).or_default().push(v);
                 adj.entry((s, v)).or_default().push(u);

@@ -14,7 +14,7 @@
 //!     edges are the tet's pivot edges in step 2;
 //!   - `Evv`: some edge is grounded;
 //!   - `Vvvv`: no edge is grounded.
-use super::cell_input::{CellInput, IdMap, Mask, Where};
+use super::cell_input::{slots_of, CellInput, IdMap, Mask, Where};
 use super::complex::{Complex, TET_EDGES};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,17 +54,6 @@ pub fn grounded_faces(m: [Mask; 4]) -> u8 {
         m[0] & m[1] & m[2],
     ];
     (0..4).filter(|&i| faces[i] != 0).fold(0, |b, i| b | 1 << i)
-}
-
-/// The slots whose bit is set in `m`, ascending (one step per set bit, not per slot).
-fn slots_of(mut m: Mask) -> impl Iterator<Item = usize> {
-    std::iter::from_fn(move || {
-        (m != 0).then(|| {
-            let s = m.trailing_zeros() as usize;
-            m &= m - 1;
-            s
-        })
-    })
 }
 
 pub struct Classifier<'a> {
