@@ -328,7 +328,10 @@ pub fn drop_hull_slivers(t: &mut Triangulation) -> u64 {
         (0..4).any(|i| table.codes(&key3(super::complex::outward_face(x, i))).len() == 1)
     };
     let going: Vec<u32> = (candidates.into_iter())
-        .filter(|&j| outer(&tet(j)) && goes(j, &tet(j)))
+        .filter(|&j| {
+            let x = tet(j);
+            outer(&x) && goes(j, &x)
+        })
         .collect();
     if going.is_empty() {
         return 0;

@@ -241,9 +241,10 @@ pub(super) fn close(
     };
     batches.take(k, &membranes);
     let now = batches.now;
-    let taken = stats.tunnels_closed > 0 || stats.tets_added > 0;
     stats.genus_after = now.topology.genus;
-    (stats, (!taken).then_some(Found::Manifold(now)))
+    // a batch taken counts its membranes as tunnels closed; none taken: K is as it was
+    let unchanged = stats.tunnels_closed == 0;
+    (stats, unchanged.then_some(Found::Manifold(now)))
 }
 
 /// ∂K of a K that `close` left as it found it.

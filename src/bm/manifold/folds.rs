@@ -84,24 +84,16 @@ fn has_flat_wedge(
     }
     // the lists' order is kept: the search's choices among a face's owners go by index
     let mut sub_flat = Vec::new();
-    let sub: Vec<Vec<[u32; 4]>> = {
-        let mut flags = flat.flat.iter();
-        (lists.iter())
-            .map(|l| {
-                (l.iter())
-                    .filter(|t| {
-                        let f = *flags.next().unwrap_or(&false);
-                        let keep = t.iter().any(|&v| near[v as usize]);
-                        if keep {
-                            sub_flat.push(f);
-                        }
-                        keep
-                    })
-                    .copied()
-                    .collect()
+    let mut flags = flat.flat.iter().copied();
+    let sub = lists.map(|l| {
+        (l.iter().zip(flags.by_ref()))
+            .filter(|(t, _)| t.iter().any(|&v| near[v as usize]))
+            .map(|(t, f)| {
+                sub_flat.push(f);
+                *t
             })
-            .collect()
-    };
+            .collect::<Vec<_>>()
+    });
     let sub_lists: [&[[u32; 4]]; 3] = [&sub[0], &sub[1], &sub[2]];
     let l = Labelled::new(sub_lists, planes, internal, nonconforming);
     let sub_flat = Flat {
@@ -369,8 +361,9 @@ mod tests {
     use crate::bm::refine::test_support::{positive as oriented, Owned};
 
     /// A crack (`manifold`'s test `crack`: the flat tetrahedron a b c d, `height` thick, unkept
-    /// between the kept a b d top and a b c bottom) and, apart from it, kept tetrahedra sharing no vertex with it: the
-    /// search among the flat one's neighbours finds a wedge exactly when the whole complex's does.
+    /// between the kept a b d top and a b c bottom) and, apart from it, kept tetrahedra sharing no
+    /// vertex with it: the search among the flat one's neighbours finds a wedge exactly when the
+    /// whole complex's does.
     #[test]
     fn the_wedge_search_near_flat_tetrahedra_agrees_with_the_whole_complex() {
         for (height, wedge) in [(1e-13, true), (0.1, false)] {
