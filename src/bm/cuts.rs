@@ -32,7 +32,7 @@ use std::collections::BinaryHeap;
 
 /// Cut K's unwitnessed handles (the module's steps); counted in a [`TunnelStats`] (membranes are
 /// cuts, tunnels closed are handles cut). Nothing is tried when ∂K is not a manifold.
-/// `found`: ∂K if known (`tunnels::close` left K as it found it).
+/// `found`: ∂K if known (as `tunnels::close` left K).
 pub(super) fn cut(k: &mut Triangulation, settle: Settle, found: Option<Found>) -> TunnelStats {
     let mut stats = TunnelStats::default();
     let now = match found {

@@ -209,7 +209,7 @@ pub struct Settle {
 /// lies on a hole of a section. Nothing is tried when ∂K is not a manifold (`skipped_singular`):
 /// settling membranes beside what the resolution left singular made double sheets (odd033); nor
 /// when ∂K has genus 0 (no batch could lower it; the candidates are then not counted).
-/// With the stats, ∂K as found at the start when no membrane was taken (K is then as it was).
+/// With the stats, ∂K as it leaves K.
 pub(super) fn close(
     k: &mut Triangulation,
     on_hole: &[bool],
@@ -242,12 +242,11 @@ pub(super) fn close(
     batches.take(k, &membranes);
     let now = batches.now;
     stats.genus_after = now.topology.genus;
-    // a batch taken counts its membranes as tunnels closed; none taken: K is as it was
-    let unchanged = stats.tunnels_closed == 0;
-    (stats, unchanged.then_some(Found::Manifold(now)))
+    // ∂K as each batch taken left it (a manifold: a batch stays only then)
+    (stats, Some(Found::Manifold(now)))
 }
 
-/// ∂K of a K that `close` left as it found it.
+/// ∂K as `close` left K.
 pub(super) enum Found {
     Singular,
     Manifold(Surface),
